@@ -1,0 +1,8 @@
+// pbrkit info: placeholder until its issue lands (it is not listed in --help).
+#include "commands.h"
+
+namespace pbrkit::cli {
+
+void register_info_command(CLI::App& /*app*/) {}
+
+}  // namespace pbrkit::cli

@@ -1,0 +1,35 @@
+# Every dependency comes from Debian 12 packages installed by scripts/setup.
+# See ../shared/PLATFORM.md for why each line looks the way it does.
+find_package(embree 3 CONFIG REQUIRED)           # target: embree (no namespace)
+find_package(TBB CONFIG REQUIRED)                # TBB::tbb
+find_package(OpenEXR 3 CONFIG REQUIRED)          # OpenEXR::OpenEXR
+find_package(OpenImageIO 2.4 CONFIG REQUIRED)    # OpenImageIO::OpenImageIO
+# Debian 12 packaging bug: the OIIO target lists /usr/include/opencv4, which exists only
+# with libopencv-dev; CMake refuses to generate with a non-existent include path.
+foreach(_prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
+  get_target_property(_dirs OpenImageIO::OpenImageIO ${_prop})
+  if(_dirs)
+    list(FILTER _dirs EXCLUDE REGEX "opencv4")
+    set_target_properties(OpenImageIO::OpenImageIO PROPERTIES ${_prop} "${_dirs}")
+  endif()
+endforeach()
+find_package(glm CONFIG REQUIRED)                # glm::glm
+find_package(CLI11 2 CONFIG REQUIRED)            # CLI11::CLI11
+find_package(nlohmann_json 3.11 CONFIG REQUIRED) # nlohmann_json::nlohmann_json
+find_package(fmt 9 CONFIG REQUIRED)              # fmt::fmt
+find_package(TinyGLTF CONFIG REQUIRED)           # TinyGLTF::TinyGLTF (Debian's prebuilt libtinygltf.so)
+find_package(draco CONFIG REQUIRED)              # draco::draco
+find_package(meshoptimizer CONFIG REQUIRED)      # meshoptimizer::meshoptimizer
+find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
+find_package(glfw3 3.3 CONFIG REQUIRED)          # glfw
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)      # PkgConfig::STB (implementations in libstb.so)
+pkg_check_modules(EPOXY REQUIRED IMPORTED_TARGET epoxy)  # PkgConfig::EPOXY
+pkg_check_modules(IMGUI REQUIRED IMPORTED_TARGET imgui)  # PkgConfig::IMGUI (backends inside libimgui.a)
+if(PBRKIT_BUILD_TESTS)
+  find_package(GTest CONFIG REQUIRED)            # GTest::gtest GTest::gtest_main
+  include(GoogleTest)
+endif()
+if(PBRKIT_BUILD_BENCH)
+  find_package(benchmark CONFIG REQUIRED)        # benchmark::benchmark
+endif()

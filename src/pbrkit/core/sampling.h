@@ -1,0 +1,89 @@
+#pragma once
+// Random numbers, low-discrepancy points and warps from [0,1)^2 to directions.
+// Every warp returns its pdf (with respect to solid angle for directions, area for the
+// disk), following pbrt-v4's convention that a sampling routine and its density travel
+// together.
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+namespace pbrkit {
+
+/// PCG32 (O'Neill 2014) through Debian's libpcg-cpp; a thin wrapper so callers see only
+/// uniform floats. Deterministic for a given (seed, stream).
+class Pcg32 {
+ public:
+  explicit Pcg32(std::uint64_t seed = 0x853c49e6748fea9bULL,
+                 std::uint64_t stream = 0xda3e39cb94b95bdbULL);
+  std::uint32_t next_u32();
+  /// Uniform in [0, 1), 24 random bits (never returns 1.0f).
+  float next_float();
+  double next_double();
+  glm::vec2 next_2d() {
+    const float a = next_float();
+    return {a, next_float()};
+  }
+
+ private:
+  std::uint64_t state_;
+  std::uint64_t inc_;
+};
+
+/// Largest float below 1: samples are clamped to this so warps never see u == 1.
+inline constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
+
+/// Van der Corput radical inverse in base 2 (bit reversal) of i, in [0,1).
+float radical_inverse_base2(std::uint32_t i);
+/// Point i of an n-point Hammersley set: (i / n, radical_inverse_base2(i)).
+glm::vec2 hammersley(std::uint32_t i, std::uint32_t n);
+
+/// Owen-scrambled Sobol sampler (Burley 2020, "Practical Hash-based Owen Scrambling",
+/// JCGT 9(4)). Each pixel gets its own decorrelated progressive sequence: the sample index
+/// is shuffled by a nested uniform scramble seeded by the pixel, and each dimension is
+/// Owen-scrambled with its own seed. Dimensions are drawn in 4D Sobol blocks padded with
+/// different seeds ("dimension padding"), so any number of dimensions is available.
+/// Deterministic: sample(pixel, index, dim) depends on nothing else, which makes renders
+/// independent of thread count and splittable into sample ranges.
+class OwenSobolSampler {
+ public:
+  explicit OwenSobolSampler(std::uint32_t seed = 0) : seed_(seed) {}
+  /// Value of dimension `dim` of sample `index` for pixel `pixel_id`, in [0,1).
+  float sample(std::uint32_t pixel_id, std::uint32_t index, std::uint32_t dim) const;
+  glm::vec2 sample_2d(std::uint32_t pixel_id, std::uint32_t index, std::uint32_t dim) const {
+    return {sample(pixel_id, index, dim), sample(pixel_id, index, dim + 1)};
+  }
+  std::uint32_t seed() const { return seed_; }
+
+ private:
+  std::uint32_t seed_;
+};
+
+/// Plain (unscrambled) Sobol point `index` in dimension `dim` (0..3), as a 32-bit integer
+/// fraction. Exposed for tests (the first dimensions are known in closed form).
+std::uint32_t sobol_u32(std::uint32_t index, std::uint32_t dim);
+/// Burley 2020's hash-based nested uniform (Owen) scramble of a 32-bit fraction.
+std::uint32_t nested_uniform_scramble(std::uint32_t x, std::uint32_t seed);
+
+/// A direction and its pdf.
+struct DirectionSample {
+  glm::vec3 direction;
+  float pdf;  ///< with respect to solid angle
+};
+
+/// Concentric mapping of the square to the unit disk (Shirley & Chiu 1997); pdf = 1/pi.
+glm::vec2 sample_concentric_disk(glm::vec2 u);
+inline constexpr float concentric_disk_pdf() { return 0.31830988618379067154f; }
+
+/// Uniform hemisphere about +Z; pdf = 1/(2 pi).
+DirectionSample sample_uniform_hemisphere(glm::vec2 u);
+float uniform_hemisphere_pdf();
+
+/// Cosine-weighted hemisphere about +Z (Malley's method); pdf = cos(theta)/pi.
+DirectionSample sample_cosine_hemisphere(glm::vec2 u);
+float cosine_hemisphere_pdf(float cos_theta);
+
+/// Uniform sphere; pdf = 1/(4 pi).
+DirectionSample sample_uniform_sphere(glm::vec2 u);
+float uniform_sphere_pdf();
+
+}  // namespace pbrkit

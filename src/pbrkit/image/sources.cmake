@@ -1,0 +1,3 @@
+target_sources(pbrkit PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/environment.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/image_io.cpp)

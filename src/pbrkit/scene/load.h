@@ -1,0 +1,38 @@
+#pragma once
+// Loading scenes: glTF 2.0 (.gltf / .glb) files and the built-in generated scenes.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "pbrkit/scene/scene.h"
+
+namespace pbrkit {
+
+/// Limits applied while loading hostile files (each violation is an Error saying the limit).
+struct SceneLimits {
+  std::size_t max_image_pixels = std::size_t(1) << 26;        ///< 64 M pixels per image
+  std::size_t max_total_texture_bytes = std::size_t(4) << 30; ///< 4 GiB of decoded texels
+  std::size_t max_buffer_bytes = std::size_t(2) << 30;        ///< 2 GiB per buffer
+  std::size_t max_triangles = std::size_t(200) << 20;         ///< 200 M triangles in all
+};
+
+struct LoadOptions {
+  SceneLimits limits;
+};
+
+/// Loads a .gltf or .glb file, or a built-in scene when `path_or_name` is "spheres",
+/// "furnace" or "cornell" (or "builtin:<name>"). Throws pbrkit::Error naming the file and,
+/// where possible, the JSON path of the bad element (e.g. "accessors[3].count").
+Scene load_scene(const std::string& path_or_name, const LoadOptions& options = {});
+
+/// Names of the built-in scenes.
+std::vector<std::string> builtin_scene_names();
+bool is_builtin_scene(const std::string& name);
+/// Generates a built-in scene (Error for an unknown name, listing the known ones).
+Scene builtin_scene(const std::string& name);
+
+/// Writes a scene as a binary glTF (.glb), atomically, so other tools can render exactly
+/// the same scene.
+void write_glb(const Scene& scene, const std::filesystem::path& path);
+
+}  // namespace pbrkit

@@ -1,0 +1,167 @@
+#pragma once
+// The renderer-neutral scene: what the glTF loader (and the built-in scene generators)
+// produce and what both renderers consume. Everything is flattened to world space:
+// instances carry the accumulated node transform (Embree supports one instancing level).
+#include <array>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "pbrkit/image/image.h"
+
+namespace pbrkit {
+
+enum class WrapMode { kRepeat, kClampToEdge, kMirroredRepeat };
+enum class FilterMode { kNearest, kLinear };
+
+/// glTF sampler state (mipmapped minification uses trilinear when `min_mipmap`).
+struct Sampler {
+  WrapMode wrap_s = WrapMode::kRepeat;
+  WrapMode wrap_t = WrapMode::kRepeat;
+  FilterMode mag = FilterMode::kLinear;
+  FilterMode min = FilterMode::kLinear;
+  bool min_mipmap = true;
+};
+
+/// A texture: linear float RGBA texels (sRGB-encoded inputs already decoded), with a
+/// full mip chain (mips[0] is the full-resolution image, 4 channels each).
+struct Texture {
+  std::string name;
+  std::vector<Image> mips;
+  Sampler sampler;
+  bool srgb = false;  ///< whether the source was decoded from sRGB (baseColor, emissive)
+
+  int width() const { return mips.empty() ? 0 : mips[0].width; }
+  int height() const { return mips.empty() ? 0 : mips[0].height; }
+  /// Filtered lookup (bilinear, or trilinear between mips at `lod`), honouring the wrap
+  /// modes; uv origin is the top-left of the image, as glTF specifies.
+  glm::vec4 sample(glm::vec2 uv, float lod = 0.0f) const;
+};
+
+/// KHR_texture_transform: uv' = T * R * S * uv.
+struct TextureTransform {
+  glm::vec2 offset{0.0f};
+  float rotation = 0.0f;
+  glm::vec2 scale{1.0f};
+  glm::mat3 matrix() const;
+};
+
+/// A material's reference to a texture.
+struct TextureRef {
+  int texture = -1;  ///< index into Scene::textures, -1 for none
+  int texcoord = 0;  ///< which TEXCOORD_n set
+  std::optional<TextureTransform> transform;
+  bool valid() const { return texture >= 0; }
+};
+
+enum class AlphaMode { kOpaque, kMask, kBlend };
+
+/// glTF 2.0 metallic-roughness material with the spec's defaults.
+struct Material {
+  std::string name;
+  glm::vec4 base_color_factor{1.0f};
+  float metallic_factor = 1.0f;
+  float roughness_factor = 1.0f;
+  glm::vec3 emissive_factor{0.0f};
+  float emissive_strength = 1.0f;  ///< KHR_materials_emissive_strength
+  float normal_scale = 1.0f;
+  float occlusion_strength = 1.0f;
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha_cutoff = 0.5f;
+  bool double_sided = false;
+  TextureRef base_color_texture;          ///< sRGB, RGBA
+  TextureRef metallic_roughness_texture;  ///< linear; roughness in G, metallic in B
+  TextureRef normal_texture;              ///< linear, tangent space
+  TextureRef occlusion_texture;           ///< linear, R channel
+  TextureRef emissive_texture;            ///< sRGB
+};
+
+/// One glTF primitive as an indexed triangle list (strips and fans converted), with
+/// attributes in object space. Optional attributes are empty when absent.
+struct Mesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;   ///< always present after loading (generated if missing)
+  std::vector<glm::vec4> tangents;  ///< xyz + handedness w; generated when a normal map needs them
+  std::vector<glm::vec2> texcoords0;
+  std::vector<glm::vec2> texcoords1;
+  std::vector<glm::vec4> colors0;  ///< COLOR_0 as RGBA (linear)
+  std::vector<std::uint32_t> indices;  ///< 3 per triangle
+  int material = -1;                   ///< -1: the glTF default material
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
+/// A mesh placed in the world.
+struct Instance {
+  int mesh = -1;
+  glm::mat4 transform{1.0f};  ///< object to world (accumulated through the node tree)
+  int node = -1;              ///< glTF node index, -1 for generated scenes
+};
+
+/// glTF camera with its world transform. The camera looks down its local -Z with +Y up.
+struct Camera {
+  enum class Type { kPerspective, kOrthographic };
+  std::string name;
+  Type type = Type::kPerspective;
+  float yfov = 0.8f;                  ///< radians (perspective)
+  std::optional<float> aspect_ratio;  ///< width / height; from the image size when absent
+  float xmag = 1.0f, ymag = 1.0f;     ///< half extents (orthographic)
+  float znear = 0.01f;
+  std::optional<float> zfar;          ///< infinite when absent
+  glm::mat4 camera_to_world{1.0f};    ///< rigid (scale removed)
+
+  glm::vec3 position() const { return glm::vec3(camera_to_world[3]); }
+  glm::vec3 forward() const { return -glm::normalize(glm::vec3(camera_to_world[2])); }
+};
+
+/// KHR_lights_punctual light in world space, in the spec's units: point and spot
+/// intensity in candela (lm/sr), directional in lux (lm/m^2).
+struct Light {
+  enum class Type { kPoint, kSpot, kDirectional };
+  std::string name;
+  Type type = Type::kPoint;
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+  std::optional<float> range;  ///< none: infinite
+  float inner_cone_angle = 0.0f;
+  float outer_cone_angle = 0.7853981633974483f;  ///< pi / 4
+  glm::vec3 position{0.0f};
+  glm::vec3 direction{0.0f, 0.0f, -1.0f};  ///< the direction the light points (world)
+};
+
+struct Bounds {
+  glm::vec3 min{std::numeric_limits<float>::max()};
+  glm::vec3 max{-std::numeric_limits<float>::max()};
+  bool empty() const { return min.x > max.x; }
+  void extend(glm::vec3 p) {
+    min = glm::min(min, p);
+    max = glm::max(max, p);
+  }
+  glm::vec3 center() const { return 0.5f * (min + max); }
+  glm::vec3 extent() const { return max - min; }
+};
+
+struct Scene {
+  std::string source;  ///< file path or "builtin:<name>"
+  std::vector<Mesh> meshes;
+  std::vector<Material> materials;
+  std::vector<Texture> textures;
+  std::vector<Instance> instances;
+  std::vector<Camera> cameras;
+  std::vector<Light> lights;
+  std::vector<std::string> warnings;
+
+  /// World-space bounding box of all instances.
+  Bounds world_bounds() const;
+  /// Material for a mesh (the glTF default material when the index is -1).
+  const Material& material_of(const Mesh& mesh) const;
+  std::size_t triangle_count() const;  ///< over all instances
+
+  static const Material& default_material();
+};
+
+}  // namespace pbrkit

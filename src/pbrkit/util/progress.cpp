@@ -1,0 +1,72 @@
+#include "pbrkit/util/progress.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pbrkit {
+
+ProgressBar::ProgressBar(std::string label, std::FILE* stream)
+    : label_(std::move(label)),
+      stream_(stream),
+      tty_(::isatty(::fileno(stream)) != 0),
+      start_(std::chrono::steady_clock::now()),
+      last_(start_ - std::chrono::hours(1)) {}
+
+static std::string format_seconds(double s) {
+  if (!std::isfinite(s) || s < 0) return "?";
+  char buf[32];
+  if (s < 60) {
+    std::snprintf(buf, sizeof buf, "%.1fs", s);
+  } else if (s < 3600) {
+    std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
+  } else {
+    std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, (int(s) % 3600) / 60);
+  }
+  return buf;
+}
+
+void ProgressBar::update(double fraction, const std::string& detail) {
+  std::lock_guard lock(mutex_);
+  if (finished_) return;
+  fraction = std::clamp(fraction, 0.0, 1.0);
+  const auto now = std::chrono::steady_clock::now();
+  const double since_last = std::chrono::duration<double>(now - last_).count();
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (since_last < (tty_ ? 0.1 : plain_interval) && fraction < 1.0) return;
+  last_ = now;
+  const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : -1.0;
+  if (tty_) {
+    constexpr int kWidth = 30;
+    const int filled = int(std::lround(fraction * kWidth));
+    std::string bar(filled, '#');
+    bar.resize(kWidth, '.');
+    std::fprintf(stream_, "\r%s [%s] %5.1f%% ETA %s %s\033[K", label_.c_str(), bar.c_str(),
+                 fraction * 100.0, format_seconds(eta).c_str(), detail.c_str());
+  } else {
+    std::fprintf(stream_, "%s: %5.1f%% elapsed %s ETA %s %s\n", label_.c_str(), fraction * 100.0,
+                 format_seconds(elapsed).c_str(), format_seconds(eta).c_str(), detail.c_str());
+  }
+  std::fflush(stream_);
+}
+
+void ProgressBar::finish(const std::string& summary) {
+  std::lock_guard lock(mutex_);
+  if (finished_) return;
+  finished_ = true;
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  std::fprintf(stream_, "%s%s: done in %s%s%s\n", tty_ ? "\r\033[K" : "", label_.c_str(),
+               format_seconds(elapsed).c_str(), summary.empty() ? "" : ", ", summary.c_str());
+  std::fflush(stream_);
+}
+
+ProgressCallback ProgressBar::callback() {
+  return [this](double f, const std::string& d) {
+    update(f, d);
+    return true;
+  };
+}
+
+}  // namespace pbrkit

@@ -1,0 +1,40 @@
+#pragma once
+// Progress reporting for long work (bake, render). The library calls a ProgressCallback;
+// the CLI decides how to show it. ProgressBar is the CLI's terminal display: a redrawn
+// bar with percent and ETA on a TTY, plain periodic lines otherwise.
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <mutex>
+#include <string>
+
+namespace pbrkit {
+
+/// fraction in [0,1]; `detail` is free text such as "1.9 M samples*px/s, noise 0.012".
+/// Return false to ask the computation to stop early (it then returns what it has).
+using ProgressCallback = std::function<bool(double fraction, const std::string& detail)>;
+
+class ProgressBar {
+ public:
+  /// `label` is printed before the bar. `stream` is normally stderr.
+  explicit ProgressBar(std::string label, std::FILE* stream = stderr);
+  /// Thread-safe; redraws at most ~10 times a second on a TTY and every `plain_interval`
+  /// seconds (and at 100%) otherwise.
+  void update(double fraction, const std::string& detail = {});
+  /// Ends the line and prints the total time.
+  void finish(const std::string& summary = {});
+  /// A ProgressCallback that forwards to update() and never asks to stop.
+  ProgressCallback callback();
+
+  double plain_interval = 10.0;
+
+ private:
+  std::string label_;
+  std::FILE* stream_;
+  bool tty_;
+  std::mutex mutex_;
+  std::chrono::steady_clock::time_point start_, last_;
+  bool finished_ = false;
+};
+
+}  // namespace pbrkit

@@ -1,0 +1,2 @@
+// Implemented by the foundation's statistical tests.
+#include "support/chi2.h"

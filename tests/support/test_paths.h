@@ -1,0 +1,22 @@
+#pragma once
+// Where tests find their data, the shared assets, the pbrkit binary and scratch space.
+#include <filesystem>
+#include <string>
+
+namespace pbrkit::test {
+
+/// tests/data/<name>
+std::filesystem::path test_data(const std::string& name);
+/// ../shared/assets/<name> (read-only; tests copy what they need into tests/data when it
+/// must travel with the repository)
+std::filesystem::path shared_asset(const std::string& name);
+/// The built pbrkit executable.
+std::filesystem::path cli_path();
+/// A fresh, empty directory unique to the calling test (removed at process exit is not
+/// guaranteed; it lives under the system temp dir).
+std::filesystem::path scratch_dir();
+
+/// Runs a shell command; returns its exit status and puts stdout+stderr into `output`.
+int run_command(const std::string& command, std::string* output = nullptr);
+
+}  // namespace pbrkit::test
