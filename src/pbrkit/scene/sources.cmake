@@ -1,0 +1,2 @@
+target_sources(pbrkit PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/primitives.cpp)
