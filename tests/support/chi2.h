@@ -17,8 +17,8 @@ struct Chi2Options {
   int theta_bins = 10;
   int phi_bins = 20;
   std::size_t samples = 1000000;
-  double significance = 0.01;  ///< before the Sidak correction
-  int runs = 1;                ///< number of tests in the family (Sidak correction)
+  double significance = 0.01;      ///< before the Sidak correction
+  int runs = 1;                    ///< number of tests in the family (Sidak correction)
   int integration_resolution = 8;  ///< per-bin quadrature points per axis (Simpson)
   std::uint64_t seed = 1;
 };

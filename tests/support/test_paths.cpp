@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <sys/wait.h>
 #include <array>
 #include <cstdio>
-#include <sys/wait.h>
 
 namespace pbrkit::test {
 
@@ -17,7 +17,9 @@ std::filesystem::path shared_asset(const std::string& name) {
   return std::filesystem::path(PBRKIT_SHARED_DIR) / "assets" / name;
 }
 
-std::filesystem::path cli_path() { return PBRKIT_CLI_PATH; }
+std::filesystem::path cli_path() {
+  return PBRKIT_CLI_PATH;
+}
 
 std::filesystem::path scratch_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();

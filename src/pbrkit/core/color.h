@@ -17,7 +17,9 @@ glm::vec3 srgb_encode(glm::vec3 linear);
 glm::vec3 srgb_decode(glm::vec3 encoded);
 
 /// Rec.709 / sRGB-primaries relative luminance Y = 0.2126 R + 0.7152 G + 0.0722 B.
-inline float luminance(glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+inline float luminance(glm::vec3 c) {
+  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
 
 /// Multiplier for an exposure of `ev` stops: 2^ev.
 float exposure_scale(float ev);

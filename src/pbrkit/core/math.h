@@ -19,11 +19,17 @@ template <typename T>
 constexpr T sqr(T x) {
   return x * x;
 }
-inline float safe_sqrt(float x) { return std::sqrt(std::max(x, 0.0f)); }
-inline float saturate(float x) { return std::clamp(x, 0.0f, 1.0f); }
+inline float safe_sqrt(float x) {
+  return std::sqrt(std::max(x, 0.0f));
+}
+inline float saturate(float x) {
+  return std::clamp(x, 0.0f, 1.0f);
+}
 
 /// Reflects v about n (both pointing away from the surface): 2 (v.n) n - v.
-inline glm::vec3 reflect_about(glm::vec3 v, glm::vec3 n) { return 2.0f * glm::dot(v, n) * n - v; }
+inline glm::vec3 reflect_about(glm::vec3 v, glm::vec3 n) {
+  return 2.0f * glm::dot(v, n) * n - v;
+}
 
 /// Orthonormal frame with `n` as its z axis. Built with the branchless method of
 /// Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (JCGT 6(1)).
@@ -41,9 +47,7 @@ struct Frame {
   Frame(glm::vec3 tangent, glm::vec3 bitangent, glm::vec3 normal)
       : t(tangent), b(bitangent), n(normal) {}
 
-  glm::vec3 to_local(glm::vec3 v) const {
-    return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)};
-  }
+  glm::vec3 to_local(glm::vec3 v) const { return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)}; }
   glm::vec3 to_world(glm::vec3 v) const { return v.x * t + v.y * b + v.z * n; }
 };
 

@@ -35,9 +35,13 @@ float SmithG2HeightCorrelated(glm::vec3 wo, glm::vec3 wi, float alpha);
 /// Schlick-GGX (the seeds' GeometrySchlickGGX): n.x / ((n.x)(1 - k) + k).
 float GeometrySchlickGGX(float NdotX, float k);
 /// k for punctual lights: (roughness + 1)^2 / 8 (Karis 2013, after Burley's remap).
-inline float k_direct(float roughness) { return (roughness + 1.0f) * (roughness + 1.0f) / 8.0f; }
+inline float k_direct(float roughness) {
+  return (roughness + 1.0f) * (roughness + 1.0f) / 8.0f;
+}
 /// k for image-based lighting and the BRDF LUT: alpha / 2 (Karis 2013).
-inline float k_ibl(float roughness) { return roughness * roughness / 2.0f; }
+inline float k_ibl(float roughness) {
+  return roughness * roughness / 2.0f;
+}
 /// The seeds' GeometrySmith: G1(n.v) G1(n.l) with the given k.
 float GeometrySmithSchlick(float NdotV, float NdotL, float k);
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include <glm/glm.hpp>
+#include <pcg_random.hpp>
 
 namespace pbrkit {
 
@@ -14,8 +15,9 @@ namespace pbrkit {
 class Pcg32 {
  public:
   explicit Pcg32(std::uint64_t seed = 0x853c49e6748fea9bULL,
-                 std::uint64_t stream = 0xda3e39cb94b95bdbULL);
-  std::uint32_t next_u32();
+                 std::uint64_t stream = 0xda3e39cb94b95bdbULL)
+      : rng_(seed, stream) {}
+  std::uint32_t next_u32() { return rng_(); }
   /// Uniform in [0, 1), 24 random bits (never returns 1.0f).
   float next_float();
   double next_double();
@@ -25,8 +27,7 @@ class Pcg32 {
   }
 
  private:
-  std::uint64_t state_;
-  std::uint64_t inc_;
+  pcg32 rng_;
 };
 
 /// Largest float below 1: samples are clamped to this so warps never see u == 1.
@@ -72,7 +73,9 @@ struct DirectionSample {
 
 /// Concentric mapping of the square to the unit disk (Shirley & Chiu 1997); pdf = 1/pi.
 glm::vec2 sample_concentric_disk(glm::vec2 u);
-inline constexpr float concentric_disk_pdf() { return 0.31830988618379067154f; }
+inline constexpr float concentric_disk_pdf() {
+  return 0.31830988618379067154f;
+}
 
 /// Uniform hemisphere about +Z; pdf = 1/(2 pi).
 DirectionSample sample_uniform_hemisphere(glm::vec2 u);

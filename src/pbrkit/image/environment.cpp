@@ -32,9 +32,10 @@ Environment Environment::load(const std::filesystem::path& path, float rotation_
   Environment env;
   env.map = read_image(path, options);
   if (env.map.width != 2 * env.map.height) {
-    fail("{}: an environment map must be equirectangular with a 2:1 aspect ratio, this one is "
-         "{}x{}",
-         path.string(), env.map.width, env.map.height);
+    fail(
+        "{}: an environment map must be equirectangular with a 2:1 aspect ratio, this one is "
+        "{}x{}",
+        path.string(), env.map.width, env.map.height);
   }
   if (env.map.channels != 3) {
     Image rgb(env.map.width, env.map.height, 3);
@@ -44,7 +45,8 @@ Environment Environment::load(const std::filesystem::path& path, float rotation_
   }
   if (!std::isfinite(rotation_deg)) fail("{}: environment rotation must be finite", path.string());
   if (!(intensity >= 0.0f) || !std::isfinite(intensity)) {
-    fail("{}: environment intensity must be a finite number >= 0, got {}", path.string(), intensity);
+    fail("{}: environment intensity must be a finite number >= 0, got {}", path.string(),
+         intensity);
   }
   env.rotation_deg = rotation_deg;
   env.intensity = intensity;

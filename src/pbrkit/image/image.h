@@ -13,8 +13,8 @@ namespace pbrkit {
 struct Image {
   int width = 0;
   int height = 0;
-  int channels = 0;          ///< 1, 2, 3 or 4
-  std::vector<float> data;   ///< width * height * channels floats, row-major, top row first
+  int channels = 0;         ///< 1, 2, 3 or 4
+  std::vector<float> data;  ///< width * height * channels floats, row-major, top row first
 
   Image() = default;
   Image(int w, int h, int c, float fill = 0.0f)

@@ -45,8 +45,8 @@ enum class ExrPixelType { kHalf, kFloat };
 /// One named layer of a multi-layer EXR. Channel names are `<layer>.<name>` (or just
 /// `<name>` when the layer name is empty), e.g. "albedo.R".
 struct ExrLayer {
-  std::string name;                       ///< "" for the main RGBA layer
-  std::vector<std::string> channel_names; ///< one per image channel, e.g. {"R","G","B"}
+  std::string name;                        ///< "" for the main RGBA layer
+  std::vector<std::string> channel_names;  ///< one per image channel, e.g. {"R","G","B"}
   const Image* image = nullptr;
   ExrPixelType type = ExrPixelType::kHalf;
 };

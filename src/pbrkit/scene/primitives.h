@@ -20,6 +20,7 @@ Mesh make_box(glm::vec3 min, glm::vec3 max, bool inward = false);
 
 /// Appends `mesh` to `scene` with `material` and one instance with `transform`;
 /// returns the mesh index.
-int add_mesh_instance(Scene& scene, Mesh mesh, int material, const glm::mat4& transform = glm::mat4(1.0f));
+int add_mesh_instance(Scene& scene, Mesh mesh, int material,
+                      const glm::mat4& transform = glm::mat4(1.0f));
 
 }  // namespace pbrkit

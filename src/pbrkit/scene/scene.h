@@ -89,7 +89,7 @@ struct Mesh {
   std::vector<glm::vec4> tangents;  ///< xyz + handedness w; generated when a normal map needs them
   std::vector<glm::vec2> texcoords0;
   std::vector<glm::vec2> texcoords1;
-  std::vector<glm::vec4> colors0;  ///< COLOR_0 as RGBA (linear)
+  std::vector<glm::vec4> colors0;      ///< COLOR_0 as RGBA (linear)
   std::vector<std::uint32_t> indices;  ///< 3 per triangle
   int material = -1;                   ///< -1: the glTF default material
   std::size_t triangle_count() const { return indices.size() / 3; }
@@ -111,8 +111,8 @@ struct Camera {
   std::optional<float> aspect_ratio;  ///< width / height; from the image size when absent
   float xmag = 1.0f, ymag = 1.0f;     ///< half extents (orthographic)
   float znear = 0.01f;
-  std::optional<float> zfar;          ///< infinite when absent
-  glm::mat4 camera_to_world{1.0f};    ///< rigid (scale removed)
+  std::optional<float> zfar;        ///< infinite when absent
+  glm::mat4 camera_to_world{1.0f};  ///< rigid (scale removed)
 
   glm::vec3 position() const { return glm::vec3(camera_to_world[3]); }
   glm::vec3 forward() const { return -glm::normalize(glm::vec3(camera_to_world[2])); }

@@ -15,7 +15,8 @@ void write_file_atomically(const std::filesystem::path& path,
   static std::atomic<unsigned> counter{0};
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
   std::error_code ec;
-  if (!fs::is_directory(dir, ec)) fail("{}: output directory {} does not exist", path.string(), dir.string());
+  if (!fs::is_directory(dir, ec))
+    fail("{}: output directory {} does not exist", path.string(), dir.string());
   // Keep the real extension last: image writers pick the format from it.
   const fs::path temp = dir / fmt::format(".{}.{}.{}.tmp{}", path.stem().string(), ::getpid(),
                                           counter++, path.extension().string());

@@ -1,0 +1,171 @@
+#include "pbrkit/core/sampling.h"
+
+#include <array>
+#include <cmath>
+
+#include "pbrkit/core/math.h"
+
+namespace pbrkit {
+
+float Pcg32::next_float() {
+  // 24 high-quality bits -> exactly representable floats in [0, 1).
+  return float(next_u32() >> 8) * 0x1p-24f;
+}
+
+double Pcg32::next_double() {
+  const std::uint64_t hi = next_u32(), lo = next_u32();
+  return double(((hi << 32) | lo) >> 11) * 0x1p-53;
+}
+
+static std::uint32_t reverse_bits(std::uint32_t x) {
+  x = ((x >> 1) & 0x55555555u) | ((x & 0x55555555u) << 1);
+  x = ((x >> 2) & 0x33333333u) | ((x & 0x33333333u) << 2);
+  x = ((x >> 4) & 0x0f0f0f0fu) | ((x & 0x0f0f0f0fu) << 4);
+  x = ((x >> 8) & 0x00ff00ffu) | ((x & 0x00ff00ffu) << 8);
+  return (x >> 16) | (x << 16);
+}
+
+float radical_inverse_base2(std::uint32_t i) {
+  return float(reverse_bits(i)) * 0x1p-32f;
+}
+
+glm::vec2 hammersley(std::uint32_t i, std::uint32_t n) {
+  return {float(i) / float(n), radical_inverse_base2(i)};
+}
+
+namespace {
+
+// Sobol generator matrices (direction numbers) for the first four dimensions, from the
+// primitive polynomials and initial m_k of Joe & Kuo's "new-joe-kuo-6.21201" table:
+// dim 0 is van der Corput; dim 1: s=1, a=0, m={1}; dim 2: s=2, a=1, m={1,3};
+// dim 3: s=3, a=1, m={1,3,1}.
+struct SobolMatrices {
+  std::array<std::array<std::uint32_t, 32>, 4> v{};
+  SobolMatrices() {
+    for (int k = 0; k < 32; ++k) v[0][k] = 1u << (31 - k);
+    struct Poly {
+      int s;
+      std::uint32_t a;
+      std::array<std::uint32_t, 3> m;
+    };
+    const Poly polys[3] = {{1, 0, {1, 0, 0}}, {2, 1, {1, 3, 0}}, {3, 1, {1, 3, 1}}};
+    for (int d = 1; d < 4; ++d) {
+      const Poly& p = polys[d - 1];
+      auto& dv = v[d];
+      for (int k = 0; k < p.s; ++k) dv[k] = p.m[k] << (31 - k);
+      for (int k = p.s; k < 32; ++k) {
+        std::uint32_t x = dv[k - p.s] ^ (dv[k - p.s] >> p.s);
+        for (int j = 1; j < p.s; ++j)
+          if ((p.a >> (p.s - 1 - j)) & 1u) x ^= dv[k - j];
+        dv[k] = x;
+      }
+    }
+  }
+};
+
+const SobolMatrices& sobol_matrices() {
+  static const SobolMatrices m;
+  return m;
+}
+
+// Chris Wellons' "lowbias32" integer hash: a cheap, well-mixed 32-bit finaliser.
+std::uint32_t hash32(std::uint32_t x) {
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+std::uint32_t hash_combine(std::uint32_t seed, std::uint32_t v) {
+  return hash32(seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2)));
+}
+
+// Burley 2020, listing 3: the Laine-Karras style hash that acts as an Owen scramble on
+// bit-reversed input (each bit flipped by a hash of the bits below it).
+std::uint32_t laine_karras_permutation(std::uint32_t x, std::uint32_t seed) {
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return x;
+}
+
+}  // namespace
+
+std::uint32_t sobol_u32(std::uint32_t index, std::uint32_t dim) {
+  const auto& v = sobol_matrices().v[dim & 3u];
+  std::uint32_t x = 0;
+  for (int k = 0; index; index >>= 1, ++k)
+    if (index & 1u) x ^= v[k];
+  return x;
+}
+
+std::uint32_t nested_uniform_scramble(std::uint32_t x, std::uint32_t seed) {
+  return reverse_bits(laine_karras_permutation(reverse_bits(x), seed));
+}
+
+float OwenSobolSampler::sample(std::uint32_t pixel_id, std::uint32_t index,
+                               std::uint32_t dim) const {
+  // Dimensions come in 4D Sobol blocks; each block has its own seed ("padding"), and the
+  // index shuffle is shared inside a block so the 4D stratification is kept (Burley 2020,
+  // section 4).
+  const std::uint32_t block = dim >> 2, d = dim & 3u;
+  const std::uint32_t block_seed = hash_combine(hash_combine(seed_, pixel_id), block);
+  const std::uint32_t shuffled = nested_uniform_scramble(index, block_seed);
+  const std::uint32_t x =
+      nested_uniform_scramble(sobol_u32(shuffled, d), hash_combine(block_seed, d + 1));
+  return std::min(float(x >> 8) * 0x1p-24f, kOneMinusEpsilon);
+}
+
+glm::vec2 sample_concentric_disk(glm::vec2 u) {
+  // Shirley & Chiu 1997: maps concentric squares to concentric circles (area preserving).
+  const glm::vec2 o = 2.0f * u - 1.0f;
+  if (o.x == 0.0f && o.y == 0.0f) return {0.0f, 0.0f};
+  float r, theta;
+  if (std::abs(o.x) > std::abs(o.y)) {
+    r = o.x;
+    theta = (kPi / 4.0f) * (o.y / o.x);
+  } else {
+    r = o.y;
+    theta = kPi / 2.0f - (kPi / 4.0f) * (o.x / o.y);
+  }
+  return r * glm::vec2(std::cos(theta), std::sin(theta));
+}
+
+DirectionSample sample_uniform_hemisphere(glm::vec2 u) {
+  const float z = u.x;
+  const float r = safe_sqrt(1.0f - z * z);
+  const float phi = 2.0f * kPi * u.y;
+  return {{r * std::cos(phi), r * std::sin(phi), z}, kInv2Pi};
+}
+
+float uniform_hemisphere_pdf() {
+  return kInv2Pi;
+}
+
+DirectionSample sample_cosine_hemisphere(glm::vec2 u) {
+  // Malley's method: project uniform disk points up to the hemisphere.
+  const glm::vec2 d = sample_concentric_disk(u);
+  const float z = safe_sqrt(1.0f - d.x * d.x - d.y * d.y);
+  return {{d.x, d.y, z}, z * kInvPi};
+}
+
+float cosine_hemisphere_pdf(float cos_theta) {
+  return cos_theta > 0.0f ? cos_theta * kInvPi : 0.0f;
+}
+
+DirectionSample sample_uniform_sphere(glm::vec2 u) {
+  const float z = 1.0f - 2.0f * u.x;
+  const float r = safe_sqrt(1.0f - z * z);
+  const float phi = 2.0f * kPi * u.y;
+  return {{r * std::cos(phi), r * std::sin(phi), z}, kInv4Pi};
+}
+
+float uniform_sphere_pdf() {
+  return kInv4Pi;
+}
+
+}  // namespace pbrkit
