@@ -1,8 +1,76 @@
-// pbrkit render: placeholder until its issue lands (it is not listed in --help).
+// pbrkit render: one command, two renderers (--renderer path|gl) over one scene, camera,
+// environment and display transform.
+#include <filesystem>
+
 #include "commands.h"
+#include "render_options.h"
 
 namespace pbrkit::cli {
 
-void register_render_command(CLI::App& /*app*/) {}
+std::string replace_extension(const std::string& path, const std::string& extension) {
+  return std::filesystem::path(path).replace_extension(extension).string();
+}
+
+void register_render_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "render",
+      "Render a glTF scene (or a built-in one) with the path tracer (ground truth) or the "
+      "OpenGL renderer; writes a tone-mapped PNG and a linear EXR beside it.");
+  auto options = std::make_shared<RenderCommandOptions>();
+  auto renderer = std::make_shared<std::string>("path");
+  cmd->add_option("scene", options->scene,
+                  "a .gltf/.glb file or a built-in scene: spheres, furnace, cornell")
+      ->capture_default_str();
+  cmd->add_option("--renderer", *renderer, "path (Monte Carlo path tracer) or gl (OpenGL)")
+      ->check(CLI::IsMember({"path", "gl"}))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", options->output,
+                  "output PNG path (default out/<scene>_<renderer>.png); the EXR goes beside it");
+  cmd->add_option("--camera", options->camera,
+                  "glTF camera index (default: the first camera, "
+                  "or automatic framing when the file has none)");
+  cmd->add_option("--width", options->width, "image width in pixels")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  cmd->add_option("--height", options->height, "image height in pixels")
+      ->check(CLI::Range(1, 16384))
+      ->capture_default_str();
+  cmd->add_option("--env", options->env,
+                  "environment map (.exr/.hdr, equirectangular 2:1); default: the built-in "
+                  "city.exr");
+  cmd->add_flag("--no-env", options->no_env, "no environment light (black background)");
+  cmd->add_option("--env-rotation", options->env_rotation,
+                  "environment rotation about +Y in degrees (counter-clockwise from above)")
+      ->capture_default_str();
+  cmd->add_option("--env-intensity", options->env_intensity, "environment radiance scale")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--exposure", options->exposure, "exposure in EV for the PNG")
+      ->capture_default_str();
+  cmd->add_option("--tonemap", options->tonemap, "tone mapper for the PNG")
+      ->check(CLI::IsMember({"none", "pbr-neutral", "aces", "agx"}))
+      ->capture_default_str();
+  cmd->add_option("--model", options->model,
+                  "BRDF model: reference (height-correlated Smith) or classic (the seeds' "
+                  "Schlick-GGX)")
+      ->check(CLI::IsMember({"reference", "classic"}))
+      ->capture_default_str();
+  cmd->add_flag("--multiscatter", options->multiscatter,
+                "multiple-scattering energy compensation (Kulla-Conty / Fdez-Aguera)");
+
+  const RenderRunner path = add_path_render_options(*cmd);
+  const RenderRunner gl = add_gl_render_options(*cmd);
+  cmd->callback([options, renderer, path, gl] {
+    RenderCommandOptions o = *options;
+    if (o.output.empty()) {
+      std::string stem = std::filesystem::path(o.scene).stem().string();
+      o.output = "out/" + stem + "_" + *renderer + ".png";
+    }
+    std::filesystem::create_directories(std::filesystem::path(o.output).parent_path().empty()
+                                            ? std::filesystem::path(".")
+                                            : std::filesystem::path(o.output).parent_path());
+    (*renderer == "path" ? path : gl)(o);
+  });
+}
 
 }  // namespace pbrkit::cli
