@@ -1,3 +1,4 @@
-target_sources(pbrkit PRIVATE ${CMAKE_CURRENT_LIST_DIR} /
-               atomic_file.cpp ${CMAKE_CURRENT_LIST_DIR} / log.cpp ${CMAKE_CURRENT_LIST_DIR} /
-               progress.cpp)
+target_sources(pbrkit PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/atomic_file.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/log.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/progress.cpp)
