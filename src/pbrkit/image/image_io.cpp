@@ -1,0 +1,439 @@
+#include "pbrkit/image/image_io.h"
+
+#include <stb_image.h>
+#include <stb_image_write.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfRgbaFile.h>
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "pbrkit/core/color.h"
+#include "pbrkit/util/atomic_file.h"
+#include "pbrkit/util/error.h"
+#include "pbrkit/util/log.h"
+
+namespace pbrkit {
+namespace {
+
+enum class Format { kExr, kPng, kJpeg, kHdr, kUnknown };
+
+// Formats are recognised by their magic bytes, never by the file name, so a mislabelled
+// file is still read correctly and garbage is rejected before any decoder sees it.
+Format detect_format(const unsigned char* b, std::size_t n) {
+  if (n >= 4 && b[0] == 0x76 && b[1] == 0x2f && b[2] == 0x31 && b[3] == 0x01) return Format::kExr;
+  if (n >= 8 && std::memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0) return Format::kPng;
+  if (n >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff) return Format::kJpeg;
+  if (n >= 6 && (std::memcmp(b, "#?RADIANCE", std::min<std::size_t>(n, 10)) == 0 ||
+                 std::memcmp(b, "#?RGBE", 6) == 0))
+    return Format::kHdr;
+  return Format::kUnknown;
+}
+
+void check_size(const std::string& name, long long w, long long h,
+                const ImageReadOptions& options) {
+  if (w <= 0 || h <= 0) fail("{}: image has zero size ({} x {})", name, w, h);
+  if (static_cast<unsigned long long>(w) * static_cast<unsigned long long>(h) > options.max_pixels)
+    fail("{}: image is too large ({} x {} pixels; the limit is {} pixels)", name, w, h,
+         options.max_pixels);
+}
+
+// An in-memory OpenEXR input stream, so EXR files and embedded EXR images share one path.
+// Reading past the end throws (OpenEXR turns that into a clean failure on truncated files).
+class MemoryIStream : public Imf::IStream {
+ public:
+  MemoryIStream(const unsigned char* data, std::size_t size, const std::string& name)
+      : Imf::IStream(name.c_str()), data_(data), size_(size) {}
+  bool read(char c[], int n) override {
+    if (n < 0 || pos_ + static_cast<std::size_t>(n) > size_)
+      throw std::runtime_error("unexpected end of file (truncated?)");
+    std::memcpy(c, data_ + pos_, static_cast<std::size_t>(n));
+    pos_ += static_cast<std::size_t>(n);
+    return pos_ < size_;
+  }
+  uint64_t tellg() override { return pos_; }
+  void seekg(uint64_t pos) override { pos_ = static_cast<std::size_t>(pos); }
+
+ private:
+  const unsigned char* data_;
+  std::size_t size_;
+  std::size_t pos_ = 0;
+};
+
+// Order of channels inside a layer: R, G, B, A first (in that order), then the rest
+// alphabetically; a lone Y is grey.
+int channel_rank(const std::string& c) {
+  static const std::array<const char*, 4> kOrder = {"R", "G", "B", "A"};
+  for (int i = 0; i < 4; ++i)
+    if (c == kOrder[i]) return i;
+  return 4;
+}
+
+void split_channel(const std::string& full, std::string& layer, std::string& channel) {
+  const auto dot = full.rfind('.');
+  if (dot == std::string::npos) {
+    layer.clear();
+    channel = full;
+  } else {
+    layer = full.substr(0, dot);
+    channel = full.substr(dot + 1);
+  }
+}
+
+// Reads the named channels (full names) of an EXR into an interleaved float image.
+Image read_exr_channels(Imf::InputFile& file, const std::vector<std::string>& names) {
+  const Imath::Box2i dw = file.header().dataWindow();
+  const int w = dw.max.x - dw.min.x + 1;
+  const int h = dw.max.y - dw.min.y + 1;
+  Image image(w, h, static_cast<int>(names.size()));
+  Imf::FrameBuffer fb;
+  const std::size_t xs = sizeof(float) * image.channels;
+  for (std::size_t c = 0; c < names.size(); ++c)
+    fb.insert(names[c], Imf::Slice::Make(Imf::FLOAT, image.data.data() + c, dw, xs, xs * w));
+  file.setFrameBuffer(fb);
+  file.readPixels(dw.min.y, dw.max.y);
+  return image;
+}
+
+Image decode_exr(const unsigned char* bytes, std::size_t size, const std::string& name,
+                 const ImageReadOptions& options) {
+  try {
+    MemoryIStream stream(bytes, size, name);
+    Imf::InputFile file(stream);
+    const Imath::Box2i dw = file.header().dataWindow();
+    check_size(name, static_cast<long long>(dw.max.x) - dw.min.x + 1,
+               static_cast<long long>(dw.max.y) - dw.min.y + 1, options);
+    const Imf::ChannelList& channels = file.header().channels();
+    auto has = [&](const char* c) { return channels.findChannel(c) != nullptr; };
+    if (has("RY") || has("BY")) {
+      // Luminance/chroma files with subsampled chroma: let RgbaInputFile reconstruct RGB.
+      MemoryIStream stream2(bytes, size, name);
+      Imf::RgbaInputFile rgba(stream2);
+      const int w = dw.max.x - dw.min.x + 1;
+      const int h = dw.max.y - dw.min.y + 1;
+      std::vector<Imf::Rgba> pixels(std::size_t(w) * h);
+      rgba.setFrameBuffer(pixels.data() - dw.min.x - std::ptrdiff_t(dw.min.y) * w, 1, w);
+      rgba.readPixels(dw.min.y, dw.max.y);
+      Image image(w, h, 4);
+      for (std::size_t i = 0; i < pixels.size(); ++i) {
+        image.data[4 * i + 0] = pixels[i].r;
+        image.data[4 * i + 1] = pixels[i].g;
+        image.data[4 * i + 2] = pixels[i].b;
+        image.data[4 * i + 3] = pixels[i].a;
+      }
+      return image;
+    }
+    std::vector<std::string> names;
+    if (has("R") && has("G") && has("B")) {
+      names = {"R", "G", "B"};
+      if (has("A")) names.push_back("A");
+    } else if (has("Y")) {
+      names = {"Y"};
+      if (has("A")) names.push_back("A");
+    } else {
+      fail(
+          "{}: EXR has no R,G,B or Y channels in its main layer (a multi-layer file is read "
+          "with read_exr_layers)",
+          name);
+    }
+    return read_exr_channels(file, names);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    fail("{}: cannot read EXR: {}", name, e.what());
+  }
+}
+
+// PNG, JPEG and Radiance HDR through stb_image (Debian's libstb holds the implementation).
+Image decode_stb(const unsigned char* bytes, std::size_t size, const std::string& name,
+                 Format format, const ImageReadOptions& options, ImageReadReport& report) {
+  if (size > static_cast<std::size_t>(INT32_MAX)) fail("{}: file is too large", name);
+  const int len = static_cast<int>(size);
+  int w = 0, h = 0, comp = 0;
+  if (!stbi_info_from_memory(bytes, len, &w, &h, &comp))
+    fail("{}: cannot read image header: {}", name, stbi_failure_reason());
+  check_size(name, w, h, options);
+  Image image;
+  auto decode_channel_count = [&](int channels) {
+    // sRGB applies to colour channels only: grey (1, 2) or RGB (3, 4); never alpha.
+    return channels == 2 || channels == 4 ? channels - 1 : channels;
+  };
+  if (format == Format::kHdr) {
+    float* data = stbi_loadf_from_memory(bytes, len, &w, &h, &comp, 0);
+    if (!data) fail("{}: cannot decode Radiance HDR: {}", name, stbi_failure_reason());
+    image = Image(w, h, comp);
+    std::copy(data, data + image.data.size(), image.data.begin());
+    stbi_image_free(data);
+    return image;
+  }
+  const bool is16 = stbi_is_16_bit_from_memory(bytes, len) != 0;
+  std::vector<float> table;
+  if (is16) {
+    stbi_us* data = stbi_load_16_from_memory(bytes, len, &w, &h, &comp, 0);
+    if (!data) fail("{}: cannot decode image: {}", name, stbi_failure_reason());
+    image = Image(w, h, comp);
+    for (std::size_t i = 0; i < image.data.size(); ++i) image.data[i] = data[i] / 65535.0f;
+    stbi_image_free(data);
+    if (options.decode_srgb) {
+      const int colour = decode_channel_count(comp);
+      for (std::size_t i = 0; i < image.data.size(); ++i)
+        if (static_cast<int>(i % comp) < colour) image.data[i] = srgb_decode(image.data[i]);
+    }
+  } else {
+    stbi_uc* data = stbi_load_from_memory(bytes, len, &w, &h, &comp, 0);
+    if (!data) fail("{}: cannot decode image: {}", name, stbi_failure_reason());
+    image = Image(w, h, comp);
+    std::array<float, 256> linear, direct;
+    for (int v = 0; v < 256; ++v) {
+      direct[v] = v / 255.0f;
+      linear[v] = options.decode_srgb ? srgb_decode(direct[v]) : direct[v];
+    }
+    const int colour = decode_channel_count(comp);
+    for (std::size_t i = 0; i < image.data.size(); ++i)
+      image.data[i] = static_cast<int>(i % comp) < colour ? linear[data[i]] : direct[data[i]];
+    stbi_image_free(data);
+  }
+  report.srgb_decoded = options.decode_srgb;
+  return image;
+}
+
+std::string read_file_bytes(const std::filesystem::path& path) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail("{}: file not found", path.string());
+  if (fs::is_directory(path, ec)) fail("{}: is a directory, not an image", path.string());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail("{}: cannot open for reading", path.string());
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) fail("{}: read error", path.string());
+  return bytes;
+}
+
+void warn_if_cleaned(const std::string& name, const ImageReadReport& r) {
+  if (r.negative + r.nan + r.inf == 0) return;
+  warn("{}: set {} negative, {} NaN and {} infinite sample(s) to 0", name, r.negative, r.nan,
+       r.inf);
+}
+
+const char* default_channel_name(int channels, int c) {
+  static const char* kGrey[] = {"Y", "A"};
+  static const char* kRgba[] = {"R", "G", "B", "A"};
+  return channels <= 2 ? kGrey[c] : kRgba[c];
+}
+
+}  // namespace
+
+void sanitize_image(Image& image, ImageReadReport& report) {
+  for (float& v : image.data) {
+    if (std::isnan(v)) {
+      ++report.nan;
+      v = 0.0f;
+    } else if (std::isinf(v)) {
+      ++report.inf;
+      v = 0.0f;
+    } else if (v < 0.0f) {
+      ++report.negative;
+      v = 0.0f;
+    }
+  }
+}
+
+Image decode_image(const void* bytes, std::size_t size, const std::string& name,
+                   const ImageReadOptions& options, ImageReadReport* report) {
+  const auto* b = static_cast<const unsigned char*>(bytes);
+  if (size == 0) fail("{}: empty file", name);
+  ImageReadReport local;
+  Image image;
+  switch (detect_format(b, size)) {
+    case Format::kExr:
+      image = decode_exr(b, size, name, options);
+      break;
+    case Format::kPng:
+      image = decode_stb(b, size, name, Format::kPng, options, local);
+      break;
+    case Format::kJpeg:
+      image = decode_stb(b, size, name, Format::kJpeg, options, local);
+      break;
+    case Format::kHdr:
+      image = decode_stb(b, size, name, Format::kHdr, options, local);
+      break;
+    case Format::kUnknown:
+      fail("{}: unknown image format (expected OpenEXR, Radiance HDR, PNG or JPEG)", name);
+  }
+  if (image.channels < 1 || image.channels > 4)
+    fail("{}: unsupported channel count {}", name, image.channels);
+  sanitize_image(image, local);
+  warn_if_cleaned(name, local);
+  if (report) {
+    report->negative += local.negative;
+    report->nan += local.nan;
+    report->inf += local.inf;
+    report->srgb_decoded = local.srgb_decoded;
+  }
+  return image;
+}
+
+Image read_image(const std::filesystem::path& path, const ImageReadOptions& options,
+                 ImageReadReport* report) {
+  const std::string bytes = read_file_bytes(path);
+  return decode_image(bytes.data(), bytes.size(), path.string(), options, report);
+}
+
+void write_exr(const std::filesystem::path& path, const Image& image, ExrPixelType type) {
+  ExrLayer layer;
+  layer.image = &image;
+  layer.type = type;
+  for (int c = 0; c < image.channels && c < 4; ++c)
+    layer.channel_names.push_back(default_channel_name(image.channels, c));
+  write_exr_layers(path, {layer});
+}
+
+void write_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers) {
+  const std::string name = path.string();
+  if (layers.empty()) fail("{}: no layers to write", name);
+  const Image* first = layers.front().image;
+  if (!first) fail("{}: layer '{}' has no image", name, layers.front().name);
+  const int w = first->width, h = first->height;
+  if (w <= 0 || h <= 0) fail("{}: cannot write an empty image ({} x {})", name, w, h);
+  Imf::Header header(w, h);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  Imf::FrameBuffer fb;
+  std::set<std::string> seen;
+  for (const ExrLayer& layer : layers) {
+    const Image* img = layer.image;
+    if (!img) fail("{}: layer '{}' has no image", name, layer.name);
+    if (img->width != w || img->height != h)
+      fail("{}: layer '{}' is {} x {}, but the first layer is {} x {}", name, layer.name,
+           img->width, img->height, w, h);
+    if (static_cast<int>(layer.channel_names.size()) != img->channels)
+      fail("{}: layer '{}' names {} channels but its image has {}", name, layer.name,
+           layer.channel_names.size(), img->channels);
+    const Imf::PixelType type = layer.type == ExrPixelType::kHalf ? Imf::HALF : Imf::FLOAT;
+    const std::size_t xs = sizeof(float) * img->channels;
+    for (int c = 0; c < img->channels; ++c) {
+      const std::string full =
+          layer.name.empty() ? layer.channel_names[c] : layer.name + "." + layer.channel_names[c];
+      if (!seen.insert(full).second) fail("{}: channel '{}' is written twice", name, full);
+      header.channels().insert(full, Imf::Channel(type));
+      // OpenEXR converts the float slice to the channel's type (half) when writing.
+      fb.insert(full,
+                Imf::Slice(Imf::FLOAT,
+                           const_cast<char*>(reinterpret_cast<const char*>(img->data.data() + c)),
+                           xs, xs * w));
+    }
+  }
+  write_file_atomically(path, [&](const std::filesystem::path& temp) {
+    try {
+      Imf::OutputFile file(temp.c_str(), header);
+      file.setFrameBuffer(fb);
+      file.writePixels(h);
+    } catch (const std::exception& e) {
+      fail("{}: cannot write EXR: {}", name, e.what());
+    }
+  });
+}
+
+std::vector<std::pair<std::string, Image>> read_exr_layers(const std::filesystem::path& path) {
+  const std::string name = path.string();
+  const std::string bytes = read_file_bytes(path);
+  const auto* b = reinterpret_cast<const unsigned char*>(bytes.data());
+  if (detect_format(b, bytes.size()) != Format::kExr) fail("{}: not an OpenEXR file", name);
+  std::vector<std::pair<std::string, Image>> result;
+  ImageReadReport report;
+  try {
+    MemoryIStream stream(b, bytes.size(), name);
+    Imf::InputFile file(stream);
+    const Imath::Box2i dw = file.header().dataWindow();
+    check_size(name, static_cast<long long>(dw.max.x) - dw.min.x + 1,
+               static_cast<long long>(dw.max.y) - dw.min.y + 1, ImageReadOptions{});
+    std::map<std::string, std::vector<std::string>> by_layer;  // layer -> channel names
+    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
+      std::string layer, channel;
+      split_channel(it.name(), layer, channel);
+      by_layer[layer].push_back(channel);
+    }
+    for (auto& [layer, channels] : by_layer) {
+      std::sort(channels.begin(), channels.end(), [](const std::string& a, const std::string& b) {
+        const int ra = channel_rank(a), rb = channel_rank(b);
+        return ra != rb ? ra < rb : a < b;
+      });
+      if (channels.size() > 4)
+        fail("{}: layer '{}' has {} channels; at most 4 per layer are supported", name, layer,
+             channels.size());
+      std::vector<std::string> full;
+      for (const auto& c : channels) full.push_back(layer.empty() ? c : layer + "." + c);
+      Image image = read_exr_channels(file, full);
+      sanitize_image(image, report);
+      result.emplace_back(layer, std::move(image));
+    }
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    fail("{}: cannot read EXR: {}", name, e.what());
+  }
+  warn_if_cleaned(name, report);
+  return result;
+}
+
+void write_png(const std::filesystem::path& path, const Image& display, int bits) {
+  const std::string name = path.string();
+  if (bits != 8 && bits != 16) fail("{}: PNG bit depth must be 8 or 16, not {}", name, bits);
+  if (display.empty() || display.width <= 0 || display.height <= 0)
+    fail("{}: cannot write an empty image", name);
+  if (display.channels < 1 || display.channels > 4)
+    fail("{}: cannot write {} channels to PNG", name, display.channels);
+  const float scale = bits == 8 ? 255.0f : 65535.0f;
+  // Round to nearest after clamping to [0,1]; NaN becomes 0.
+  auto quantise = [&](float v) {
+    const float c = v > 0.0f ? std::min(v, 1.0f) : 0.0f;
+    return static_cast<unsigned>(std::lround(c * scale));
+  };
+  std::vector<unsigned char> q8;
+  std::vector<unsigned short> q16;
+  if (bits == 8) {
+    q8.resize(display.data.size());
+    for (std::size_t i = 0; i < q8.size(); ++i)
+      q8[i] = static_cast<unsigned char>(quantise(display.data[i]));
+  } else {
+    q16.resize(display.data.size());
+    for (std::size_t i = 0; i < q16.size(); ++i)
+      q16[i] = static_cast<unsigned short>(quantise(display.data[i]));
+  }
+  write_file_atomically(path, [&](const std::filesystem::path& temp) {
+    // OpenImageIO's PNG writer handles both depths (stb_image_write has 8-bit only).
+    auto out = OIIO::ImageOutput::create("png");
+    if (!out) fail("{}: no PNG writer available: {}", name, OIIO::geterror());
+    const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
+    OIIO::ImageSpec spec(display.width, display.height, display.channels, type);
+    if (!out->open(temp.string(), spec)) fail("{}: cannot write PNG: {}", name, out->geterror());
+    const void* data = bits == 8 ? static_cast<const void*>(q8.data()) : q16.data();
+    if (!out->write_image(type, data) || !out->close())
+      fail("{}: cannot write PNG: {}", name, out->geterror());
+  });
+}
+
+void write_hdr(const std::filesystem::path& path, const Image& image) {
+  const std::string name = path.string();
+  if (image.empty() || image.width <= 0 || image.height <= 0)
+    fail("{}: cannot write an empty image", name);
+  if (image.channels < 1 || image.channels > 4)
+    fail("{}: cannot write {} channels to HDR", name, image.channels);
+  write_file_atomically(path, [&](const std::filesystem::path& temp) {
+    if (!stbi_write_hdr(temp.c_str(), image.width, image.height, image.channels, image.data.data()))
+      fail("{}: cannot write Radiance HDR", name);
+  });
+}
+
+}  // namespace pbrkit
