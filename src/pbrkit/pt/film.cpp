@@ -1,0 +1,203 @@
+#include "pbrkit/pt/film.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "pbrkit/util/error.h"
+
+namespace pbrkit {
+
+Film::Film(int w, int h)
+    : width(w),
+      height(h),
+      sum(std::size_t(w) * h, glm::vec3(0.0f)),
+      sum_even(std::size_t(w) * h, glm::vec3(0.0f)),
+      albedo(std::size_t(w) * h, glm::vec3(0.0f)),
+      normal(std::size_t(w) * h, glm::vec3(0.0f)),
+      depth(std::size_t(w) * h, 0.0f),
+      count(std::size_t(w) * h, 0.0f),
+      done(std::size_t(w) * h, 0.0f) {}
+
+namespace {
+
+Image vec3_mean(const Film& f, const std::vector<glm::vec3>& v, float scale, float bias) {
+  Image image(f.width, f.height, 3);
+  for (std::size_t i = 0; i < f.pixel_count(); ++i) {
+    const float n = f.count[i];
+    const glm::vec3 m = n > 0.0f ? v[i] / n * scale + bias : glm::vec3(0.0f);
+    for (int c = 0; c < 3; ++c) image.data[i * 3 + c] = m[c];
+  }
+  return image;
+}
+
+Image vec3_image(const Film& f, const std::vector<glm::vec3>& v) {
+  Image image(f.width, f.height, 3);
+  for (std::size_t i = 0; i < f.pixel_count(); ++i)
+    for (int c = 0; c < 3; ++c) image.data[i * 3 + c] = v[i][c];
+  return image;
+}
+
+Image scalar_image(const Film& f, const std::vector<float>& v) {
+  Image image(f.width, f.height, 1);
+  std::copy(v.begin(), v.end(), image.data.begin());
+  return image;
+}
+
+}  // namespace
+
+Image Film::color() const {
+  return vec3_mean(*this, sum, 1.0f, 0.0f);
+}
+Image Film::albedo_image() const {
+  return vec3_mean(*this, albedo, 1.0f, 0.0f);
+}
+// Normals are accumulated encoded as 0.5 n + 0.5 so that every stored sum is
+// non-negative (EXR readers clamp negative samples); decode here.
+Image Film::normal_image() const {
+  return vec3_mean(*this, normal, 2.0f, -1.0f);
+}
+
+Image Film::depth_image() const {
+  Image image(width, height, 1);
+  for (std::size_t i = 0; i < pixel_count(); ++i)
+    image.data[i] = count[i] > 0.0f ? depth[i] / count[i] : 0.0f;
+  return image;
+}
+
+Image Film::count_image() const {
+  return scalar_image(*this, count);
+}
+
+Image Film::noise_image() const {
+  Image image(width, height, 1);
+  for (std::size_t i = 0; i < pixel_count(); ++i) image.data[i] = pixel_noise(i);
+  return image;
+}
+
+float Film::pixel_noise(std::size_t i) const {
+  // Cycles' adaptive sampling (intern/cycles/kernel/film/adaptive_sampling.h): compare
+  // the mean of all samples, I, with the mean of the even-indexed half, E; their
+  // difference estimates the error of I. Normalised by sqrt(I) as Cycles does so that
+  // the threshold is perceptually uniform-ish.
+  const float n = count[i];
+  if (n < 2.0f) return std::numeric_limits<float>::infinity();
+  const float n_even = std::ceil(n * 0.5f);  // ranges starting on an even index
+  const glm::vec3 I = sum[i] / n;
+  const glm::vec3 E = sum_even[i] / n_even;
+  const glm::vec3 d = glm::abs(I - E);
+  const float err = (d.x + d.y + d.z) / (1e-4f + std::sqrt(I.x + I.y + I.z));
+  return err;
+}
+
+void Film::merge(const Film& other) {
+  if (other.width != width || other.height != height)
+    fail("cannot merge a {}x{} film into a {}x{} one", other.width, other.height, width, height);
+  for (std::size_t i = 0; i < pixel_count(); ++i) {
+    sum[i] += other.sum[i];
+    sum_even[i] += other.sum_even[i];
+    albedo[i] += other.albedo[i];
+    normal[i] += other.normal[i];
+    depth[i] += other.depth[i];
+    count[i] += other.count[i];
+    done[i] = std::max(done[i], other.done[i]);
+  }
+  sample_begin = std::min(sample_begin, other.sample_begin);
+}
+
+void write_film(const std::filesystem::path& path, const Film& film) {
+  const Image color = film.color();
+  const Image s = vec3_image(film, film.sum), se = vec3_image(film, film.sum_even);
+  const Image al = vec3_image(film, film.albedo), no = vec3_image(film, film.normal);
+  const Image de = scalar_image(film, film.depth), co = scalar_image(film, film.count);
+  const Image dn = scalar_image(film, film.done);
+  const std::vector<std::string> rgb{"R", "G", "B"}, y{"Y"};
+  const auto f = ExrPixelType::kFloat;
+  write_exr_layers(path, {{"", rgb, &color, f},
+                          {"pbrkit_sum", rgb, &s, f},
+                          {"pbrkit_sum_even", rgb, &se, f},
+                          {"pbrkit_albedo_sum", rgb, &al, f},
+                          {"pbrkit_normal_sum", rgb, &no, f},
+                          {"pbrkit_depth_sum", y, &de, f},
+                          {"pbrkit_count", y, &co, f},
+                          {"pbrkit_done", y, &dn, f}});
+}
+
+Film read_film(const std::filesystem::path& path) {
+  const auto layers = read_exr_layers(path);
+  auto find = [&](const std::string& name, int channels) -> const Image& {
+    for (const auto& [n, image] : layers)
+      if (n == name) {
+        if (image.channels != channels)
+          fail("{}: layer '{}' has {} channels, expected {}", path.string(), name, image.channels,
+               channels);
+        return image;
+      }
+    fail(
+        "{}: not a pbrkit accumulation file (no layer '{}'; write one with "
+        "'pbrkit render --sample-range' or '--checkpoint')",
+        path.string(), name);
+  };
+  const Image& s = find("pbrkit_sum", 3);
+  Film film(s.width, s.height);
+  auto load3 = [&](const Image& image, std::vector<glm::vec3>& v) {
+    if (image.width != film.width || image.height != film.height)
+      fail("{}: layers have different sizes", path.string());
+    for (std::size_t i = 0; i < film.pixel_count(); ++i)
+      v[i] = glm::vec3(image.data[i * 3], image.data[i * 3 + 1], image.data[i * 3 + 2]);
+  };
+  auto load1 = [&](const Image& image, std::vector<float>& v) {
+    if (image.width != film.width || image.height != film.height)
+      fail("{}: layers have different sizes", path.string());
+    std::copy(image.data.begin(), image.data.end(), v.begin());
+  };
+  load3(s, film.sum);
+  load3(find("pbrkit_sum_even", 3), film.sum_even);
+  load3(find("pbrkit_albedo_sum", 3), film.albedo);
+  load3(find("pbrkit_normal_sum", 3), film.normal);
+  load1(find("pbrkit_depth_sum", 1), film.depth);
+  load1(find("pbrkit_count", 1), film.count);
+  load1(find("pbrkit_done", 1), film.done);
+  for (float c : film.count)
+    if (!(c >= 0.0f) || c != std::floor(c))
+      fail("{}: sample counts must be whole numbers >= 0", path.string());
+  return film;
+}
+
+void write_render_exr(const std::filesystem::path& path, const Film& film,
+                      const std::vector<std::string>& aovs, ExrPixelType type) {
+  std::vector<Image> images;
+  images.reserve(aovs.size() + 1);
+  std::vector<ExrLayer> layers;
+  const std::vector<std::string> rgb{"R", "G", "B"}, xyz{"X", "Y", "Z"}, y{"Y"};
+  images.push_back(film.color());
+  layers.push_back({"", rgb, nullptr, type});
+  for (const auto& name : aovs) {
+    if (name == "albedo") {
+      images.push_back(film.albedo_image());
+      layers.push_back({name, rgb, nullptr, type});
+    } else if (name == "normal") {
+      images.push_back(film.normal_image());
+      layers.push_back({name, xyz, nullptr, type});
+    } else if (name == "depth") {
+      images.push_back(film.depth_image());
+      // Depth and counts keep full precision whatever the colour type.
+      layers.push_back({name, {"Z"}, nullptr, ExrPixelType::kFloat});
+    } else if (name == "samples") {
+      images.push_back(film.count_image());
+      layers.push_back({name, y, nullptr, ExrPixelType::kFloat});
+    } else if (name == "noise") {
+      Image noise = film.noise_image();
+      for (float& v : noise.data)
+        if (!std::isfinite(v)) v = 0.0f;
+      images.push_back(std::move(noise));
+      layers.push_back({name, y, nullptr, type});
+    } else {
+      fail("unknown AOV '{}' (known: albedo, normal, depth, samples, noise)", name);
+    }
+  }
+  for (std::size_t i = 0; i < layers.size(); ++i) layers[i].image = &images[i];
+  write_exr_layers(path, layers);
+}
+
+}  // namespace pbrkit

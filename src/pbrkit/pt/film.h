@@ -1,0 +1,65 @@
+#pragma once
+// The path tracer's film: per-pixel accumulation buffers (sums and sample counts), from
+// which the colour image, the AOVs and the noise estimate are resolved. Because the pixel
+// filter is importance-sampled, every sample has weight 1 and a pixel's state is just
+// its sums and its count, so films of disjoint sample ranges merge by addition and a
+// film saved to a float EXR resumes bit-exactly.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "pbrkit/image/image.h"
+#include "pbrkit/image/image_io.h"
+
+namespace pbrkit {
+
+struct Film {
+  int width = 0;
+  int height = 0;
+  std::uint32_t sample_begin = 0;  ///< the first sample index of this film's range
+  std::uint32_t seed = 0;
+
+  // Per pixel, in pixel order (row 0 at the top):
+  std::vector<glm::vec3> sum;       ///< sum of radiance over all samples
+  std::vector<glm::vec3> sum_even;  ///< sum over samples with an even index (half buffer)
+  std::vector<glm::vec3> albedo;    ///< sum of the first-hit albedo
+  std::vector<glm::vec3> normal;    ///< sum of the first-hit shading normal (world)
+  std::vector<float> depth;         ///< sum of the first-hit distance (0 for a miss)
+  std::vector<float> count;         ///< samples taken (exact in float up to 2^24)
+  std::vector<float> done;          ///< 1 when adaptive sampling stopped the pixel
+
+  Film() = default;
+  Film(int w, int h);
+  std::size_t pixel_count() const { return std::size_t(width) * height; }
+
+  /// Mean radiance per pixel (RGB; black where no sample was taken).
+  Image color() const;
+  Image albedo_image() const;  ///< mean first-hit albedo (RGB)
+  Image normal_image() const;  ///< mean first-hit shading normal (RGB = XYZ)
+  Image depth_image() const;   ///< mean first-hit distance (1 channel)
+  Image count_image() const;   ///< samples per pixel (1 channel)
+  Image noise_image() const;   ///< per-pixel relative error estimate (1 channel)
+
+  /// Relative error of pixel i from the two half buffers (Cycles' adaptive sampling):
+  /// sum|I - E| / sqrt(sum I) with I the full mean and E the even-sample mean.
+  float pixel_noise(std::size_t i) const;
+
+  /// Adds `other` (a disjoint sample range of the same image) into this film.
+  void merge(const Film& other);
+};
+
+/// Writes the film's buffers as a float EXR ("accumulation" file: layers sum, sum_even,
+/// albedo, normal, depth, count, done), atomically.
+void write_film(const std::filesystem::path& path, const Film& film);
+/// Reads a file written by write_film; pbrkit::Error naming the file if it is not one.
+Film read_film(const std::filesystem::path& path);
+
+/// The final outputs of a render: a linear EXR (main RGB layer plus the chosen AOV
+/// layers) and nothing else. AOV names: albedo, normal, depth, samples, noise.
+void write_render_exr(const std::filesystem::path& path, const Film& film,
+                      const std::vector<std::string>& aovs, ExrPixelType type);
+
+}  // namespace pbrkit

@@ -1,0 +1,79 @@
+#pragma once
+// The path tracer's view of a Scene: Embree 3 geometry plus the world-space vertex data
+// needed to shade a hit.
+//
+// Instances are flattened: every instance becomes its own world-space triangle geometry
+// (geomID = instance index) rather than an Embree instance of a shared mesh. The scenes
+// this toolkit renders are small (at most a few million triangles) and rarely instance a
+// mesh many times, so flattening costs little memory and buys a single BVH level (no
+// per-ray instance transform, better SAH over the whole scene), and shading data is
+// already in world space.
+#include <cstdint>
+#include <vector>
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+#include "pbrkit/scene/scene.h"
+
+namespace pbrkit {
+
+/// Embree ray masks: opaque geometry answers every ray; geometry with alpha (MASK, or
+/// BLEND with alpha < 1) is skipped by the fast any-hit shadow query and handled by a
+/// transmittance loop instead.
+inline constexpr unsigned kMaskOpaque = 1u;
+inline constexpr unsigned kMaskAlpha = 2u;
+
+/// One instance in world space.
+struct WorldMesh {
+  const Mesh* mesh = nullptr;
+  const Material* material = nullptr;
+  std::vector<glm::vec3> positions;  ///< world space (+1 padding element for Embree)
+  std::vector<glm::vec3> normals;    ///< world space, unit (may be empty)
+  std::vector<glm::vec4> tangents;   ///< world space xyz + handedness (may be empty)
+  bool has_alpha = false;            ///< needs the alpha test / stochastic transparency
+  bool emissive = false;
+};
+
+/// A ray hit resolved to shading data.
+struct SurfaceHit {
+  float t = 0.0f;
+  glm::vec3 p{0.0f};        ///< from barycentrics (more accurate than o + t d)
+  glm::vec3 ng{0.0f};       ///< geometric normal from the winding (CCW = front), unit
+  glm::vec3 ns{0.0f};       ///< interpolated shading normal, unit (ng when absent)
+  glm::vec4 tangent{0.0f};  ///< interpolated tangent (w: handedness); 0 when absent
+  glm::vec2 uv[2]{};        ///< TEXCOORD_0 / TEXCOORD_1
+  glm::vec4 color{1.0f};    ///< COLOR_0
+  float area = 0.0f;        ///< world-space triangle area
+  std::uint32_t geom = 0, prim = 0;
+};
+
+class SceneGeometry {
+ public:
+  explicit SceneGeometry(const Scene& scene);
+  ~SceneGeometry();
+  SceneGeometry(const SceneGeometry&) = delete;
+  SceneGeometry& operator=(const SceneGeometry&) = delete;
+
+  /// Closest hit along o + t d, t in (0, tfar), of geometry selected by `mask`.
+  /// Returns false on a miss; fills geom/prim/t and barycentrics u, v.
+  bool intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mask, std::uint32_t& geom,
+                 std::uint32_t& prim, float& t, float& u, float& v) const;
+  /// Any opaque hit in (0, tfar)?
+  bool occluded(glm::vec3 o, glm::vec3 d, float tfar) const;
+  /// Shading data of a hit.
+  SurfaceHit resolve(std::uint32_t geom, std::uint32_t prim, float t, float u, float v) const;
+
+  const std::vector<WorldMesh>& meshes() const { return meshes_; }
+  bool has_alpha() const { return has_alpha_; }
+  const Bounds& bounds() const { return bounds_; }
+
+ private:
+  RTCDevice device_ = nullptr;
+  RTCScene rtc_scene_ = nullptr;
+  std::vector<WorldMesh> meshes_;
+  bool has_alpha_ = false;
+  Bounds bounds_;
+};
+
+}  // namespace pbrkit

@@ -1,0 +1,442 @@
+// The path tracer's integrator and its sampling loop. See path_tracer.h for the contract.
+#include "pbrkit/pt/path_tracer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <mutex>
+
+#include <fmt/format.h>
+#include <pmmintrin.h>
+#include <tbb/blocked_range2d.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <xmmintrin.h>
+
+#include "pbrkit/core/math.h"
+#include "pbrkit/core/sampling.h"
+#include "pbrkit/pt/geometry.h"
+#include "pbrkit/pt/lights.h"
+#include "pbrkit/pt/ray_offset.h"
+#include "pbrkit/pt/shading.h"
+#include "pbrkit/util/error.h"
+
+namespace pbrkit {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr int kTileSize = 16;
+// Sampler dimensions: 0-1 the pixel filter, then 8 per bounce (two 4D Sobol blocks):
+// light choice, light point (2), BSDF lobe, BSDF direction (2), Russian roulette, spare.
+constexpr std::uint32_t kFilterDims = 4;
+constexpr std::uint32_t kDimsPerBounce = 8;
+
+// Power heuristic with beta = 2 (Veach 1997, eq. 9.13).
+inline float power_heuristic(float f, float g) {
+  const float f2 = f * f, g2 = g * g;
+  if (!std::isfinite(f2)) return 1.0f;
+  return f2 + g2 > 0.0f ? f2 / (f2 + g2) : 0.0f;
+}
+
+// Inverse CDF of the tent filter of radius 1 (pbrt-v3 TriangleFilter sampling):
+// density 1 - |x| on [-1, 1].
+inline float sample_tent(float u) {
+  return u < 0.5f ? -1.0f + std::sqrt(2.0f * u) : 1.0f - std::sqrt(2.0f - 2.0f * u);
+}
+
+// A uniform float from a hash of its arguments: decisions that need more random numbers
+// than the sampler's fixed dimensions (repeated stochastic-transparency tests along one
+// ray). Deterministic, so renders stay reproducible. (PCG hash, Jarzynski & Olano 2020.)
+inline float hash_float(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+  std::uint32_t h = a * 747796405u + 2891336453u;
+  for (std::uint32_t x : {b, c, d}) {
+    h ^= x + 0x9e3779b9u + (h << 6) + (h >> 2);
+    h = h * 747796405u + 2891336453u;
+    h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
+    h = (h >> 22u) ^ h;
+  }
+  return float(h >> 8) * 0x1p-24f;
+}
+
+struct PathSample {
+  glm::vec3 L{0.0f};
+  glm::vec3 albedo{0.0f};
+  glm::vec3 normal{0.0f};
+  float depth = 0.0f;
+};
+
+class Integrator {
+ public:
+  Integrator(const Scene& scene, const SceneGeometry& geometry, const LightSet& lights,
+             const PathTracerSettings& settings)
+      : scene_(scene), geometry_(geometry), lights_(lights), settings_(settings) {}
+
+  // One path through pixel `pixel` for sample `index` (Veach's path tracer with NEE and
+  // MIS, in pbrt-v4's PathIntegrator form). `rays` counts the rays traced.
+  PathSample trace(glm::vec3 origin, glm::vec3 direction, const OwenSobolSampler& sampler,
+                   std::uint32_t pixel, std::uint32_t index, std::uint64_t& rays) const {
+    PathSample out;
+    glm::vec3 beta(1.0f);
+    float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
+    glm::vec3 prev_p(0.0f);
+    const Environment* env = lights_.environment();
+    const LightStrategy strategy = settings_.strategy;
+    for (int depth = 0;; ++depth) {
+      SurfaceHit hit;
+      const Material* material = nullptr;
+      const bool found = closest_hit(origin, direction, pixel, index, depth, rays, hit, material);
+      if (!found) {
+        if (env && (depth > 0 || settings_.env_visible)) {
+          const glm::vec3 Le = env->eval(direction);
+          float w = 1.0f;
+          if (depth > 0) {
+            if (strategy == LightStrategy::kLightOnly) w = 0.0f;
+            if (strategy == LightStrategy::kMis)
+              w = power_heuristic(prev_pdf, lights_.environment_pdf(direction));
+          }
+          out.L += beta * Le * w;
+        }
+        break;
+      }
+      const glm::vec3 wo = -direction;
+      // Double-sided materials shade the side they are seen from; single-sided back
+      // faces were culled in closest_hit.
+      if (glm::dot(hit.ng, wo) < 0.0f) {
+        hit.ng = -hit.ng;
+        hit.ns = -hit.ns;
+      }
+      // Emission (glTF emission is seen from the front, or from both sides when
+      // double-sided; a culled back face never gets here).
+      const glm::vec3 Le = material_emission(scene_, *material, hit);
+      if (Le != glm::vec3(0.0f)) {
+        float w = 1.0f;
+        if (depth > 0) {
+          if (strategy == LightStrategy::kLightOnly) w = 0.0f;
+          if (strategy == LightStrategy::kMis)
+            w = power_heuristic(prev_pdf, lights_.triangle_pdf(hit, prev_p));
+        }
+        out.L += beta * Le * w;
+      }
+
+      ShadingInputs in = shade_inputs(scene_, *material, hit);
+      // A shading normal facing away from the viewer (interpolation or normal maps at
+      // silhouettes) would make the BRDF zero; tilt it just enough towards wo.
+      const float ndotv = glm::dot(in.ns, wo);
+      if (ndotv < 1e-4f) in.ns = glm::normalize(in.ns + (1e-4f - ndotv) * wo);
+      if (depth == 0) {
+        out.albedo = in.base_color;
+        out.normal = in.ns * 0.5f + 0.5f;
+        out.depth = hit.t;
+      }
+      if (depth >= settings_.max_bounces) break;
+
+      const Frame frame(in.ns);
+      const glm::vec3 wo_local = frame.to_local(wo);
+      const Brdf brdf(in.base_color, in.metallic, in.roughness, settings_.brdf);
+      const std::uint32_t dim = kFilterDims + std::uint32_t(depth) * kDimsPerBounce;
+
+      // Next-event estimation: one light sample (delta lights always; area lights and the
+      // environment unless BSDF sampling alone is asked for).
+      LightSample ls;
+      const float u_light = sampler.sample(pixel, index, dim);
+      const glm::vec2 u_point = sampler.sample_2d(pixel, index, dim + 1);
+      if (lights_.sample(hit.p, u_light, u_point, ls) &&
+          (ls.delta || strategy != LightStrategy::kBsdfOnly) && ls.Li != glm::vec3(0.0f) &&
+          glm::dot(ls.wi, hit.ng) > 0.0f) {
+        const glm::vec3 wi_local = frame.to_local(ls.wi);
+        const glm::vec3 f = brdf.eval(wo_local, wi_local) * std::max(wi_local.z, 0.0f);
+        if (f != glm::vec3(0.0f)) {
+          float w = 1.0f;
+          if (!ls.delta && strategy == LightStrategy::kMis)
+            w = power_heuristic(ls.pdf, brdf.pdf(wo_local, wi_local));
+          const glm::vec3 tr = transmittance(hit, ls, pixel, index, depth, rays);
+          out.L += beta * f * ls.Li * tr * (w / ls.pdf);
+        }
+      }
+
+      // Continue the path by sampling the BRDF (visible-normal GGX or cosine).
+      const float u_lobe = sampler.sample(pixel, index, dim + 3);
+      const glm::vec2 u_dir = sampler.sample_2d(pixel, index, dim + 4);
+      const BrdfSample bs = brdf.sample(wo_local, u_lobe, u_dir);
+      if (!bs.valid) break;
+      const glm::vec3 wi = frame.to_world(bs.wi);
+      // Reflection only: a direction below the geometric surface would leak light.
+      if (glm::dot(wi, hit.ng) <= 0.0f) break;
+      beta *= bs.weight;
+      prev_pdf = bs.pdf;
+      prev_p = hit.p;
+      // Russian roulette (pbrt-v4): survive with probability max(beta), at most 1.
+      if (depth + 1 >= settings_.rr_start) {
+        const float q = std::max(beta.x, std::max(beta.y, beta.z));
+        if (!(q > 0.0f)) break;
+        if (q < 1.0f) {
+          if (sampler.sample(pixel, index, dim + 6) >= q) break;
+          beta /= q;
+        }
+      }
+      origin = offset_ray_origin(hit.p, hit.ng);
+      direction = wi;
+    }
+    if (!std::isfinite(out.L.x + out.L.y + out.L.z)) out.L = glm::vec3(0.0f);
+    return out;
+  }
+
+ private:
+  // Closest hit, skipping culled back faces, alpha-masked and stochastically transparent
+  // surfaces (glTF alphaMode MASK: alpha < cutoff is a hole; BLEND: transparent with
+  // probability 1 - alpha, an unbiased stand-in for blending).
+  bool closest_hit(glm::vec3& origin, glm::vec3 direction, std::uint32_t pixel, std::uint32_t index,
+                   int depth, std::uint64_t& rays, SurfaceHit& hit,
+                   const Material*& material) const {
+    for (std::uint32_t pass = 0; pass < 256; ++pass) {
+      std::uint32_t geom = 0, prim = 0;
+      float t = 0.0f, u = 0.0f, v = 0.0f;
+      ++rays;
+      if (!geometry_.intersect(origin, direction, kInfinity, 0xffffffffu, geom, prim, t, u, v))
+        return false;
+      hit = geometry_.resolve(geom, prim, t, u, v);
+      const WorldMesh& wm = geometry_.meshes()[geom];
+      material = wm.material;
+      bool skip = !material->double_sided && glm::dot(hit.ng, direction) > 0.0f;
+      if (!skip && wm.has_alpha) {
+        const float alpha = material_alpha(scene_, *material, hit);
+        if (material->alpha_mode == AlphaMode::kMask)
+          skip = alpha < material->alpha_cutoff;
+        else
+          skip = hash_float(pixel, index, std::uint32_t(depth), pass) >= alpha;
+      }
+      if (!skip) return true;
+      origin = offset_ray_origin(hit.p, glm::dot(hit.ng, direction) > 0.0f ? hit.ng : -hit.ng);
+    }
+    return false;
+  }
+
+  // Visibility of a light sample: 0 or 1 through opaque geometry; through alpha-tested
+  // and blended surfaces the expected transmittance (MASK: 0 or 1, BLEND: 1 - alpha).
+  glm::vec3 transmittance(const SurfaceHit& hit, const LightSample& ls, std::uint32_t,
+                          std::uint32_t, int, std::uint64_t& rays) const {
+    const glm::vec3 o = offset_ray_origin(hit.p, hit.ng);
+    float tfar;
+    if (ls.infinite) {
+      tfar = kInfinity;
+    } else {
+      // Stop just short of the light point (offset towards us for area lights).
+      const glm::vec3 target =
+          ls.delta ? ls.light_point : offset_ray_origin(ls.light_point, ls.light_normal);
+      tfar = glm::length(target - o) * (1.0f - 1e-4f);
+    }
+    ++rays;
+    if (geometry_.occluded(o, ls.wi, tfar)) return glm::vec3(0.0f);
+    if (!geometry_.has_alpha()) return glm::vec3(1.0f);
+    float tr = 1.0f;
+    glm::vec3 origin = o;
+    float remaining = tfar;
+    for (int pass = 0; pass < 256 && tr > 0.0f; ++pass) {
+      std::uint32_t geom = 0, prim = 0;
+      float t = 0.0f, u = 0.0f, v = 0.0f;
+      ++rays;
+      if (!geometry_.intersect(origin, ls.wi, remaining, kMaskAlpha, geom, prim, t, u, v)) break;
+      const SurfaceHit h = geometry_.resolve(geom, prim, t, u, v);
+      const Material& m = *geometry_.meshes()[geom].material;
+      const float alpha = material_alpha(scene_, m, h);
+      if (m.alpha_mode == AlphaMode::kMask)
+        tr *= alpha < m.alpha_cutoff ? 1.0f : 0.0f;
+      else
+        tr *= 1.0f - saturate(alpha);
+      const glm::vec3 next = offset_ray_origin(h.p, glm::dot(h.ng, ls.wi) > 0.0f ? h.ng : -h.ng);
+      if (std::isfinite(remaining)) remaining -= glm::length(next - origin);
+      origin = next;
+      if (!(remaining > 0.0f)) break;
+    }
+    return glm::vec3(tr);
+  }
+
+  const Scene& scene_;
+  const SceneGeometry& geometry_;
+  const LightSet& lights_;
+  const PathTracerSettings& settings_;
+};
+
+// Flush denormals to zero in render threads: Embree asks for it (its traversal is slower
+// with denormals) and it removes a source of slow paths in shading.
+void set_ftz_daz() {
+  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+}
+
+// The pass schedule: pixels are brought to these sample counts in turn, so every pixel
+// progresses evenly (useful for time limits and interruption) and the adaptive test runs at
+// the same counts in every run (which keeps resumed and split renders identical).
+std::uint32_t next_target(std::uint32_t target, std::uint32_t total, std::uint32_t first) {
+  if (target == 0) return std::min(total, std::max(first, 1u));
+  return std::min(total, target + std::max(1u, target / 2));
+}
+
+}  // namespace
+
+PathTracerResult render_path(const Scene& scene, const Environment* env, const Camera& camera,
+                             const PathTracerSettings& settings, const ProgressCallback& progress) {
+  if (settings.width <= 0 || settings.height <= 0)
+    fail("render: image size {}x{} is not positive", settings.width, settings.height);
+  const std::uint32_t begin = settings.sample_begin;
+  const std::uint32_t end = settings.sample_end > 0 ? settings.sample_end : settings.spp;
+  if (end <= begin) fail("render: empty sample range {}:{}", begin, end);
+  const std::uint32_t total = end - begin;
+
+  PathTracerResult result;
+  const auto build_start = Clock::now();
+  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  std::unique_ptr<SceneGeometry> geometry;
+  std::unique_ptr<LightSet> lights;
+  arena.execute([&] {
+    set_ftz_daz();
+    geometry = std::make_unique<SceneGeometry>(scene);
+    lights = std::make_unique<LightSet>(scene, *geometry, env);
+  });
+  result.stats.build_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
+
+  Film& film = result.film;
+  if (settings.resume) {
+    film = *settings.resume;
+    if (film.width != settings.width || film.height != settings.height)
+      fail("resume: the checkpoint is {}x{} but the render is {}x{}", film.width, film.height,
+           settings.width, settings.height);
+  } else {
+    film = Film(settings.width, settings.height);
+  }
+  film.sample_begin = begin;
+  film.seed = settings.seed;
+
+  const Integrator integrator(scene, *geometry, *lights, settings);
+  const OwenSobolSampler sampler(settings.seed);
+  const float aspect = float(settings.width) / float(settings.height);
+  const int tiles_x = (settings.width + kTileSize - 1) / kTileSize;
+  const int tiles_y = (settings.height + kTileSize - 1) / kTileSize;
+
+  const auto start = Clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
+  std::atomic<bool> stop{false};
+  auto should_stop = [&] {
+    if (stop.load(std::memory_order_relaxed)) return true;
+    if ((settings.stop && settings.stop->load(std::memory_order_relaxed)) ||
+        (settings.time_limit > 0.0 && elapsed() >= settings.time_limit)) {
+      stop = true;
+      return true;
+    }
+    return false;
+  };
+  tbb::enumerable_thread_specific<std::uint64_t> ray_counts(0), sample_counts(0);
+  std::mutex progress_mutex;
+  double last_progress = -1.0;
+  const double work_total = double(film.pixel_count()) * double(total);
+  auto report = [&](bool force) {
+    if (!progress) return;
+    std::lock_guard<std::mutex> lock(progress_mutex);
+    const double now = elapsed();
+    if (!force && now - last_progress < 0.25) return;
+    last_progress = now;
+    double done = 0.0;
+    std::uint64_t samples = 0;
+    for (auto c : sample_counts) samples += c;
+    for (std::size_t i = 0; i < film.pixel_count(); ++i)
+      done += film.done[i] > 0.0f ? double(total) : double(film.count[i]);
+    const double rate = now > 0.0 ? double(samples) / now : 0.0;
+    std::string detail = fmt::format("{:.2f} M samples*px/s", rate * 1e-6);
+    if (!progress(std::min(1.0, done / work_total), detail)) stop = true;
+  };
+
+  double last_checkpoint = 0.0;
+  std::uint32_t target = 0;
+  bool complete = false;
+  while (!complete && !should_stop()) {
+    target = next_target(target, total,
+                         settings.noise_threshold > 0.0f ? settings.min_spp : settings.min_spp);
+    arena.execute([&] {
+      tbb::parallel_for(
+          tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1),
+          [&](const tbb::blocked_range2d<int>& r) {
+            set_ftz_daz();
+            std::uint64_t& rays = ray_counts.local();
+            std::uint64_t& samples = sample_counts.local();
+            for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
+              for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
+                if (should_stop()) return;
+                const int x1 = std::min(settings.width, (tx + 1) * kTileSize);
+                const int y1 = std::min(settings.height, (ty + 1) * kTileSize);
+                for (int y = ty * kTileSize; y < y1; ++y)
+                  for (int x = tx * kTileSize; x < x1; ++x) {
+                    const std::size_t i = std::size_t(y) * settings.width + x;
+                    if (film.done[i] > 0.0f) continue;
+                    const auto pixel = std::uint32_t(i);
+                    for (auto s = std::uint32_t(film.count[i]); s < target; ++s) {
+                      const std::uint32_t index = begin + s;
+                      const glm::vec2 uf = sampler.sample_2d(pixel, index, 0);
+                      const glm::vec2 off = settings.filter == PixelFilter::kTent
+                                                ? glm::vec2(sample_tent(uf.x), sample_tent(uf.y))
+                                                : uf - 0.5f;
+                      const glm::vec2 ndc(
+                          (float(x) + 0.5f + off.x) / float(settings.width) * 2.0f - 1.0f,
+                          1.0f - (float(y) + 0.5f + off.y) / float(settings.height) * 2.0f);
+                      const Ray ray = generate_ray(camera, aspect, ndc);
+                      const PathSample ps =
+                          integrator.trace(ray.origin, ray.direction, sampler, pixel, index, rays);
+                      film.sum[i] += ps.L;
+                      if ((index & 1u) == 0u) film.sum_even[i] += ps.L;
+                      film.albedo[i] += ps.albedo;
+                      film.normal[i] += ps.normal;
+                      film.depth[i] += ps.depth;
+                      film.count[i] = float(s + 1);
+                      ++samples;
+                    }
+                  }
+                report(false);
+              }
+          });
+    });
+    if (should_stop()) break;
+    // Adaptive sampling: pixels whose two half-buffer estimates agree stop here.
+    if (settings.noise_threshold > 0.0f && target >= settings.min_spp) {
+      for (std::size_t i = 0; i < film.pixel_count(); ++i)
+        if (film.done[i] == 0.0f && film.count[i] >= float(target) &&
+            film.pixel_noise(i) < settings.noise_threshold)
+          film.done[i] = 1.0f;
+    }
+    complete = target >= total;
+    if (!complete && settings.checkpoint && settings.checkpoint_interval > 0.0 &&
+        elapsed() - last_checkpoint >= settings.checkpoint_interval) {
+      settings.checkpoint(film);
+      last_checkpoint = elapsed();
+    }
+  }
+  if (!complete) {
+    // Complete when every pixel got its samples (a stop may come after the last tile).
+    complete = true;
+    for (std::size_t i = 0; i < film.pixel_count() && complete; ++i)
+      complete = film.done[i] > 0.0f || film.count[i] >= float(total);
+  }
+  report(true);
+
+  result.stats.render_seconds = elapsed();
+  for (auto c : ray_counts) result.stats.rays += c;
+  for (auto c : sample_counts) result.stats.samples += c;
+  result.stats.complete = complete;
+  result.stats.stopped = !complete;
+  double noise = 0.0;
+  std::size_t counted = 0;
+  for (std::size_t i = 0; i < film.pixel_count(); ++i) {
+    const float e = film.pixel_noise(i);
+    if (std::isfinite(e)) {
+      noise += e;
+      ++counted;
+    }
+  }
+  result.stats.noise = counted ? noise / double(counted) : 0.0;
+  result.color = film.color();
+  return result;
+}
+
+}  // namespace pbrkit

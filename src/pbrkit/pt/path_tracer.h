@@ -1,0 +1,109 @@
+#pragma once
+// The CPU path tracer: the project's ground truth. Unidirectional path tracing with
+// next-event estimation and multiple importance sampling (power heuristic, Veach 1997
+// ch. 9) over Embree 3 geometry, parallel over tiles with oneTBB, sampled with the
+// foundation's Owen-scrambled Sobol sequence (core/sampling.h), so that a render is a
+// deterministic function of (scene, camera, settings, seed): bit-identical whatever the
+// thread count, splittable into sample ranges, and resumable from a checkpoint.
+//
+// The library never installs signal handlers; the caller passes a stop flag and/or a
+// progress callback that returns false, and gets back everything rendered so far.
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "pbrkit/core/material.h"
+#include "pbrkit/image/environment.h"
+#include "pbrkit/image/image.h"
+#include "pbrkit/pt/film.h"
+#include "pbrkit/scene/camera.h"
+#include "pbrkit/scene/scene.h"
+#include "pbrkit/util/progress.h"
+
+namespace pbrkit {
+
+/// How the path tracer combines its two strategies for area and environment lights.
+/// kMis is the renderer; the other two exist so tests can check that all three converge
+/// to the same image (and that MIS has the lowest variance).
+enum class LightStrategy { kMis, kLightOnly, kBsdfOnly };
+
+/// The reconstruction filter, importance-sampled: every sample has weight 1 and lands at
+/// an offset drawn from the filter, so pixels are independent (no splatting) and sample
+/// ranges merge exactly.
+enum class PixelFilter {
+  kBox,   ///< width 1 pixel (what an unfiltered rasteriser computes with supersampling)
+  kTent,  ///< triangle of radius 1 pixel (width 2); the default
+};
+
+struct PathTracerSettings {
+  int width = 512;
+  int height = 512;
+
+  // --- stopping rules -----------------------------------------------------------------
+  /// Samples per pixel: the render ends when every pixel has `spp` samples (or has
+  /// converged, or the time is up).
+  std::uint32_t spp = 64;
+  /// Render only samples [sample_begin, sample_end) of each pixel's sequence
+  /// (sample_end = 0: up to spp). Used by --sample-range to split a render over machines.
+  std::uint32_t sample_begin = 0;
+  std::uint32_t sample_end = 0;
+  /// Wall-clock limit in seconds (0: none). The result holds what was rendered in time.
+  double time_limit = 0.0;
+  /// Adaptive sampling (0: off). A pixel stops receiving samples once its relative error,
+  /// estimated from two interleaved half buffers as Cycles does, is below this.
+  float noise_threshold = 0.0f;
+  /// Samples every pixel receives before the noise test may stop it.
+  std::uint32_t min_spp = 16;
+
+  // --- light transport ----------------------------------------------------------------
+  /// Surface interactions that gather light. 1 = direct lighting only (camera ray, one
+  /// light sample and one BSDF sample at the first hit, no further bounces); 0 = only
+  /// emission seen directly.
+  int max_bounces = 8;
+  /// Russian roulette starts after this many bounces.
+  int rr_start = 3;
+  LightStrategy strategy = LightStrategy::kMis;
+  BrdfOptions brdf;
+  PixelFilter filter = PixelFilter::kTent;
+  /// Show the environment to camera rays (false: black background, light still counts).
+  bool env_visible = true;
+
+  // --- execution ----------------------------------------------------------------------
+  std::uint32_t seed = 0;
+  int threads = 0;  ///< 0: all hardware threads
+  /// Set by the caller (e.g. a signal handler) to stop early; polled between tiles.
+  const std::atomic<bool>* stop = nullptr;
+  /// Called (from the calling thread) with a snapshot every `checkpoint_interval`
+  /// seconds at a pass boundary, so long renders can be resumed.
+  double checkpoint_interval = 0.0;
+  std::function<void(const Film&)> checkpoint;
+  /// Continue from this state (a checkpoint of the same scene and settings) instead of
+  /// starting empty; the final result equals an uninterrupted render.
+  const Film* resume = nullptr;
+};
+
+struct PathTracerStats {
+  double render_seconds = 0.0;  ///< the sampling loop only (no loading, no BVH build)
+  double build_seconds = 0.0;   ///< Embree BVH build and light setup
+  std::uint64_t samples = 0;    ///< camera samples taken in this call
+  std::uint64_t rays = 0;       ///< rays traced in this call (camera, bounce, shadow)
+  bool stopped = false;         ///< stopped early (flag, callback or time limit)
+  bool complete = false;        ///< every pixel reached its target or converged
+  double noise = 0.0;           ///< mean per-pixel noise estimate (0 when unknown)
+};
+
+struct PathTracerResult {
+  Film film;    ///< the accumulation buffers (sums and counts): merge/resume input
+  Image color;  ///< RGB mean radiance (linear)
+  PathTracerStats stats;
+};
+
+/// Renders `scene` seen from `camera`, lit by `env` (nullptr: no environment), the
+/// scene's KHR_lights_punctual lights and its emissive triangles. `progress` may be empty;
+/// it receives the fraction done and a detail line and may return false to stop.
+PathTracerResult render_path(const Scene& scene, const Environment* env, const Camera& camera,
+                             const PathTracerSettings& settings,
+                             const ProgressCallback& progress = {});
+
+}  // namespace pbrkit
