@@ -42,6 +42,10 @@ struct Texture {
   glm::vec4 sample(glm::vec2 uv, float lod = 0.0f) const;
 };
 
+/// A full mip chain for `level0` (box-filtered in linear space down to 1x1); mips[0] is
+/// `level0` itself.
+std::vector<Image> make_mip_chain(Image level0);
+
 /// KHR_texture_transform: uv' = T * R * S * uv.
 struct TextureTransform {
   glm::vec2 offset{0.0f};
@@ -154,6 +158,10 @@ struct Scene {
   std::vector<Camera> cameras;
   std::vector<Light> lights;
   std::vector<std::string> warnings;
+  // What the source file declared (empty for built-in scenes), for `pbrkit info`.
+  std::size_t node_count = 0;
+  std::vector<std::string> extensions_used;
+  std::vector<std::string> extensions_required;
 
   /// World-space bounding box of all instances.
   Bounds world_bounds() const;

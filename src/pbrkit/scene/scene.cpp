@@ -1,0 +1,40 @@
+#include "pbrkit/scene/scene.h"
+
+namespace pbrkit {
+
+Bounds Scene::world_bounds() const {
+  Bounds bounds;
+  for (const Instance& instance : instances) {
+    if (instance.mesh < 0 || instance.mesh >= int(meshes.size())) continue;
+    for (const glm::vec3& p : meshes[std::size_t(instance.mesh)].positions)
+      bounds.extend(glm::vec3(instance.transform * glm::vec4(p, 1.0f)));
+  }
+  return bounds;
+}
+
+const Material& Scene::material_of(const Mesh& mesh) const {
+  if (mesh.material >= 0 && mesh.material < int(materials.size()))
+    return materials[std::size_t(mesh.material)];
+  return default_material();
+}
+
+std::size_t Scene::triangle_count() const {
+  std::size_t count = 0;
+  for (const Instance& instance : instances)
+    if (instance.mesh >= 0 && instance.mesh < int(meshes.size()))
+      count += meshes[std::size_t(instance.mesh)].triangle_count();
+  return count;
+}
+
+const Material& Scene::default_material() {
+  // glTF 2.0 section 3.9.1: a primitive without a material uses the defaults of every
+  // property, i.e. a rough (roughness 1), fully metallic, white material.
+  static const Material kDefault = [] {
+    Material m;
+    m.name = "default";
+    return m;
+  }();
+  return kDefault;
+}
+
+}  // namespace pbrkit

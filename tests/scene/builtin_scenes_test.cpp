@@ -1,0 +1,127 @@
+// The built-in scenes: layouts and materials as documented, cameras that frame them, and
+// the Scene helpers on known geometry.
+#include <gtest/gtest.h>
+
+#include "pbrkit/scene/camera.h"
+#include "pbrkit/scene/load.h"
+#include "pbrkit/util/error.h"
+
+namespace pbrkit {
+namespace {
+
+glm::vec2 project(const Camera& camera, glm::vec3 p) {
+  const glm::vec4 clip = projection_matrix(camera, 1.0f) * view_matrix(camera) * glm::vec4(p, 1);
+  return glm::vec2(clip) / clip.w;
+}
+
+TEST(BuiltinScenes, SpheresGrid) {
+  const Scene s = load_scene("spheres");
+  EXPECT_EQ(s.source, "builtin:spheres");
+  ASSERT_EQ(s.instances.size(), 49u);
+  for (const Instance& inst : s.instances) {
+    const glm::vec3 c(inst.transform[3]);
+    const Material& m = s.material_of(s.meshes[std::size_t(inst.mesh)]);
+    const float row = c.y + 3.0f, col = c.x + 3.0f;
+    EXPECT_NEAR(m.metallic_factor, row / 6.0f, 1e-6f);
+    EXPECT_NEAR(m.roughness_factor, 0.05f + 0.95f * col / 6.0f, 1e-6f);
+    EXPECT_EQ(m.base_color_factor, glm::vec4(0.9f, 0.6f, 0.3f, 1.0f));
+    EXPECT_FLOAT_EQ(c.z, 0.0f);
+  }
+  const Bounds b = s.world_bounds();
+  EXPECT_NEAR(b.min.x, -3.4f, 1e-4f);
+  EXPECT_NEAR(b.max.y, 3.4f, 1e-4f);
+  EXPECT_NEAR(b.max.z, 0.4f, 1e-4f);
+  // The camera on +Z sees every sphere completely.
+  ASSERT_EQ(s.cameras.size(), 1u);
+  const Camera& cam = s.cameras[0];
+  EXPECT_GT(cam.position().z, 5.0f);
+  for (float x : {b.min.x, b.max.x})
+    for (float y : {b.min.y, b.max.y}) {
+      const glm::vec2 ndc = project(cam, {x, y, 0.0f});
+      EXPECT_LT(std::abs(ndc.x), 1.0f);
+      EXPECT_LT(std::abs(ndc.y), 1.0f);
+    }
+  // 64 x 32 sphere: 2 * 64 * (32 - 1) triangles (no degenerate pole triangles).
+  EXPECT_EQ(s.triangle_count(), 49u * 2u * 64u * 31u);
+}
+
+TEST(BuiltinScenes, Furnace) {
+  const Scene s = load_scene("builtin:furnace");
+  ASSERT_EQ(s.instances.size(), 1u);
+  const Material& m = s.material_of(s.meshes[0]);
+  EXPECT_EQ(m.base_color_factor, glm::vec4(1.0f));
+  EXPECT_EQ(m.metallic_factor, 0.0f);
+  const Bounds b = s.world_bounds();
+  EXPECT_NEAR(b.max.x, 1.0f, 1e-5f);
+  EXPECT_NEAR(b.min.y, -1.0f, 1e-5f);
+  const glm::vec2 edge = project(s.cameras.at(0), {1.0f, 0.0f, 0.0f});
+  EXPECT_LT(edge.x, 1.0f);
+  EXPECT_GT(edge.x, 0.3f);
+}
+
+TEST(BuiltinScenes, CornellBox) {
+  const Scene s = load_scene("cornell");
+  int emissive = 0;
+  for (const Mesh& mesh : s.meshes) {
+    const Material& m = s.material_of(mesh);
+    if (m.emissive_factor != glm::vec3(0.0f)) {
+      ++emissive;
+      EXPECT_EQ(m.emissive_factor, glm::vec3(1.0f, 0.85f, 0.6f));
+      EXPECT_FLOAT_EQ(m.emissive_strength, 15.0f);
+      // The light faces down, just below the ceiling.
+      for (const glm::vec3& n : mesh.normals) EXPECT_NEAR(n.y, -1.0f, 1e-6f);
+      for (const glm::vec3& p : mesh.positions) EXPECT_NEAR(p.y, 1.98f, 1e-6f);
+    }
+    if (mesh.name == "left") {
+      EXPECT_GT(m.base_color_factor.r, 0.5f);
+      EXPECT_LT(m.base_color_factor.g, 0.1f);
+      EXPECT_NEAR(mesh.normals[0].x, 1.0f, 1e-6f);  // faces into the room
+    }
+    if (mesh.name == "right") {
+      EXPECT_GT(m.base_color_factor.g, m.base_color_factor.r);
+      EXPECT_NEAR(mesh.normals[0].x, -1.0f, 1e-6f);
+    }
+    if (mesh.name == "floor") {
+      EXPECT_NEAR(mesh.normals[0].y, 1.0f, 1e-6f);
+    }
+  }
+  EXPECT_EQ(emissive, 1);
+  const Bounds b = s.world_bounds();
+  EXPECT_NEAR(b.min.y, 0.0f, 1e-6f);
+  EXPECT_NEAR(b.max.y, 2.0f, 1e-6f);
+  // The camera looks in through the open front (+Z) and sees the back wall's corners.
+  const Camera& cam = s.cameras.at(0);
+  EXPECT_GT(cam.position().z, 1.0f);
+  const glm::vec2 corner = project(cam, {-1.0f, 2.0f, -1.0f});
+  EXPECT_LT(std::abs(corner.x), 1.0f);
+  EXPECT_LT(std::abs(corner.y), 1.0f);
+}
+
+TEST(BuiltinScenes, UnknownNameListsTheKnownOnes) {
+  try {
+    builtin_scene("teapot");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("spheres"), std::string::npos);
+  }
+  EXPECT_TRUE(is_builtin_scene("cornell"));
+  EXPECT_FALSE(is_builtin_scene("cornell.glb"));
+}
+
+TEST(SceneHelpers, DefaultMaterialIsTheSpecDefault) {
+  const Material& m = Scene::default_material();
+  EXPECT_EQ(m.base_color_factor, glm::vec4(1.0f));
+  EXPECT_EQ(m.metallic_factor, 1.0f);
+  EXPECT_EQ(m.roughness_factor, 1.0f);
+  EXPECT_EQ(m.emissive_factor, glm::vec3(0.0f));
+  EXPECT_EQ(m.alpha_mode, AlphaMode::kOpaque);
+  EXPECT_EQ(m.alpha_cutoff, 0.5f);
+  EXPECT_FALSE(m.double_sided);
+  Scene s;
+  Mesh mesh;
+  mesh.material = 7;  // out of range falls back to the default
+  EXPECT_EQ(&s.material_of(mesh), &m);
+}
+
+}  // namespace
+}  // namespace pbrkit
