@@ -27,7 +27,8 @@ std::string_view roughness_mapping_name(RoughnessMapping mapping);
 /// Roughness of mip `level` of a `levels`-level chain.
 float mip_roughness(int level, int levels, RoughnessMapping mapping = RoughnessMapping::kLinear);
 /// Fractional mip level for `roughness` (the inverse; what shaders compute).
-float roughness_lod(float roughness, int levels, RoughnessMapping mapping = RoughnessMapping::kLinear);
+float roughness_lod(float roughness, int levels,
+                    RoughnessMapping mapping = RoughnessMapping::kLinear);
 
 struct BakeOptions {
   int face_size = 256;       ///< specular cube, mip 0
@@ -36,8 +37,8 @@ struct BakeOptions {
   int irradiance_size = 32;  ///< diffuse irradiance cube
   int lut_size = 128;        ///< BRDF LUT, lut_size x lut_size over (n.v, roughness)
   RoughnessMapping mapping = RoughnessMapping::kLinear;
-  BrdfModel model = BrdfModel::kReference;  ///< the G of the prefilter weights
-  bool filtered_importance_sampling = true; ///< Colbert & Krivanek 2007
+  BrdfModel model = BrdfModel::kReference;   ///< the G of the prefilter weights
+  bool filtered_importance_sampling = true;  ///< Colbert & Krivanek 2007
 };
 
 /// 9 SH coefficients (bands l <= 2) per colour channel. Convention: the coefficients of
@@ -69,8 +70,8 @@ BakeResult bake_environment(const Environment& env, const BakeOptions& options,
                             const ProgressCallback& progress = {});
 
 /// The split-sum BRDF LUT for `model` (RGBA, see BakeResult::lut): texel (x, y) at
-/// n.v = (x + 0.5) / size, roughness = (y + 0.5) / size, integrated with the IBL G of
-/// the model (k = alpha / 2 for classic).
+/// n.v = (x + 0.5) / size, roughness = (y + 0.5) / size (at least kMinRoughness),
+/// integrated with the IBL G of the model (k = alpha / 2 for classic).
 Image compute_brdf_lut(BrdfModel model, int size);
 
 }  // namespace pbrkit

@@ -1,0 +1,320 @@
+// The IBL bake (Karis 2013 split sum): equirect -> cube resampling, box-filtered mip chain,
+// GGX prefiltering with filtered importance sampling, diffuse irradiance (cube + SH9) and
+// the BRDF LUT. See bake.h.
+#include "pbrkit/ibl/bake.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <vector>
+
+#include "pbrkit/core/math.h"
+#include "pbrkit/core/microfacet.h"
+#include "pbrkit/core/sampling.h"
+#include "pbrkit/ibl/bake_stages.h"
+#include "pbrkit/ibl/cube_lookup.h"
+#include "pbrkit/ibl/spherical_harmonics.h"
+#include "pbrkit/util/error.h"
+
+namespace pbrkit {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+bool is_power_of_two(int n) {
+  return n > 0 && (n & (n - 1)) == 0;
+}
+
+std::array<Image, 6> make_faces(int size) {
+  std::array<Image, 6> faces;
+  for (Image& f : faces) f = Image(size, size, 4, 1.0f);
+  return faces;
+}
+
+// Reports progress from worker threads: `done` units out of `total`, forwarded to the
+// callback by whichever thread gets the lock (callers' callbacks need not be thread-safe).
+class ProgressCounter {
+ public:
+  ProgressCounter(const ProgressCallback& callback, double total)
+      : callback_(callback), total_(total) {}
+  void add(double units, const char* stage) {
+    if (!callback_) return;
+    const double done = done_.fetch_add(units) + units;
+    std::unique_lock lock(mutex_, std::try_to_lock);
+    if (lock.owns_lock()) callback_(std::min(1.0, done / total_), stage);
+  }
+
+ private:
+  const ProgressCallback& callback_;
+  double total_;
+  std::atomic<double> done_{0.0};
+  std::mutex mutex_;
+};
+
+}  // namespace
+
+int cube_supersampling(int source_width, int face_size) {
+  // Source texels per cube texel along one axis: the equator spans 4 faces. Two samples
+  // per source texel (at least 2x2 per cube texel) so small bright sources are integrated,
+  // not point-sampled; capped at 8x8.
+  const int ratio = (source_width + 4 * face_size - 1) / (4 * face_size);
+  return std::clamp(2 * ratio, 2, 8);
+}
+
+Cubemap resample_to_cube(const Environment& env, int face_size) {
+  if (face_size < 1) fail("cube face size must be positive, got {}", face_size);
+  Cubemap cube;
+  cube.mips.push_back(make_faces(face_size));
+  const int ss = cube_supersampling(env.map.width, face_size);
+  const float inv = 1.0f / float(face_size * ss);
+  const float weight = 1.0f / float(ss * ss);
+  tbb::parallel_for(0, 6 * face_size, [&](int r) {
+    const int face = r / face_size, y = r % face_size;
+    Image& img = cube.mips[0][face];
+    for (int x = 0; x < face_size; ++x) {
+      // A box filter over the texel's (s, t) square: the texel's average radiance, up to
+      // the small variation of the solid-angle element within one texel.
+      glm::vec3 sum(0.0f);
+      for (int j = 0; j < ss; ++j)
+        for (int i = 0; i < ss; ++i) {
+          const glm::vec2 st((float(x * ss + i) + 0.5f) * inv, (float(y * ss + j) + 0.5f) * inv);
+          sum += env.eval(cube_direction(face, st));
+        }
+      img.set_rgb(x, y, sum * weight);
+    }
+  });
+  return cube;
+}
+
+void build_mip_chain(Cubemap& cube, int min_size) {
+  while (cube.size(cube.levels() - 1) / 2 >= std::max(min_size, 1)) {
+    const int src_level = cube.levels() - 1;
+    const int size = cube.size(src_level) / 2;
+    cube.mips.push_back(make_faces(size));
+    const auto& src = cube.mips[src_level];
+    auto& dst = cube.mips.back();
+    tbb::parallel_for(0, 6, [&](int face) {
+      // 2x2 box filter. Texels of one face have nearly equal solid angles at these sizes;
+      // the filtered importance sampling only needs a band-limited chain (Colbert &
+      // Krivanek 2007, section 20.4).
+      for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) {
+          const glm::vec3 c = src[face].rgb(2 * x, 2 * y) + src[face].rgb(2 * x + 1, 2 * y) +
+                              src[face].rgb(2 * x, 2 * y + 1) + src[face].rgb(2 * x + 1, 2 * y + 1);
+          dst[face].set_rgb(x, y, 0.25f * c);
+        }
+    });
+  }
+}
+
+std::vector<PrefilterSample> prefilter_samples(float roughness, int samples, int source_size,
+                                               int source_levels, bool filtered) {
+  std::vector<PrefilterSample> out;
+  out.reserve(samples);
+  const float alpha = sqr(std::max(roughness, kMinRoughness));
+  // Omega_p: solid angle of one texel of the source mip 0 (the average over the cube).
+  const float omega_p = 4.0f * kPi / (6.0f * float(source_size) * float(source_size));
+  for (int i = 0; i < samples; ++i) {
+    const glm::vec3 h = sample_ggx_ndf(hammersley(i, samples), alpha).h;
+    // n = v = R = +Z (Karis 2013): l = reflect(-v, h) = 2 (v.h) h - v.
+    const glm::vec3 l(2.0f * h.z * h.x, 2.0f * h.z * h.y, 2.0f * h.z * h.z - 1.0f);
+    if (l.z <= 0.0f) continue;
+    float lod = 0.0f;
+    if (filtered) {
+      // pdf(l) = D(h) (n.h) / (4 v.h) = D(h) / 4 when n = v. Colbert & Krivanek 2007
+      // (GPU Gems 3, ch. 20, eq. 13): lod = 0.5 log2(Omega_s / Omega_p) + 1,
+      // Omega_s = 1 / (N pdf).
+      const float pdf = DistributionGGX(h, alpha) * 0.25f;
+      const float omega_s = 1.0f / (float(samples) * pdf);
+      lod = std::clamp(0.5f * std::log2(omega_s / omega_p) + 1.0f, 0.0f, float(source_levels - 1));
+    }
+    out.push_back({l, l.z, lod});
+  }
+  return out;
+}
+
+namespace {
+
+// Trilinear lookup in a chain stored as RGBA float faces (see cube_lookup.h).
+inline glm::vec3 fetch(const Cubemap& src, glm::vec3 d, float lod) {
+  const detail::FaceHit hit = detail::cube_face_hit(d);
+  const int l0 = int(lod);
+  const float f = lod - float(l0);
+  const glm::vec3 c0 = detail::bilinear(src.mips[l0][hit.face], hit.sc, hit.tc);
+  if (f <= 0.0f) return c0;
+  const glm::vec3 c1 = detail::bilinear(src.mips[l0 + 1][hit.face], hit.sc, hit.tc);
+  return c0 + f * (c1 - c0);
+}
+
+}  // namespace
+
+glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<PrefilterSample>& samples,
+                              glm::vec3 R) {
+  const Frame frame(R);
+  glm::vec3 sum(0.0f);
+  float weight = 0.0f;
+  for (const PrefilterSample& s : samples) {
+    const glm::vec3 l = frame.t * s.l.x + frame.b * s.l.y + frame.n * s.l.z;
+    sum += fetch(source, l, s.lod) * s.weight;
+    weight += s.weight;
+  }
+  return weight > 0.0f ? sum / weight : glm::vec3(0.0f);
+}
+
+Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
+                           const ProgressCallback& progress) {
+  const int face_size = source.size(0);
+  int levels = 1;
+  while ((face_size >> levels) >= options.min_face_size && (face_size >> levels) >= 1) ++levels;
+  Cubemap out;
+  out.mips.push_back(source.mips[0]);  // roughness 0: the mirror, a copy of the source
+  struct Row {
+    int level, face, y;
+  };
+  std::vector<Row> rows;
+  std::vector<std::vector<PrefilterSample>> level_samples(levels);
+  double total_work = 0.0;
+  for (int m = 1; m < levels; ++m) {
+    const int size = face_size >> m;
+    out.mips.push_back(make_faces(size));
+    level_samples[m] =
+        prefilter_samples(mip_roughness(m, levels, options.mapping), options.samples, face_size,
+                          source.levels(), options.filtered_importance_sampling);
+    for (int face = 0; face < 6; ++face)
+      for (int y = 0; y < size; ++y) rows.push_back({m, face, y});
+    total_work += 6.0 * size * size * double(level_samples[m].size());
+  }
+  ProgressCounter counter(progress, std::max(total_work, 1.0));
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size()), [&](const auto& range) {
+    for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      const Row row = rows[i];
+      const int size = face_size >> row.level;
+      const auto& samples = level_samples[row.level];
+      Image& img = out.mips[row.level][row.face];
+      for (int x = 0; x < size; ++x) {
+        const glm::vec3 R = cube_direction(
+            row.face, {(float(x) + 0.5f) / float(size), (float(row.y) + 0.5f) / float(size)});
+        img.set_rgb(x, row.y, prefilter_direction(source, samples, R));
+      }
+      counter.add(double(size) * double(samples.size()), "specular");
+    }
+  });
+  return out;
+}
+
+Cubemap irradiance_cube(const Cubemap& source, int size) {
+  if (size < 1) fail("irradiance cube size must be positive, got {}", size);
+  // E(n) = sum over source texels of L(w) max(0, n.w) dOmega(w): a direct quadrature of the
+  // cosine convolution over a 64 px level (or the finest one if smaller), which is smooth
+  // enough that the texel-centre rule is accurate to ~1e-4 of E.
+  int level = 0;
+  while (level + 1 < source.levels() && source.size(level) > 64) ++level;
+  const int src_size = source.size(level);
+  struct Texel {
+    glm::vec3 w;
+    glm::vec3 L_dOmega;
+  };
+  std::vector<Texel> texels;
+  texels.reserve(std::size_t(6) * src_size * src_size);
+  for (int face = 0; face < 6; ++face)
+    for (int y = 0; y < src_size; ++y)
+      for (int x = 0; x < src_size; ++x) {
+        const glm::vec3 w = cube_direction(
+            face, {(float(x) + 0.5f) / float(src_size), (float(y) + 0.5f) / float(src_size)});
+        texels.push_back(
+            {w, source.mips[level][face].rgb(x, y) * cube_texel_solid_angle(x, y, src_size)});
+      }
+  Cubemap out;
+  out.mips.push_back(make_faces(size));
+  tbb::parallel_for(0, 6 * size, [&](int r) {
+    const int face = r / size, y = r % size;
+    for (int x = 0; x < size; ++x) {
+      const glm::vec3 n =
+          cube_direction(face, {(float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(size)});
+      glm::vec3 E(0.0f);
+      for (const Texel& t : texels) {
+        const float c = glm::dot(n, t.w);
+        if (c > 0.0f) E += t.L_dOmega * c;
+      }
+      out.mips[0][face].set_rgb(x, y, E);
+    }
+  });
+  return out;
+}
+
+int specular_levels(int face_size, int min_face_size) {
+  int levels = 1;
+  while ((face_size >> levels) >= std::max(min_face_size, 1)) ++levels;
+  return levels;
+}
+
+void check_bake_options(const BakeOptions& o) {
+  if (!is_power_of_two(o.face_size) || o.face_size > kMaxFaceSize)
+    fail("--size: the cube face size must be a power of two in 1..{}, got {}", kMaxFaceSize,
+         o.face_size);
+  if (!is_power_of_two(o.min_face_size) || o.min_face_size > o.face_size)
+    fail("--min-size: the smallest mip must be a power of two in 1..{} (the face size), got {}",
+         o.face_size, o.min_face_size);
+  if (o.samples < 1 || o.samples > (1 << 20))
+    fail("--samples: must be in 1..{}, got {}", 1 << 20, o.samples);
+  if (o.irradiance_size < 1 || o.irradiance_size > 1024)
+    fail("--irradiance-size: must be in 1..1024, got {}", o.irradiance_size);
+  if (o.lut_size < 1 || o.lut_size > 4096)
+    fail("--lut-size: must be in 1..4096, got {}", o.lut_size);
+}
+
+BakeResult bake_environment(const Environment& env, const BakeOptions& options,
+                            const ProgressCallback& progress) {
+  check_bake_options(options);
+  if (env.map.empty()) fail("{}: the environment map is empty", env.source);
+  BakeResult result;
+  const auto t_start = Clock::now();
+  // Progress weights: the stages' typical share of the run time.
+  auto stage = [&](double begin, double end) -> ProgressCallback {
+    if (!progress) return {};
+    return [&progress, begin, end](double f, const std::string& detail) {
+      return progress(begin + (end - begin) * f, detail);
+    };
+  };
+
+  auto t0 = Clock::now();
+  result.environment = resample_to_cube(env, options.face_size);
+  build_mip_chain(result.environment, 1);
+  result.timings.cube_s = seconds_since(t0);
+  if (progress) progress(0.1, "cube");
+
+  t0 = Clock::now();
+  {
+    BakeOptions o = options;
+    result.specular = prefilter_specular(result.environment, o, stage(0.1, 0.85));
+  }
+  result.timings.specular_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  result.sh = project_sh_irradiance(result.environment, 0);
+  result.timings.sh_s = seconds_since(t0);
+
+  t0 = Clock::now();
+  result.irradiance = irradiance_cube(result.environment, options.irradiance_size);
+  result.timings.irradiance_s = seconds_since(t0);
+  if (progress) progress(0.9, "irradiance");
+
+  t0 = Clock::now();
+  result.lut = compute_brdf_lut(options.model, options.lut_size);
+  result.timings.lut_s = seconds_since(t0);
+  if (progress) progress(1.0, "done");
+
+  result.timings.total_s = seconds_since(t_start);
+  return result;
+}
+
+}  // namespace pbrkit

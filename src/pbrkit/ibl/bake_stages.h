@@ -1,0 +1,61 @@
+#pragma once
+// The stages of bake_environment(), exposed for tests, the benchmark and --validate.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "pbrkit/ibl/bake.h"
+#include "pbrkit/ibl/cubemap.h"
+#include "pbrkit/image/environment.h"
+#include "pbrkit/util/progress.h"
+
+namespace pbrkit {
+
+/// Largest cube face accepted (8192 px faces are 1.6 GB of RGBA floats per chain).
+inline constexpr int kMaxFaceSize = 4096;
+
+/// Checks sizes and counts; throws pbrkit::Error naming the offending option.
+void check_bake_options(const BakeOptions& options);
+
+/// Supersampling factor per axis used when resampling a `source_width` lat-long map to
+/// faces of `face_size` (at least 2x2, about two samples per source texel, at most 8x8).
+int cube_supersampling(int source_width, int face_size);
+
+/// Resamples the environment (rotation and intensity applied) to a cube with one level,
+/// each texel the box-filtered average over its (s, t) square. RGBA, A = 1.
+Cubemap resample_to_cube(const Environment& env, int face_size);
+
+/// Appends 2x2 box-filtered levels to `cube` until the face size would drop below
+/// `min_size` (face sizes must be powers of two).
+void build_mip_chain(Cubemap& cube, int min_size);
+
+/// Number of specular levels from `face_size` down to `min_face_size` inclusive.
+int specular_levels(int face_size, int min_face_size);
+
+/// One precomputed prefilter sample in the local frame of R (n = v = R = +Z).
+struct PrefilterSample {
+  glm::vec3 l;   ///< light direction, local frame
+  float weight;  ///< n.l (Karis 2013 weighting)
+  float lod;     ///< source mip to read (filtered importance sampling), 0 if disabled
+};
+
+/// The `samples` Hammersley GGX samples for `roughness` (alpha = max(roughness,
+/// kMinRoughness)^2), those below the horizon dropped, each with its Colbert & Krivanek
+/// 2007 lod for a source cube of `source_size` px and `source_levels` levels.
+std::vector<PrefilterSample> prefilter_samples(float roughness, int samples, int source_size,
+                                               int source_levels, bool filtered = true);
+
+/// The prefiltered radiance in direction R (unit): sum L(l) n.l / sum n.l over `samples`.
+glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<PrefilterSample>& samples,
+                              glm::vec3 R);
+
+/// The specular chain: level 0 a copy of the source's level 0, level m prefiltered for
+/// roughness mip_roughness(m, levels, options.mapping). `source` needs its full chain.
+Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
+                           const ProgressCallback& progress = {});
+
+/// The diffuse irradiance E(n) = int L max(0, n.w) dw (not divided by pi) as a cube of
+/// `size` px, by direct quadrature over a <= 64 px level of `source`.
+Cubemap irradiance_cube(const Cubemap& source, int size);
+
+}  // namespace pbrkit
