@@ -1,0 +1,14 @@
+#pragma once
+// The foundation's EnergyTable (core/energy.h) uploaded as a texture, so the GLSL model
+// (shaders/brdf.glsl: energy_AB, energy_AB_avg) reads exactly the numbers the C++ Brdf
+// and the path tracer use.
+#include "pbrkit/core/microfacet.h"
+
+namespace pbrkit::gl {
+
+/// A new 32 x 33 GL_RG32F texture (nearest filtering; the shader interpolates by hand):
+/// rows 0..31 are (A, B) at the table's nodes mu = i / 31, roughness = j / 31, and row 32
+/// holds (A_avg, B_avg) at x = j. The caller owns the texture name.
+unsigned create_energy_texture(GeometryModel model);
+
+}  // namespace pbrkit::gl

@@ -1,0 +1,150 @@
+#version 450
+// The scene's surfaces: the material model of brdf.glsl lit by KHR_lights_punctual lights
+// and split-sum IBL (ibl.glsl), with glTF's textures, emission, normal and occlusion maps
+// (occlusion on indirect light only), alpha MASK / BLEND and double-sided materials.
+#include "ibl.glsl"
+
+in vec3 vPosition;
+in vec3 vNormal;
+in vec4 vTangent;
+in vec2 vTexcoord0;
+in vec2 vTexcoord1;
+in vec4 vColor;
+
+layout(location = 0) out vec4 outColor;
+
+uniform vec3 uCameraPosition;
+
+// Material (glTF metallic-roughness, factors times textures).
+uniform vec4 uBaseColorFactor;
+uniform float uMetallicFactor;
+uniform float uRoughnessFactor;
+uniform vec3 uEmissive;  // factor x KHR_materials_emissive_strength
+uniform float uNormalScale;
+uniform float uOcclusionStrength;
+uniform int uAlphaMode;  // 0 opaque, 1 mask, 2 blend
+uniform float uAlphaCutoff;
+uniform bool uDoubleSided;
+// Per texture: whether bound, which TEXCOORD set, the KHR_texture_transform matrix.
+uniform bool uHasTexture[5];
+uniform int uTexcoordSet[5];
+uniform mat3 uTextureTransform[5];
+layout(binding = 0) uniform sampler2D uBaseColorTexture;
+layout(binding = 1) uniform sampler2D uMetallicRoughnessTexture;
+layout(binding = 2) uniform sampler2D uNormalTexture;
+layout(binding = 3) uniform sampler2D uOcclusionTexture;
+layout(binding = 4) uniform sampler2D uEmissiveTexture;
+
+// Model.
+uniform int uGeometry;  // G for lights: GEOMETRY_REFERENCE or GEOMETRY_CLASSIC_DIRECT
+uniform bool uMultiscatter;
+uniform int uFresnel;
+layout(binding = 5) uniform sampler2D uEnergyDirect;  // EnergyTable of the direct G
+layout(binding = 6) uniform sampler2D uEnergyIBL;     // EnergyTable of the IBL G (the LUT)
+uniform float uMetallicOverride;   // < 0: none
+uniform float uRoughnessOverride;  // < 0: none
+
+// Lights (KHR_lights_punctual), world space.
+const int kMaxLights = 16;
+uniform int uLightCount;
+uniform int uLightType[kMaxLights];  // 0 point, 1 spot, 2 directional
+uniform vec3 uLightPosition[kMaxLights];
+uniform vec3 uLightDirection[kMaxLights];  // where the light points
+uniform vec3 uLightRadiance[kMaxLights];   // colour x intensity
+uniform float uLightRange[kMaxLights];     // <= 0: infinite
+uniform vec2 uLightCone[kMaxLights];       // spot: (scale, offset) of the glTF cone falloff
+
+// Image-based lighting.
+uniform bool uIblEnabled;
+uniform bool uIrradianceSH;
+uniform vec3 uSH[9];
+uniform int uSpecularLevels;
+uniform float uIblRotation;  // degrees, world_to_env for the baked cubes
+uniform float uIblScale;
+layout(binding = 7) uniform samplerCube uSpecularCube;
+layout(binding = 8) uniform samplerCube uIrradianceCube;
+
+vec2 texcoord(int i) {
+  vec2 uv = uTexcoordSet[i] == 1 ? vTexcoord1 : vTexcoord0;
+  return (uTextureTransform[i] * vec3(uv, 1.0)).xy;
+}
+
+// glTF 2.0 spec, KHR_lights_punctual: range window (1 - (d/range)^4)^2 clamped, over d^2.
+float range_attenuation(float d, float range) {
+  if (range <= 0.0) return 1.0 / (d * d);
+  float r = d / range;
+  float window = clamp(1.0 - r * r * r * r, 0.0, 1.0);
+  return window * window / (d * d);
+}
+
+void main() {
+  vec4 base_color = uBaseColorFactor * vColor;
+  if (uHasTexture[0]) base_color *= texture(uBaseColorTexture, texcoord(0));
+  if (uAlphaMode == 1 && base_color.a < uAlphaCutoff) discard;
+  float metallic = uMetallicFactor, roughness = uRoughnessFactor;
+  if (uHasTexture[1]) {
+    vec4 mr = texture(uMetallicRoughnessTexture, texcoord(1));
+    roughness *= mr.g;
+    metallic *= mr.b;
+  }
+  if (uMetallicOverride >= 0.0) metallic = uMetallicOverride;
+  if (uRoughnessOverride >= 0.0) roughness = uRoughnessOverride;
+
+  vec3 n = normalize(vNormal);
+  if (uDoubleSided && !gl_FrontFacing) n = -n;
+  if (uHasTexture[2] && dot(vTangent.xyz, vTangent.xyz) > 0.0) {
+    vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
+    vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
+    if (uDoubleSided && !gl_FrontFacing) b = -b;
+    vec3 tn = texture(uNormalTexture, texcoord(2)).xyz * 2.0 - 1.0;
+    tn.xy *= uNormalScale;
+    n = normalize(mat3(t, b, n) * tn);
+  }
+  vec3 v = normalize(uCameraPosition - vPosition);
+  mat3 frame = frame_from_normal(n);
+  vec3 wo = to_local(frame, v);
+
+  Brdf brdf = make_brdf(base_color.rgb, metallic, roughness, uGeometry, uMultiscatter, uFresnel,
+                        uEnergyDirect);
+  vec3 color = vec3(0.0);
+  for (int i = 0; i < uLightCount && i < kMaxLights; ++i) {
+    vec3 l;
+    vec3 radiance = uLightRadiance[i];
+    if (uLightType[i] == 2) {
+      l = -uLightDirection[i];
+    } else {
+      vec3 to_light = uLightPosition[i] - vPosition;
+      float d = length(to_light);
+      l = to_light / d;
+      radiance *= range_attenuation(d, uLightRange[i]);
+      if (uLightType[i] == 1) {
+        // Spot cone: smooth falloff between the cone angles (KHR_lights_punctual).
+        float cd = dot(uLightDirection[i], -l);
+        float a = clamp(cd * uLightCone[i].x + uLightCone[i].y, 0.0, 1.0);
+        radiance *= a * a;
+      }
+    }
+    vec3 wi = to_local(frame, l);
+    if (wi.z <= 0.0) continue;
+    color += brdf_eval(brdf, uEnergyDirect, wo, wi) * radiance * wi.z;
+  }
+
+  if (uIblEnabled) {
+    float ao = 1.0;
+    if (uHasTexture[3]) ao = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(3)).r - 1.0);
+    vec3 r = reflect(-v, n);
+    vec3 prefiltered = textureLod(uSpecularCube, world_to_env(r, uIblRotation),
+                                  roughness_lod(brdf.roughness, uSpecularLevels)).rgb;
+    vec3 n_env = world_to_env(n, uIblRotation);
+    vec3 irradiance = uIrradianceSH ? max(eval_sh_irradiance(uSH, n_env), vec3(0.0))
+                                    : textureLod(uIrradianceCube, n_env, 0.0).rgb;
+    Brdf ibl = make_brdf(base_color.rgb, metallic, roughness, uGeometry, uMultiscatter, uFresnel,
+                         uEnergyIBL);
+    color += ao * uIblScale * ibl_shading(ibl, uEnergyIBL, dot(n, v), prefiltered, irradiance);
+  }
+
+  vec3 emissive = uEmissive;
+  if (uHasTexture[4]) emissive *= texture(uEmissiveTexture, texcoord(4)).rgb;
+  color += emissive;
+  outColor = vec4(color, uAlphaMode == 2 ? base_color.a : 1.0);
+}

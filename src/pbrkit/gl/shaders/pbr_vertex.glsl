@@ -1,0 +1,30 @@
+#version 450
+// Scene geometry: object-space attributes to world space for pbr_fragment.glsl.
+layout(location = 0) in vec3 aPosition;
+layout(location = 1) in vec3 aNormal;
+layout(location = 2) in vec4 aTangent;  // xyz + handedness (glTF)
+layout(location = 3) in vec2 aTexcoord0;
+layout(location = 4) in vec2 aTexcoord1;
+layout(location = 5) in vec4 aColor;  // COLOR_0; (1,1,1,1) when absent
+
+uniform mat4 uModel;
+uniform mat3 uNormalMatrix;  // inverse transpose of the model's upper 3x3
+uniform mat4 uViewProjection;
+
+out vec3 vPosition;
+out vec3 vNormal;
+out vec4 vTangent;
+out vec2 vTexcoord0;
+out vec2 vTexcoord1;
+out vec4 vColor;
+
+void main() {
+  vec4 world = uModel * vec4(aPosition, 1.0);
+  vPosition = world.xyz;
+  vNormal = uNormalMatrix * aNormal;
+  vTangent = vec4(mat3(uModel) * aTangent.xyz, aTangent.w);
+  vTexcoord0 = aTexcoord0;
+  vTexcoord1 = aTexcoord1;
+  vColor = aColor;
+  gl_Position = uViewProjection * world;
+}

@@ -1,0 +1,20 @@
+# The OpenGL renderer (headless through EGL, windowed through GLFW). Its shaders are the
+# .glsl files in shaders/, embedded into the library at build time by embed_shaders.cmake
+# (one generated .cpp holding every file's bytes), so the binary needs no data files.
+set(_pbrkit_gl_dir ${CMAKE_CURRENT_SOURCE_DIR}/pbrkit/gl)
+file(GLOB _pbrkit_gl_shaders CONFIGURE_DEPENDS ${_pbrkit_gl_dir}/shaders/*.glsl)
+set(_pbrkit_gl_embedded ${CMAKE_CURRENT_BINARY_DIR}/pbrkit_gl_shaders.cpp)
+add_custom_command(
+  OUTPUT ${_pbrkit_gl_embedded}
+  COMMAND ${CMAKE_COMMAND} -DSHADER_DIR=${_pbrkit_gl_dir}/shaders -DOUTPUT=${_pbrkit_gl_embedded}
+          -P ${_pbrkit_gl_dir}/embed_shaders.cmake
+  DEPENDS ${_pbrkit_gl_shaders} ${_pbrkit_gl_dir}/embed_shaders.cmake
+  COMMENT "Embedding GLSL shaders"
+  VERBATIM)
+target_sources(pbrkit PRIVATE
+  ${_pbrkit_gl_dir}/context.cpp
+  ${_pbrkit_gl_dir}/program.cpp
+  ${_pbrkit_gl_dir}/shaders.cpp
+  ${_pbrkit_gl_dir}/brdf_eval.cpp
+  ${_pbrkit_gl_dir}/energy_texture.cpp
+  ${_pbrkit_gl_embedded})
