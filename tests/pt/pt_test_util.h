@@ -1,0 +1,79 @@
+#pragma once
+// Helpers shared by the path tracer's tests: small scenes, a deterministic quadrature of
+// the BRDF's directional albedo (the closed forms the renders are checked against), and a
+// t-test on per-pixel residuals (so tolerances come from the measured noise, not guesses).
+#include <cmath>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "pbrkit/core/material.h"
+#include "pbrkit/core/math.h"
+#include "pbrkit/pt/path_tracer.h"
+#include "pbrkit/scene/primitives.h"
+
+namespace pbrkit::test {
+
+inline Material make_material(glm::vec3 base, float metallic, float roughness,
+                              glm::vec3 emissive = glm::vec3(0.0f), bool double_sided = false) {
+  Material m;
+  m.base_color_factor = glm::vec4(base, 1.0f);
+  m.metallic_factor = metallic;
+  m.roughness_factor = roughness;
+  m.emissive_factor = emissive;
+  m.double_sided = double_sided;
+  return m;
+}
+
+/// An orthographic camera at (0, 0, z) looking down -Z with half extent `half`.
+inline Camera ortho_camera(float half, float z = 5.0f) {
+  Camera c;
+  c.type = Camera::Type::kOrthographic;
+  c.xmag = c.ymag = half;
+  c.znear = 0.01f;
+  c.camera_to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, z));
+  return c;
+}
+
+/// Directional albedo a(mu) = int f(wo, wi) cos(theta_i) dwi of the model's BRDF at
+/// wo = (sqrt(1 - mu^2), 0, mu), by a deterministic midpoint rule in (cos theta_i, phi)
+/// (dense enough that its error is far below the render noise).
+inline double directional_albedo(const Brdf& brdf, double mu, int n = 256) {
+  const glm::vec3 wo(float(std::sqrt(std::max(0.0, 1.0 - mu * mu))), 0.0f, float(mu));
+  double sum = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double c = (i + 0.5) / n;  // cos theta_i
+    const double s = std::sqrt(1.0 - c * c);
+    for (int j = 0; j < 2 * n; ++j) {
+      const double phi = (j + 0.5) / (2 * n) * 2.0 * kPi;
+      const glm::vec3 wi(float(s * std::cos(phi)), float(s * std::sin(phi)), float(c));
+      const glm::vec3 f = brdf.eval(wo, wi);
+      sum += double(f.x) * c;  // red channel; tests use grey materials
+    }
+  }
+  return sum * (1.0 / n) * (2.0 * kPi / (2 * n));
+}
+
+/// Result of a t-test on residuals r_i = value_i - expected_i, independent across pixels.
+struct ResidualStats {
+  double mean = 0.0, std_error = 0.0, max_abs = 0.0;
+  std::size_t n = 0;
+};
+inline ResidualStats residual_stats(const std::vector<double>& r) {
+  ResidualStats s;
+  s.n = r.size();
+  if (r.empty()) return s;
+  for (double x : r) s.mean += x;
+  s.mean /= double(r.size());
+  double var = 0.0;
+  for (double x : r) {
+    var += (x - s.mean) * (x - s.mean);
+    s.max_abs = std::max(s.max_abs, std::fabs(x));
+  }
+  var /= double(std::max<std::size_t>(r.size() - 1, 1));
+  s.std_error = std::sqrt(var / double(r.size()));
+  return s;
+}
+
+}  // namespace pbrkit::test
