@@ -69,12 +69,12 @@ vec2 texcoord(int i) {
   return (uTextureTransform[i] * vec3(uv, 1.0)).xy;
 }
 
-// glTF 2.0 spec, KHR_lights_punctual: range window (1 - (d/range)^4)^2 clamped, over d^2.
+// KHR_lights_punctual's recommended range window clamp(1 - (d/range)^4, 0, 1) over d^2
+// (as the Khronos sample viewer and the path tracer's lights.cpp).
 float range_attenuation(float d, float range) {
   if (range <= 0.0) return 1.0 / (d * d);
   float r = d / range;
-  float window = clamp(1.0 - r * r * r * r, 0.0, 1.0);
-  return window * window / (d * d);
+  return clamp(1.0 - r * r * r * r, 0.0, 1.0) / (d * d);
 }
 
 void main() {
