@@ -1,8 +1,80 @@
-// pbrkit merge: placeholder until its issue lands (it is not listed in --help).
+// pbrkit merge: combines accumulation EXRs written by 'pbrkit render --sample-range A:B'
+// (on one machine or many) into the final image. Because every sample has weight 1 (the
+// pixel filter is importance-sampled), merging is a sum of sums and counts, so N disjoint
+// ranges merged equal one render of their union (to float rounding).
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "commands.h"
+#include "pbrkit/core/color.h"
+#include "pbrkit/image/image_io.h"
+#include "pbrkit/pt/film.h"
+#include "pbrkit/util/error.h"
+#include "pbrkit/util/log.h"
 
 namespace pbrkit::cli {
 
-void register_merge_command(CLI::App& /*app*/) {}
+namespace {
+
+struct MergeOptions {
+  std::vector<std::string> parts;
+  std::string output;
+  std::vector<std::string> aovs;
+  float exposure = 0.0f;
+  std::string tonemap = "pbr-neutral";
+  bool full_float = false;
+  std::string accumulation;
+};
+
+}  // namespace
+
+void register_merge_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "merge",
+      "Combine accumulation EXRs from 'pbrkit render --sample-range A:B' into one render "
+      "(a PNG and a linear EXR beside it)");
+  auto o = std::make_shared<MergeOptions>();
+  cmd->add_option("parts", o->parts, "accumulation EXRs (disjoint sample ranges)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", o->output, "output PNG (the EXR is written beside it)")
+      ->required();
+  cmd->add_option("--aov", o->aovs, "extra EXR layers: albedo, normal, depth, samples, noise")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"albedo", "normal", "depth", "samples", "noise"}));
+  cmd->add_option("--exposure", o->exposure, "exposure in EV for the PNG")->capture_default_str();
+  cmd->add_option("--tonemap", o->tonemap, "tone mapper for the PNG")
+      ->check(CLI::IsMember({"none", "pbr-neutral", "aces", "agx"}))
+      ->capture_default_str();
+  cmd->add_flag("--float", o->full_float, "write the EXR as 32-bit floats (default half)");
+  cmd->add_option("--accumulation", o->accumulation,
+                  "also write the merged accumulation EXR here (to merge again later)");
+  cmd->callback([o] {
+    Film film = read_film(o->parts.front());
+    for (std::size_t i = 1; i < o->parts.size(); ++i) {
+      const Film part = read_film(o->parts[i]);
+      if (part.width != film.width || part.height != film.height)
+        fail("{}: is {}x{} but {} is {}x{}; parts of one render have the same size", o->parts[i],
+             part.width, part.height, o->parts.front(), film.width, film.height);
+      film.merge(part);
+    }
+    const std::filesystem::path out(o->output);
+    if (!out.parent_path().empty()) std::filesystem::create_directories(out.parent_path());
+    const std::string exr = std::filesystem::path(o->output).replace_extension(".exr").string();
+    if (!o->accumulation.empty()) write_film(o->accumulation, film);
+    write_render_exr(exr, film, o->aovs,
+                     o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf);
+    const Image color = film.color();
+    const ToneMapper tm = parse_tone_mapper(o->tonemap);
+    Image display(color.width, color.height, 3);
+    for (int y = 0; y < color.height; ++y)
+      for (int x = 0; x < color.width; ++x)
+        display.set_rgb(x, y, display_transform(color.rgb(x, y), o->exposure, tm));
+    write_png(o->output, display);
+    note("merged {} parts into {} and {}", o->parts.size(), o->output, exr);
+  });
+}
 
 }  // namespace pbrkit::cli

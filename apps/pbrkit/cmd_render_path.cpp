@@ -1,11 +1,263 @@
-// pbrkit render --renderer path: placeholder until the renderer lands.
+// pbrkit render --renderer path: the path tracer's own options (stopping rules, sampling,
+// threads, sample ranges, checkpoints, AOVs) and the runner that loads the scene, installs
+// the SIGINT/SIGTERM handlers, renders and writes the outputs atomically.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "pbrkit/core/color.h"
+#include "pbrkit/image/environment.h"
+#include "pbrkit/image/image_io.h"
+#include "pbrkit/pt/film.h"
+#include "pbrkit/pt/path_tracer.h"
+#include "pbrkit/scene/camera.h"
+#include "pbrkit/scene/load.h"
 #include "pbrkit/util/error.h"
+#include "pbrkit/util/log.h"
+#include "pbrkit/util/progress.h"
 #include "render_options.h"
 
 namespace pbrkit::cli {
 
-RenderRunner add_path_render_options(CLI::App& /*render*/) {
-  return [](const RenderCommandOptions&) { fail("--renderer path is not available yet"); };
+namespace {
+
+// Set by the signal handler, polled by the renderer between tiles. Lock-free atomics are
+// async-signal-safe.
+std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};
+
+extern "C" void on_stop_signal(int sig) {
+  g_signal.store(sig);
+  g_stop.store(true);
+}
+
+// Installs the handlers for the lifetime of a render and restores the previous ones.
+class StopSignals {
+ public:
+  StopSignals() {
+    g_stop = false;
+    g_signal = 0;
+    struct sigaction sa {};
+    sa.sa_handler = on_stop_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, &old_int_);
+    sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~StopSignals() {
+    sigaction(SIGINT, &old_int_, nullptr);
+    sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopSignals(const StopSignals&) = delete;
+  StopSignals& operator=(const StopSignals&) = delete;
+
+ private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+};
+
+struct PathOptions {
+  std::uint32_t spp = 1024;
+  double time = 0.0;
+  float noise_threshold = 0.02f;
+  std::uint32_t min_spp = 16;
+  int max_bounces = 8;
+  std::uint32_t seed = 0;
+  int threads = 0;
+  std::string sample_range;
+  std::string checkpoint;
+  double checkpoint_interval = 60.0;
+  std::string resume;
+  std::vector<std::string> aovs;
+  bool half = false;
+  bool full_float = false;
+  std::string filter = "tent";
+};
+
+std::pair<std::uint32_t, std::uint32_t> parse_sample_range(const std::string& text) {
+  const auto colon = text.find(':');
+  auto parse = [&](const std::string& part) -> std::uint32_t {
+    std::size_t used = 0;
+    unsigned long v = 0;
+    try {
+      v = std::stoul(part, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (part.empty() || used != part.size() || v > 0xffffffffUL)
+      fail("--sample-range '{}': expected A:B with whole numbers 0 <= A < B", text);
+    return std::uint32_t(v);
+  };
+  if (colon == std::string::npos)
+    fail("--sample-range '{}': expected A:B with whole numbers 0 <= A < B", text);
+  const std::uint32_t a = parse(text.substr(0, colon)), b = parse(text.substr(colon + 1));
+  if (a >= b) fail("--sample-range '{}': the range is empty (A must be below B)", text);
+  return {a, b};
+}
+
+void write_png_output(const std::string& path, const Image& color, const RenderCommandOptions& o) {
+  const ToneMapper tm = parse_tone_mapper(o.tonemap);
+  Image display(color.width, color.height, 3);
+  for (int y = 0; y < color.height; ++y)
+    for (int x = 0; x < color.width; ++x)
+      display.set_rgb(x, y, display_transform(color.rgb(x, y), o.exposure, tm));
+  write_png(path, display);
+}
+
+}  // namespace
+
+RenderRunner add_path_render_options(CLI::App& render) {
+  auto p = std::make_shared<PathOptions>();
+  const std::string group = "Path tracer (--renderer path)";
+  render
+      .add_option("--spp", p->spp,
+                  "samples per pixel (the most any pixel gets; with --noise-threshold "
+                  "converged pixels stop earlier)")
+      ->check(CLI::Range(1u, 1u << 24))
+      ->capture_default_str()
+      ->group(group);
+  render.add_option("--time", p->time, "stop after this many seconds (0: no limit)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str()
+      ->group(group);
+  render
+      .add_option("--noise-threshold", p->noise_threshold,
+                  "adaptive sampling: a pixel stops once its estimated relative error (two "
+                  "interleaved half buffers, as in Cycles) is below this; 0 turns it off")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str()
+      ->group(group);
+  render.add_option("--min-spp", p->min_spp, "samples every pixel gets before it may stop")
+      ->check(CLI::Range(1u, 1u << 24))
+      ->capture_default_str()
+      ->group(group);
+  render
+      .add_option("--max-bounces", p->max_bounces,
+                  "surface interactions that gather light (1: direct lighting only)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str()
+      ->group(group);
+  render.add_option("--seed", p->seed, "sampler seed (same seed: bit-identical image)")
+      ->capture_default_str()
+      ->group(group);
+  render.add_option("--threads", p->threads, "render threads (0: all cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str()
+      ->group(group);
+  render
+      .add_option("--sample-range", p->sample_range,
+                  "A:B renders only samples A..B-1 of every pixel and writes an accumulation "
+                  "EXR (sums and counts) for 'pbrkit merge' instead of the PNG")
+      ->group(group);
+  render
+      .add_option("--checkpoint", p->checkpoint,
+                  "save the accumulation buffers to this EXR every --checkpoint-interval "
+                  "seconds and when interrupted")
+      ->group(group);
+  render.add_option("--checkpoint-interval", p->checkpoint_interval, "seconds between checkpoints")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str()
+      ->group(group);
+  render
+      .add_option("--resume", p->resume,
+                  "continue from a checkpoint of the same scene and options (the result "
+                  "equals an uninterrupted render)")
+      ->check(CLI::ExistingFile)
+      ->group(group);
+  render
+      .add_option("--aov", p->aovs,
+                  "extra EXR layers: albedo, normal, depth, samples, noise (repeat or comma "
+                  "separate)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"albedo", "normal", "depth", "samples", "noise"}))
+      ->group(group);
+  auto* half =
+      render.add_flag("--half", p->half, "write the EXR as half floats (default)")->group(group);
+  render.add_flag("--float", p->full_float, "write the EXR as 32-bit floats")
+      ->excludes(half)
+      ->group(group);
+  render.add_option("--filter", p->filter, "pixel filter: tent (radius 1 px) or box (1 px)")
+      ->check(CLI::IsMember({"tent", "box"}))
+      ->capture_default_str()
+      ->group(group);
+
+  return [p](const RenderCommandOptions& o) {
+    const PathOptions& po = *p;
+    const Scene scene = load_scene(o.scene);
+    std::optional<Environment> env;
+    if (!o.no_env) env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
+    const float aspect = float(o.width) / float(o.height);
+    const Camera camera = select_camera(scene, o.camera, aspect);
+
+    PathTracerSettings s;
+    s.width = o.width;
+    s.height = o.height;
+    s.spp = po.spp;
+    s.time_limit = po.time;
+    s.noise_threshold = po.noise_threshold;
+    s.min_spp = std::min(po.min_spp, po.spp);
+    s.max_bounces = po.max_bounces;
+    s.seed = po.seed;
+    s.threads = po.threads;
+    s.filter = po.filter == "box" ? PixelFilter::kBox : PixelFilter::kTent;
+    s.brdf.model = parse_brdf_model(o.model);
+    s.brdf.multiscatter = o.multiscatter;
+    const bool partial = !po.sample_range.empty();
+    if (partial) {
+      std::tie(s.sample_begin, s.sample_end) = parse_sample_range(po.sample_range);
+      // Adaptive stopping depends on all of a pixel's samples; a part cannot decide it.
+      s.noise_threshold = 0.0f;
+    }
+    std::optional<Film> resume;
+    if (!po.resume.empty()) {
+      resume = read_film(po.resume);
+      s.resume = &*resume;
+    }
+    if (!po.checkpoint.empty()) {
+      s.checkpoint_interval = po.checkpoint_interval;
+      const std::string path = po.checkpoint;
+      s.checkpoint = [path](const Film& film) { write_film(path, film); };
+    }
+    StopSignals signals;
+    s.stop = &g_stop;
+
+    ProgressBar bar("render");
+    note("path tracing {} ({} triangles) at {}x{}, up to {} spp{}, {} bounces", scene.source,
+         scene.triangle_count(), o.width, o.height, partial ? s.sample_end - s.sample_begin : s.spp,
+         s.noise_threshold > 0.0f ? fmt::format(", noise threshold {}", s.noise_threshold) : "",
+         s.max_bounces);
+    const PathTracerResult result =
+        render_path(scene, env ? &*env : nullptr, camera, s, bar.callback());
+    const auto& st = result.stats;
+    bar.finish(fmt::format(
+        "{:.1f} s, {:.2f} M samples*px/s, {:.2f} M rays/s, BVH {:.2f} s", st.render_seconds,
+        st.render_seconds > 0 ? st.samples / st.render_seconds * 1e-6 : 0.0,
+        st.render_seconds > 0 ? st.rays / st.render_seconds * 1e-6 : 0.0, st.build_seconds));
+
+    const std::string exr = replace_extension(o.output, ".exr");
+    if (!po.checkpoint.empty() && !st.complete) write_film(po.checkpoint, result.film);
+    if (partial) {
+      write_film(exr, result.film);
+      note("wrote {} (samples {}:{}; combine the parts with 'pbrkit merge')", exr, s.sample_begin,
+           s.sample_end);
+    } else {
+      write_render_exr(exr, result.film, po.aovs,
+                       po.full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf);
+      write_png_output(o.output, result.color, o);
+      note("wrote {} and {}", o.output, exr);
+    }
+    if (g_stop.load()) {
+      const int sig = g_signal.load();
+      warn("interrupted by signal {}: wrote the image rendered so far", sig);
+      throw ExitRequest{128 + (sig > 0 ? sig : SIGINT)};
+    }
+    if (!st.complete) note("stopped at the time limit: wrote the image rendered so far");
+  };
 }
 
 }  // namespace pbrkit::cli
