@@ -1,8 +1,121 @@
-// pbrkit info: placeholder until its issue lands (it is not listed in --help).
+// pbrkit info FILE: a readable summary of a glTF file or built-in scene (in the spirit of
+// glTF-Transform's `inspect`), or the same numbers as JSON with --json.
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
 #include "commands.h"
+#include "pbrkit/scene/load.h"
 
 namespace pbrkit::cli {
 
-void register_info_command(CLI::App& /*app*/) {}
+namespace {
+
+struct InfoOptions {
+  std::string input;
+  bool json = false;
+};
+
+const char* light_type(Light::Type t) {
+  return t == Light::Type::kPoint ? "point" : t == Light::Type::kSpot ? "spot" : "directional";
+}
+
+void run_info(const InfoOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  const Scene scene = load_scene(opt.input);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  std::size_t unique_triangles = 0, vertices = 0;
+  for (const Mesh& m : scene.meshes) {
+    unique_triangles += m.triangle_count();
+    vertices += m.positions.size();
+  }
+  const Bounds b = scene.world_bounds();
+  nlohmann::json j;
+  j["source"] = scene.source;
+  j["load_seconds"] = seconds;
+  j["nodes"] = scene.node_count;
+  j["instances"] = scene.instances.size();
+  j["meshes"] = scene.meshes.size();
+  j["vertices"] = vertices;
+  j["triangles"] = scene.triangle_count();
+  j["unique_triangles"] = unique_triangles;
+  j["materials"] = scene.materials.size();
+  j["textures"] = nlohmann::json::array();
+  for (const Texture& t : scene.textures)
+    j["textures"].push_back({{"name", t.name},
+                             {"width", t.width()},
+                             {"height", t.height()},
+                             {"srgb", t.srgb},
+                             {"mips", t.mips.size()}});
+  j["lights"] = nlohmann::json::array();
+  for (const Light& l : scene.lights)
+    j["lights"].push_back(
+        {{"name", l.name}, {"type", light_type(l.type)}, {"intensity", l.intensity}});
+  j["cameras"] = nlohmann::json::array();
+  for (const Camera& c : scene.cameras)
+    j["cameras"].push_back(
+        {{"name", c.name},
+         {"type", c.type == Camera::Type::kPerspective ? "perspective" : "orthographic"},
+         {"yfov", c.yfov}});
+  if (!b.empty())
+    j["bounds"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
+  j["extensions_used"] = scene.extensions_used;
+  j["extensions_required"] = scene.extensions_required;
+  j["warnings"] = scene.warnings;
+  if (opt.json) {
+    std::printf("%s\n", j.dump(2).c_str());
+    return;
+  }
+  std::printf("%s\n", scene.source.c_str());
+  std::printf("  load time    %.3f s\n", seconds);
+  std::printf("  nodes        %zu\n", scene.node_count);
+  std::printf("  instances    %zu\n", scene.instances.size());
+  std::printf("  meshes       %zu (%zu vertices, %zu triangles)\n", scene.meshes.size(), vertices,
+              unique_triangles);
+  std::printf("  triangles    %zu (instanced)\n", scene.triangle_count());
+  std::printf("  materials    %zu\n", scene.materials.size());
+  std::printf("  textures     %zu\n", scene.textures.size());
+  for (const Texture& t : scene.textures)
+    std::printf("    %-30s %5d x %-5d %s, %zu mips\n", t.name.c_str(), t.width(), t.height(),
+                t.srgb ? "sRGB  " : "linear", t.mips.size());
+  std::printf("  lights       %zu\n", scene.lights.size());
+  for (const Light& l : scene.lights)
+    std::printf("    %-30s %s, intensity %g\n", l.name.c_str(), light_type(l.type), l.intensity);
+  std::printf("  cameras      %zu%s\n", scene.cameras.size(),
+              scene.cameras.empty() ? " (an automatic camera frames the bounds)" : "");
+  for (const Camera& c : scene.cameras)
+    std::printf("    %-30s %s\n", c.name.c_str(),
+                c.type == Camera::Type::kPerspective ? "perspective" : "orthographic");
+  if (b.empty())
+    std::printf("  bounds       (empty)\n");
+  else
+    std::printf("  bounds       (%g, %g, %g) - (%g, %g, %g)\n", b.min.x, b.min.y, b.min.z, b.max.x,
+                b.max.y, b.max.z);
+  auto list = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& e : v) s += (s.empty() ? "" : ", ") + e;
+    return s.empty() ? std::string("none") : s;
+  };
+  std::printf("  extensions   used: %s\n", list(scene.extensions_used).c_str());
+  std::printf("               required: %s\n", list(scene.extensions_required).c_str());
+  std::printf("  warnings     %zu\n", scene.warnings.size());
+  for (const std::string& w : scene.warnings) std::printf("    %s\n", w.c_str());
+}
+
+}  // namespace
+
+void register_info_command(CLI::App& app) {
+  auto opt = std::make_shared<InfoOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "info", "Summarise a glTF file (.gltf/.glb) or a built-in scene (spheres, furnace, cornell)");
+  cmd->add_option("input", opt->input, "glTF file or built-in scene name")->required();
+  cmd->add_flag("--json", opt->json, "Print the summary as JSON");
+  cmd->callback([opt] { run_info(*opt); });
+}
 
 }  // namespace pbrkit::cli

@@ -1,8 +1,40 @@
-// pbrkit scene: placeholder until its issue lands (it is not listed in --help).
+// pbrkit scene: the built-in scenes. `pbrkit scene list`, `pbrkit scene write NAME OUT.glb`
+// (so any glTF tool can render exactly the scene our renderers use).
+#include <cstdio>
+#include <memory>
+
 #include "commands.h"
+#include "pbrkit/scene/load.h"
 
 namespace pbrkit::cli {
 
-void register_scene_command(CLI::App& /*app*/) {}
+namespace {
+
+struct SceneWriteOptions {
+  std::string name;
+  std::string output;
+};
+
+}  // namespace
+
+void register_scene_command(CLI::App& app) {
+  CLI::App* cmd = app.add_subcommand("scene", "Built-in scenes: list them or write one as .glb");
+  cmd->require_subcommand(1);
+
+  CLI::App* list = cmd->add_subcommand("list", "List the built-in scenes");
+  list->callback([] {
+    for (const std::string& name : builtin_scene_names()) std::printf("%s\n", name.c_str());
+  });
+
+  auto opt = std::make_shared<SceneWriteOptions>();
+  CLI::App* write = cmd->add_subcommand("write", "Write a built-in scene as binary glTF");
+  write->add_option("name", opt->name, "spheres, furnace or cornell")->required();
+  write->add_option("output", opt->output, "Output .glb path")->required();
+  write->callback([opt] {
+    const Scene scene = builtin_scene(opt->name);
+    write_glb(scene, opt->output);
+    std::printf("wrote %s (%zu triangles)\n", opt->output.c_str(), scene.triangle_count());
+  });
+}
 
 }  // namespace pbrkit::cli

@@ -233,6 +233,7 @@ class Loader {
   }
 
   void parse_container();
+  void rebuild_glb();
   void check_json(const json& root);
   void check_uris(const json& root);
   void check_buffer_views();
@@ -298,6 +299,50 @@ void Loader::parse_container() {
   }
   check_json(root);
   check_uris(root);
+  // tinygltf insists that an indices accessor has a bufferView, which a Draco-compressed
+  // primitive's does not (its indices come from the Draco stream): drop those references
+  // before tinygltf parses the JSON.
+  bool modified = false;
+  if (root.contains("meshes")) {
+    for (json& mesh : root["meshes"]) {
+      if (!mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+      for (json& prim : mesh["primitives"]) {
+        if (prim.is_object() && prim.contains("extensions") && prim["extensions"].is_object() &&
+            prim["extensions"].contains("KHR_draco_mesh_compression") && prim.contains("indices")) {
+          prim.erase("indices");
+          modified = true;
+        }
+      }
+    }
+  }
+  if (modified) {
+    json_text_ = root.dump();
+    if (is_glb_) rebuild_glb();
+  }
+}
+
+void Loader::rebuild_glb() {
+  const GlbChunks chunks = parse_glb(bytes_.data(), bytes_.size(), file_);
+  std::string json = json_text_;
+  while (json.size() % 4 != 0) json.push_back(' ');
+  auto u32 = [](std::string& out, std::uint32_t v) {
+    out.append(reinterpret_cast<const char*>(&v), 4);
+  };
+  std::string glb = "glTF";
+  u32(glb, 2);
+  u32(glb, 0);  // total length, patched below
+  u32(glb, std::uint32_t(json.size()));
+  u32(glb, 0x4E4F534A);
+  glb += json;
+  if (chunks.bin) {
+    u32(glb, std::uint32_t(chunks.bin_size));
+    u32(glb, 0x004E4942);
+    glb.append(reinterpret_cast<const char*>(chunks.bin), chunks.bin_size);
+    while (glb.size() % 4 != 0) glb.push_back('\0');
+  }
+  const std::uint32_t total = std::uint32_t(glb.size());
+  std::memcpy(glb.data() + 8, &total, 4);
+  bytes_ = std::move(glb);
 }
 
 void Loader::check_json(const json& root) {
@@ -853,6 +898,18 @@ int Loader::texture_for(int texture_index, bool srgb, const std::string& where) 
   const auto& gimg = model_.images[std::size_t(gtex.source)];
   const std::string ipath = fmt::format("images[{}]", gtex.source);
   if (gimg.image.empty()) error(ipath, "has no image data");
+  // Refuse absurd PNG sizes from the header alone, before any decoder allocates.
+  if (gimg.image.size() >= 24 && std::memcmp(gimg.image.data(), "\x89PNG", 4) == 0) {
+    auto be32 = [&](std::size_t at) {
+      const unsigned char* p = gimg.image.data() + at;
+      return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) |
+             (std::uint32_t(p[2]) << 8) | p[3];
+    };
+    const std::uint64_t w = be32(16), h = be32(20);
+    if (w * h > options_.limits.max_image_pixels)
+      error(ipath, fmt::format("image size {} x {} exceeds the limit of {} pixels", w, h,
+                               options_.limits.max_image_pixels));
+  }
   ImageReadOptions opts;
   opts.decode_srgb = srgb;
   opts.max_pixels = options_.limits.max_image_pixels;

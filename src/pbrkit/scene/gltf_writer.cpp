@@ -1,10 +1,314 @@
+// Writing a Scene as binary glTF, so the built-in scenes can be rendered by any glTF
+// tool. Attributes are written as FLOAT / UNSIGNED_INT so they round-trip exactly.
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include <stb_image_write.h>
+#include <tiny_gltf.h>
+
+#include "pbrkit/core/color.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/util/atomic_file.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {
 
-void write_glb(const Scene& /*scene*/, const std::filesystem::path& path) {
-  fail("{}: writing .glb is not implemented yet", path.string());
+namespace {
+
+class Writer {
+ public:
+  explicit Writer(const Scene& scene) : scene_(scene) { model_.buffers.emplace_back(); }
+
+  tinygltf::Model build();
+
+ private:
+  int add_view(const void* data, std::size_t bytes, int target) {
+    auto& buf = model_.buffers[0].data;
+    while (buf.size() % 4 != 0) buf.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buf.size();
+    view.byteLength = bytes;
+    view.target = target;
+    const auto* p = static_cast<const unsigned char*>(data);
+    buf.insert(buf.end(), p, p + bytes);
+    model_.bufferViews.push_back(view);
+    return int(model_.bufferViews.size()) - 1;
+  }
+
+  template <typename V>
+  int add_attribute(const std::vector<V>& values, int type, bool with_bounds) {
+    tinygltf::Accessor a;
+    a.bufferView = add_view(values.data(), values.size() * sizeof(V), TINYGLTF_TARGET_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.type = type;
+    a.count = values.size();
+    if (with_bounds) {  // POSITION requires min and max
+      V lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+      for (const V& v : values) {
+        lo = glm::min(lo, v);
+        hi = glm::max(hi, v);
+      }
+      for (int c = 0; c < V::length(); ++c) {
+        a.minValues.push_back(lo[c]);
+        a.maxValues.push_back(hi[c]);
+      }
+    }
+    model_.accessors.push_back(a);
+    return int(model_.accessors.size()) - 1;
+  }
+
+  int add_texture(const Texture& t);
+  tinygltf::TextureInfo texture_info(const TextureRef& ref);
+  void add_material(const Material& m);
+  void add_mesh(const Mesh& m);
+
+  const Scene& scene_;
+  tinygltf::Model model_;
+};
+
+void append_bytes(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<unsigned char>*>(context);
+  const auto* p = static_cast<const unsigned char*>(data);
+  out->insert(out->end(), p, p + size);
+}
+
+int Writer::add_texture(const Texture& t) {
+  // 8-bit PNG of the top mip, sRGB-encoded for colour textures (glTF's convention).
+  if (t.mips.empty()) fail("write_glb: texture '{}' has no pixels", t.name);
+  const Image& img = t.mips[0];
+  std::vector<unsigned char> pixels(img.pixel_count() * 4);
+  for (std::size_t i = 0; i < img.pixel_count(); ++i)
+    for (int c = 0; c < 4; ++c) {
+      float v =
+          img.data[i * std::size_t(img.channels) + std::size_t(std::min(c, img.channels - 1))];
+      if (c < 3 && t.srgb) v = srgb_encode(v);
+      pixels[i * 4 + std::size_t(c)] =
+          static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    }
+  std::vector<unsigned char> png;
+  if (!stbi_write_png_to_func(&append_bytes, &png, img.width, img.height, 4, pixels.data(),
+                              img.width * 4))
+    fail("write_glb: cannot encode texture '{}' as PNG", t.name);
+  tinygltf::Image image;
+  image.name = t.name;
+  image.mimeType = "image/png";
+  image.bufferView = add_view(png.data(), png.size(), 0);
+  model_.images.push_back(image);
+  tinygltf::Sampler s;
+  auto wrap = [](WrapMode w) {
+    return w == WrapMode::kClampToEdge      ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
+           : w == WrapMode::kMirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT
+                                            : TINYGLTF_TEXTURE_WRAP_REPEAT;
+  };
+  s.wrapS = wrap(t.sampler.wrap_s);
+  s.wrapT = wrap(t.sampler.wrap_t);
+  s.magFilter = t.sampler.mag == FilterMode::kNearest ? TINYGLTF_TEXTURE_FILTER_NEAREST
+                                                      : TINYGLTF_TEXTURE_FILTER_LINEAR;
+  const bool near = t.sampler.min == FilterMode::kNearest;
+  s.minFilter = t.sampler.min_mipmap
+                    ? (near ? TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR
+                            : TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR)
+                    : (near ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR);
+  model_.samplers.push_back(s);
+  tinygltf::Texture tex;
+  tex.source = int(model_.images.size()) - 1;
+  tex.sampler = int(model_.samplers.size()) - 1;
+  model_.textures.push_back(tex);
+  return int(model_.textures.size()) - 1;
+}
+
+tinygltf::TextureInfo Writer::texture_info(const TextureRef& ref) {
+  tinygltf::TextureInfo info;
+  if (!ref.valid()) return info;
+  if (ref.texture >= int(scene_.textures.size()))
+    fail("write_glb: texture {} does not exist", ref.texture);
+  info.index = ref.texture;
+  info.texCoord = ref.texcoord;
+  if (ref.transform) {
+    tinygltf::Value::Object o;
+    o["offset"] =
+        tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(ref.transform->offset.x)),
+                                               tinygltf::Value(double(ref.transform->offset.y))});
+    o["scale"] =
+        tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(ref.transform->scale.x)),
+                                               tinygltf::Value(double(ref.transform->scale.y))});
+    o["rotation"] = tinygltf::Value(double(ref.transform->rotation));
+    info.extensions["KHR_texture_transform"] = tinygltf::Value(o);
+  }
+  return info;
+}
+
+void Writer::add_material(const Material& m) {
+  tinygltf::Material g;
+  g.name = m.name;
+  auto& pbr = g.pbrMetallicRoughness;
+  pbr.baseColorFactor.assign(
+      {m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b, m.base_color_factor.a});
+  pbr.metallicFactor = m.metallic_factor;
+  pbr.roughnessFactor = m.roughness_factor;
+  pbr.baseColorTexture = texture_info(m.base_color_texture);
+  pbr.metallicRoughnessTexture = texture_info(m.metallic_roughness_texture);
+  g.emissiveFactor.assign({m.emissive_factor.r, m.emissive_factor.g, m.emissive_factor.b});
+  g.emissiveTexture = texture_info(m.emissive_texture);
+  if (m.emissive_strength != 1.0f) {
+    tinygltf::Value::Object o;
+    o["emissiveStrength"] = tinygltf::Value(double(m.emissive_strength));
+    g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(o);
+  }
+  const tinygltf::TextureInfo normal = texture_info(m.normal_texture);
+  g.normalTexture.index = normal.index;
+  g.normalTexture.texCoord = normal.texCoord;
+  g.normalTexture.extensions = normal.extensions;
+  g.normalTexture.scale = m.normal_scale;
+  const tinygltf::TextureInfo occlusion = texture_info(m.occlusion_texture);
+  g.occlusionTexture.index = occlusion.index;
+  g.occlusionTexture.texCoord = occlusion.texCoord;
+  g.occlusionTexture.extensions = occlusion.extensions;
+  g.occlusionTexture.strength = m.occlusion_strength;
+  g.alphaMode = m.alpha_mode == AlphaMode::kMask    ? "MASK"
+                : m.alpha_mode == AlphaMode::kBlend ? "BLEND"
+                                                    : "OPAQUE";
+  g.alphaCutoff = m.alpha_cutoff;
+  g.doubleSided = m.double_sided;
+  model_.materials.push_back(g);
+}
+
+void Writer::add_mesh(const Mesh& m) {
+  tinygltf::Primitive p;
+  p.mode = TINYGLTF_MODE_TRIANGLES;
+  p.material = m.material;
+  p.attributes["POSITION"] = add_attribute(m.positions, TINYGLTF_TYPE_VEC3, true);
+  if (!m.normals.empty())
+    p.attributes["NORMAL"] = add_attribute(m.normals, TINYGLTF_TYPE_VEC3, false);
+  if (!m.tangents.empty())
+    p.attributes["TANGENT"] = add_attribute(m.tangents, TINYGLTF_TYPE_VEC4, false);
+  if (!m.texcoords0.empty())
+    p.attributes["TEXCOORD_0"] = add_attribute(m.texcoords0, TINYGLTF_TYPE_VEC2, false);
+  if (!m.texcoords1.empty())
+    p.attributes["TEXCOORD_1"] = add_attribute(m.texcoords1, TINYGLTF_TYPE_VEC2, false);
+  if (!m.colors0.empty())
+    p.attributes["COLOR_0"] = add_attribute(m.colors0, TINYGLTF_TYPE_VEC4, false);
+  tinygltf::Accessor idx;
+  idx.bufferView =
+      add_view(m.indices.data(), m.indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  idx.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  idx.type = TINYGLTF_TYPE_SCALAR;
+  idx.count = m.indices.size();
+  model_.accessors.push_back(idx);
+  p.indices = int(model_.accessors.size()) - 1;
+  tinygltf::Mesh g;
+  g.name = m.name;
+  g.primitives.push_back(p);
+  model_.meshes.push_back(g);
+}
+
+std::vector<double> matrix_values(const glm::mat4& m) {
+  std::vector<double> v;
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) v.push_back(m[c][r]);
+  return v;
+}
+
+tinygltf::Model Writer::build() {
+  model_.asset.version = "2.0";
+  model_.asset.generator = "pbrkit";
+  for (const Texture& t : scene_.textures) add_texture(t);
+  for (const Material& m : scene_.materials) add_material(m);
+  for (const Mesh& m : scene_.meshes) {
+    if (m.material >= int(scene_.materials.size()))
+      fail("write_glb: mesh '{}' has an invalid material", m.name);
+    add_mesh(m);
+  }
+  tinygltf::Scene gscene;
+  for (const Instance& inst : scene_.instances) {
+    tinygltf::Node n;
+    n.mesh = inst.mesh;
+    n.matrix = matrix_values(inst.transform);
+    model_.nodes.push_back(n);
+    gscene.nodes.push_back(int(model_.nodes.size()) - 1);
+  }
+  for (const Camera& c : scene_.cameras) {
+    tinygltf::Camera g;
+    g.name = c.name;
+    if (c.type == Camera::Type::kPerspective) {
+      g.type = "perspective";
+      g.perspective.yfov = c.yfov;
+      g.perspective.aspectRatio = c.aspect_ratio.value_or(0.0f);
+      g.perspective.znear = c.znear;
+      g.perspective.zfar = c.zfar.value_or(0.0f);
+    } else {
+      g.type = "orthographic";
+      g.orthographic.xmag = c.xmag;
+      g.orthographic.ymag = c.ymag;
+      g.orthographic.znear = c.znear;
+      g.orthographic.zfar = c.zfar.value_or(c.znear + 1e6f);
+    }
+    model_.cameras.push_back(g);
+    tinygltf::Node n;
+    n.name = c.name;
+    n.camera = int(model_.cameras.size()) - 1;
+    n.matrix = matrix_values(c.camera_to_world);
+    model_.nodes.push_back(n);
+    gscene.nodes.push_back(int(model_.nodes.size()) - 1);
+  }
+  for (const Light& l : scene_.lights) {
+    tinygltf::Light g;
+    g.name = l.name;
+    g.type = l.type == Light::Type::kPoint  ? "point"
+             : l.type == Light::Type::kSpot ? "spot"
+                                            : "directional";
+    g.color = {l.color.r, l.color.g, l.color.b};
+    g.intensity = l.intensity;
+    g.range = l.range.value_or(0.0f);
+    g.spot.innerConeAngle = l.inner_cone_angle;
+    g.spot.outerConeAngle = l.outer_cone_angle;
+    model_.lights.push_back(g);
+    // A node at the light's position whose -Z is the light direction.
+    const glm::vec3 d = glm::normalize(l.direction);
+    const glm::vec3 helper = std::fabs(d.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+    const glm::vec3 x = glm::normalize(glm::cross(helper, -d));
+    const glm::vec3 y = glm::cross(-d, x);
+    glm::mat4 m(glm::vec4(x, 0), glm::vec4(y, 0), glm::vec4(-d, 0), glm::vec4(l.position, 1));
+    tinygltf::Node n;
+    n.name = l.name;
+    n.matrix = matrix_values(m);
+    tinygltf::Value::Object o;
+    o["light"] = tinygltf::Value(int(model_.lights.size()) - 1);
+    n.extensions["KHR_lights_punctual"] = tinygltf::Value(o);
+    model_.nodes.push_back(n);
+    gscene.nodes.push_back(int(model_.nodes.size()) - 1);
+  }
+  model_.scenes.push_back(gscene);
+  model_.defaultScene = 0;
+  model_.buffers[0].data.resize((model_.buffers[0].data.size() + 3) / 4 * 4, 0);
+  auto uses = [&](const char* ext) { model_.extensionsUsed.push_back(ext); };
+  if (!scene_.lights.empty()) uses("KHR_lights_punctual");
+  if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
+                  [](const Material& m) { return m.emissive_strength != 1.0f; }))
+    uses("KHR_materials_emissive_strength");
+  auto has_transform = [](const Material& m) {
+    for (const TextureRef* r : {&m.base_color_texture, &m.metallic_roughness_texture,
+                                &m.normal_texture, &m.occlusion_texture, &m.emissive_texture})
+      if (r->valid() && r->transform) return true;
+    return false;
+  };
+  if (std::any_of(scene_.materials.begin(), scene_.materials.end(), has_transform))
+    uses("KHR_texture_transform");
+  return std::move(model_);
+}
+
+}  // namespace
+
+void write_glb(const Scene& scene, const std::filesystem::path& path) {
+  tinygltf::Model model = Writer(scene).build();
+  write_file_atomically(path, [&](const std::filesystem::path& temp) {
+    tinygltf::TinyGLTF gltf;
+    // embedImages, embedBuffers, prettyPrint, writeBinary
+    if (!gltf.WriteGltfSceneToFile(&model, temp.string(), true, true, false, true))
+      fail("{}: cannot write the glTF file", path.string());
+  });
 }
 
 }  // namespace pbrkit

@@ -1,0 +1,154 @@
+// write_glb -> load_scene must reproduce every attribute and material value of the
+// built-in scenes (and of a scene exercising the optional features).
+#include <gtest/gtest.h>
+
+#include "pbrkit/scene/load.h"
+#include "pbrkit/scene/primitives.h"
+#include "support/test_paths.h"
+
+namespace pbrkit {
+namespace {
+
+void expect_same_material(const Material& a, const Material& b) {
+  EXPECT_EQ(a.name, b.name);
+  EXPECT_EQ(a.base_color_factor, b.base_color_factor);
+  EXPECT_EQ(a.metallic_factor, b.metallic_factor);
+  EXPECT_EQ(a.roughness_factor, b.roughness_factor);
+  EXPECT_EQ(a.emissive_factor, b.emissive_factor);
+  EXPECT_EQ(a.emissive_strength, b.emissive_strength);
+  EXPECT_EQ(a.normal_scale, b.normal_scale);
+  EXPECT_EQ(a.occlusion_strength, b.occlusion_strength);
+  EXPECT_EQ(a.alpha_mode, b.alpha_mode);
+  EXPECT_EQ(a.alpha_cutoff, b.alpha_cutoff);
+  EXPECT_EQ(a.double_sided, b.double_sided);
+  for (auto [ra, rb] : {std::pair{&a.base_color_texture, &b.base_color_texture},
+                        std::pair{&a.metallic_roughness_texture, &b.metallic_roughness_texture},
+                        std::pair{&a.normal_texture, &b.normal_texture},
+                        std::pair{&a.occlusion_texture, &b.occlusion_texture},
+                        std::pair{&a.emissive_texture, &b.emissive_texture}}) {
+    EXPECT_EQ(ra->valid(), rb->valid());
+    EXPECT_EQ(ra->texcoord, rb->texcoord);
+    EXPECT_EQ(ra->transform.has_value(), rb->transform.has_value());
+    if (ra->transform && rb->transform) {
+      EXPECT_EQ(ra->transform->offset, rb->transform->offset);
+      EXPECT_EQ(ra->transform->scale, rb->transform->scale);
+      EXPECT_EQ(ra->transform->rotation, rb->transform->rotation);
+    }
+  }
+}
+
+void expect_same_scene(const Scene& a, const Scene& b) {
+  ASSERT_EQ(a.meshes.size(), b.meshes.size());
+  for (std::size_t i = 0; i < a.meshes.size(); ++i) {
+    const Mesh &ma = a.meshes[i], &mb = b.meshes[i];
+    EXPECT_EQ(ma.name, mb.name);
+    EXPECT_EQ(ma.positions, mb.positions);
+    EXPECT_EQ(ma.normals, mb.normals);
+    EXPECT_EQ(ma.tangents, mb.tangents);
+    EXPECT_EQ(ma.texcoords0, mb.texcoords0);
+    EXPECT_EQ(ma.texcoords1, mb.texcoords1);
+    EXPECT_EQ(ma.colors0, mb.colors0);
+    EXPECT_EQ(ma.indices, mb.indices);
+    EXPECT_EQ(ma.material, mb.material);
+  }
+  ASSERT_EQ(a.materials.size(), b.materials.size());
+  for (std::size_t i = 0; i < a.materials.size(); ++i)
+    expect_same_material(a.materials[i], b.materials[i]);
+  ASSERT_EQ(a.instances.size(), b.instances.size());
+  for (std::size_t i = 0; i < a.instances.size(); ++i) {
+    EXPECT_EQ(a.instances[i].mesh, b.instances[i].mesh);
+    EXPECT_EQ(a.instances[i].transform, b.instances[i].transform);
+  }
+  ASSERT_EQ(a.cameras.size(), b.cameras.size());
+  for (std::size_t i = 0; i < a.cameras.size(); ++i) {
+    const Camera &ca = a.cameras[i], &cb = b.cameras[i];
+    EXPECT_EQ(ca.type, cb.type);
+    EXPECT_EQ(ca.yfov, cb.yfov);
+    EXPECT_EQ(ca.aspect_ratio, cb.aspect_ratio);
+    EXPECT_EQ(ca.znear, cb.znear);
+    EXPECT_EQ(ca.zfar, cb.zfar);
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        EXPECT_NEAR(ca.camera_to_world[c][r], cb.camera_to_world[c][r], 1e-6f);
+  }
+  ASSERT_EQ(a.lights.size(), b.lights.size());
+  for (std::size_t i = 0; i < a.lights.size(); ++i) {
+    const Light &la = a.lights[i], &lb = b.lights[i];
+    EXPECT_EQ(la.type, lb.type);
+    EXPECT_EQ(la.color, lb.color);
+    EXPECT_EQ(la.intensity, lb.intensity);
+    EXPECT_EQ(la.range, lb.range);
+    EXPECT_EQ(la.inner_cone_angle, lb.inner_cone_angle);
+    EXPECT_EQ(la.outer_cone_angle, lb.outer_cone_angle);
+    EXPECT_NEAR(glm::distance(la.position, lb.position), 0.0f, 1e-6f);
+    EXPECT_NEAR(glm::distance(la.direction, lb.direction), 0.0f, 1e-6f);
+  }
+}
+
+TEST(GltfRoundTrip, BuiltinScenes) {
+  const auto dir = test::scratch_dir();
+  for (const std::string& name : builtin_scene_names()) {
+    SCOPED_TRACE(name);
+    const Scene original = builtin_scene(name);
+    const auto path = dir / (name + ".glb");
+    write_glb(original, path);
+    const Scene loaded = load_scene(path.string());
+    EXPECT_TRUE(loaded.warnings.empty());
+    expect_same_scene(original, loaded);
+  }
+}
+
+TEST(GltfRoundTrip, OptionalFeatures) {
+  Scene s;
+  s.source = "test";
+  Image img(2, 2, 4, 1.0f);
+  img.pixel(1, 0)[0] = 0.0f;
+  Texture tex;
+  tex.name = "tex";
+  tex.mips = make_mip_chain(img);
+  tex.srgb = true;
+  tex.sampler.wrap_s = WrapMode::kMirroredRepeat;
+  s.textures.push_back(tex);
+  Material m;
+  m.name = "everything";
+  m.base_color_factor = {0.1f, 0.2f, 0.3f, 0.4f};
+  m.alpha_mode = AlphaMode::kMask;
+  m.alpha_cutoff = 0.25f;
+  m.double_sided = true;
+  m.normal_scale = 0.7f;
+  m.occlusion_strength = 0.3f;
+  m.emissive_factor = {1, 2, 3};
+  m.emissive_strength = 4.0f;
+  m.base_color_texture.texture = 0;
+  m.base_color_texture.texcoord = 1;
+  m.base_color_texture.transform = TextureTransform{{0.5f, 0.25f}, 0.3f, {2.0f, 3.0f}};
+  m.emissive_texture.texture = 0;  // same source, also sRGB: shared on load
+  s.materials.push_back(m);
+  Mesh mesh = make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  mesh.texcoords1 = mesh.texcoords0;
+  mesh.colors0.assign(4, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
+  add_mesh_instance(s, mesh, 0, glm::mat4(2.0f));
+  Light spot;
+  spot.name = "spot";
+  spot.type = Light::Type::kSpot;
+  spot.color = {1, 0.5f, 0.25f};
+  spot.intensity = 12.0f;
+  spot.range = 7.0f;
+  spot.inner_cone_angle = 0.1f;
+  spot.outer_cone_angle = 0.5f;
+  spot.position = {1, 2, 3};
+  spot.direction = glm::normalize(glm::vec3(1, -1, 0));
+  s.lights.push_back(spot);
+  const auto path = test::scratch_dir() / "features.glb";
+  write_glb(s, path);
+  const Scene loaded = load_scene(path.string());
+  expect_same_scene(s, loaded);
+  ASSERT_EQ(loaded.textures.size(), 1u);
+  EXPECT_EQ(loaded.textures[0].sampler.wrap_s, WrapMode::kMirroredRepeat);
+  // 8-bit sRGB storage: 1 and 0 are exact.
+  EXPECT_EQ(loaded.textures[0].mips[0].pixel(1, 0)[0], 0.0f);
+  EXPECT_EQ(loaded.textures[0].mips[0].pixel(0, 0)[0], 1.0f);
+}
+
+}  // namespace
+}  // namespace pbrkit
