@@ -105,7 +105,8 @@ EnvironmentSampler::Sample EnvironmentSampler::sample(glm::vec2 u) const {
 float EnvironmentSampler::pdf(glm::vec3 d) const {
   const glm::vec3 local = world_to_env(d, env_.rotation_deg);
   const glm::vec2 uv = equirect_uv(local);
-  const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - local.y * local.y));
+  // sqrt(x^2 + z^2) rather than sqrt(1 - y^2): no cancellation near the poles.
+  const float sin_theta = std::sqrt(local.x * local.x + local.z * local.z);
   if (!(sin_theta > 0.0f)) return 0.0f;
   const int x = std::clamp(int(uv.x * float(width_)), 0, width_ - 1);
   const int y = std::clamp(int(uv.y * float(height_)), 0, height_ - 1);
