@@ -79,7 +79,8 @@ TEST(GlFurnace, CompensatedMetalDisappears) {
 
 TEST(GlFurnace, UncompensatedMetalLosesTheKnownEnergy) {
   // A rough white metal reflects only E(mu) = A + B in single scattering: a visible loss
-  // (about 15-20% at roughness 1), exactly what the split sum predicts.
+  // (about 60% on average at roughness 1, Kulla & Conty 2017), exactly what the split sum
+  // predicts.
   const FurnaceResult r = render_furnace(false, 1.0f);
   EXPECT_LT(r.mean, 0.9);
   EXPECT_NEAR(r.mean, r.expected_loss, 0.01);

@@ -1,0 +1,158 @@
+// The OpenGL renderer against the path tracer (the ground truth), issue #6:
+//  * one point light, no environment, direct lighting only: both compute the same
+//    integral exactly (a delta light needs no sampling), so they agree to within the path
+//    tracer's pixel-footprint noise;
+//  * the built-in `spheres` scene lit by the environment only: the path tracer restricted
+//    to direct environment light (one bounce, the same BRDF) is the truth and the split-sum
+//    image must stay within the measured per-sphere bound (see the table printed below
+//    and BENCHMARKS.md / the report for where the error comes from).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "gl_image_test_util.h"
+#include "gl_test_context.h"
+#include "pbrkit/gl/renderer.h"
+#include "pbrkit/ibl/bake.h"
+#include "pbrkit/pt/path_tracer.h"
+#include "pbrkit/scene/load.h"
+
+namespace pbrkit::gl {
+namespace {
+
+TEST(GlVersusPathTracer, PointLightAgreesWithinNoise) {
+  testing::context();
+  Scene scene = builtin_scene("furnace");
+  Material& m = scene.materials.at(0);
+  m.base_color_factor = glm::vec4(0.9f, 0.6f, 0.3f, 1.0f);
+  m.metallic_factor = 0.5f;
+  m.roughness_factor = 0.4f;
+  Light light;
+  light.type = Light::Type::kPoint;
+  light.position = glm::vec3(2.0f, 3.0f, 4.0f);
+  light.intensity = 40.0f;
+  scene.lights.push_back(light);
+  constexpr int kSize = 64;
+  const Camera camera = select_camera(scene, std::nullopt, 1.0f);
+
+  RenderSettings gl_settings;
+  gl_settings.msaa = 1;
+  const Image gl = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, gl_settings);
+
+  PathTracerSettings pt;
+  pt.width = pt.height = kSize;
+  pt.spp = 16;
+  pt.noise_threshold = 0.0f;
+  pt.max_bounces = 1;
+  pt.filter = PixelFilter::kBox;
+  const Image truth = render_path(scene, nullptr, camera, pt).color;
+
+  // Interior pixels only: at the silhouette the pixel footprint (path tracer) and the
+  // tessellated outline (GL) legitimately differ.
+  double sum_rel = 0.0;
+  std::vector<double> rels;
+  int pixels = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const auto mu = testing::sphere_hit_cosine(testing::pixel_ray(camera, x, y, kSize, kSize),
+                                                 glm::vec3(0.0f), 1.0f);
+      if (!mu || *mu < 0.3f) continue;
+      const glm::vec3 a = gl.rgb(x, y), b = truth.rgb(x, y);
+      const double rel = std::abs(double(a.r + a.g + a.b) - double(b.r + b.g + b.b)) /
+                         (double(b.r + b.g + b.b) + 0.03);
+      sum_rel += rel;
+      rels.push_back(rel);
+      ++pixels;
+    }
+  ASSERT_GT(pixels, 500);
+  const double mean_rel = sum_rel / pixels;
+  std::sort(rels.begin(), rels.end());
+  const double p98 = rels[rels.size() * 98 / 100];
+  std::printf(
+      "point light: %d pixels, mean relative difference %.4f, 98th percentile %.4f, "
+      "largest %.4f\n",
+      pixels, mean_rel, p98, rels.back());
+  // The mean is the test of "the same integral"; a few pixels on the highlight's steep
+  // flank differ more because the path tracer averages the pixel's footprint (box filter)
+  // where GL shades the pixel centre.
+  EXPECT_LT(mean_rel, 0.01);
+  EXPECT_LT(p98, 0.03);
+}
+
+TEST(GlVersusPathTracer, SplitSumSpheresWithinMeasuredBound) {
+  testing::context();
+  // The built-in spheres moved 3x further apart (same meshes and materials), framed by the
+  // automatic camera: at spacing 1 the neighbours hide up to a fifth of each sphere's
+  // environment from the 1-bounce path tracer, a visibility effect the split sum (which has
+  // no shadowing) cannot show and which is not what this test measures.
+  constexpr float kSpread = 3.0f;
+  Scene scene = builtin_scene("spheres");
+  for (Instance& inst : scene.instances)
+    inst.transform[3] = glm::vec4(glm::vec3(inst.transform[3]) * kSpread, 1.0f);
+  scene.cameras.clear();
+  const Environment env = load_environment_or_default("", 0.0f, 1.0f);
+  BakeOptions bake;
+  bake.face_size = 64;
+  bake.min_face_size = 4;
+  bake.samples = 128;
+  bake.irradiance_size = 8;
+  bake.lut_size = 16;
+  const IblMaps maps = ibl_maps_from_bake(bake_environment(env, bake), env);
+  constexpr int kSize = 224;
+  const Camera camera = select_camera(scene, std::nullopt, 1.0f);
+  RenderSettings gl_settings;
+  gl_settings.msaa = 1;
+  const Image gl = render_headless(scene, camera, kSize, kSize, &env, &maps, gl_settings);
+
+  PathTracerSettings pt;
+  pt.width = pt.height = kSize;
+  pt.spp = 32;
+  pt.noise_threshold = 0.0f;
+  pt.max_bounces = 1;
+  pt.filter = PixelFilter::kBox;
+  const Image truth = render_path(scene, &env, camera, pt).color;
+
+  // Per sphere: mean radiance (luminance-free sum of RGB) over its pixels, GL vs truth.
+  double errors[7][7] = {};
+  for (int row = 0; row < 7; ++row)
+    for (int col = 0; col < 7; ++col) {
+      const glm::vec3 centre = kSpread * glm::vec3(float(col - 3), float(row - 3), 0.0f);
+      double sa = 0.0, sb = 0.0;
+      for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+          const auto mu = testing::sphere_hit_cosine(testing::pixel_ray(camera, x, y, kSize, kSize),
+                                                     centre, 0.4f);
+          if (!mu || *mu < 0.2f) continue;
+          const glm::vec3 a = gl.rgb(x, y), b = truth.rgb(x, y);
+          sa += a.r + a.g + a.b;
+          sb += b.r + b.g + b.b;
+        }
+      errors[row][col] = (sa - sb) / sb;
+    }
+  std::printf("relative error of the per-sphere mean, GL split sum vs path tracer (1 bounce)\n");
+  std::printf("rows: metallic 1 (top) .. 0 (bottom); columns: roughness 0.05 .. 1\n");
+  double worst = 0.0, sum = 0.0;
+  for (int row = 6; row >= 0; --row) {
+    for (int col = 0; col < 7; ++col) {
+      std::printf(" %+7.3f", errors[row][col]);
+      worst = std::max(worst, std::abs(errors[row][col]));
+      sum += std::abs(errors[row][col]);
+    }
+    std::printf("\n");
+  }
+  std::printf("mean |error| %.4f, largest %.4f\n", sum / 49.0, worst);
+  // Measured (2-core Debian 12, llvmpipe; see the report): mean |error| 0.049, largest
+  // 0.22 (a near-mirror part-metal sphere, where the 64-texel prefiltered cube and the
+  // path tracer's 32 samples both see the bright sky's small features), rough metals
+  // 5-11% dark (the split sum's n = v = r lobe is narrower than the true, stretched one at
+  // high roughness) and dielectrics 4-10% bright (kd = 1 - F(n.v) instead of the per-light
+  // 1 - F(v.h)). The bounds leave room for the path tracer's noise and no more.
+  EXPECT_LT(sum / 49.0, 0.08);
+  EXPECT_LT(worst, 0.3);
+}
+
+}  // namespace
+}  // namespace pbrkit::gl
