@@ -26,7 +26,10 @@ static std::uint32_t reverse_bits(std::uint32_t x) {
 }
 
 float radical_inverse_base2(std::uint32_t i) {
-  return float(reverse_bits(i)) * 0x1p-32f;
+  // Keep 24 bits: float(reverse_bits(i)) rounds values above 2^32 - 2^7 up to 2^32, which
+  // made the result 1.0 (e.g. i = 0xffffffff) although it must lie in [0, 1). Identical to
+  // the old result whenever i < 2^24 (every Hammersley set the library builds).
+  return float(reverse_bits(i) >> 8) * 0x1p-24f;
 }
 
 glm::vec2 hammersley(std::uint32_t i, std::uint32_t n) {
