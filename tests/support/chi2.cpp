@@ -171,7 +171,9 @@ Chi2Result chi2_sphere_test(const std::function<std::optional<glm::vec3>(float, 
       const double theta = std::acos(std::clamp(d.z / len, -1.0, 1.0));
       double phi = std::atan2(d.y, d.x);
       if (phi < 0.0) phi += 2.0 * kPi;
-      const int i = std::min(int(theta / kPi * nt), nt - 1);
+      // Theta bins are (t0, t1]: a hemisphere sampler may return a direction exactly on
+      // the horizon (z = 0, a set of measure zero), which belongs with the upper half.
+      const int i = std::clamp(int(std::ceil(theta / kPi * nt)) - 1, 0, nt - 1);
       const int j = std::min(int(phi / (2.0 * kPi) * np), np - 1);
       ++hist[std::size_t(i) * np + j];
     }
