@@ -131,7 +131,8 @@ TEST(GltfLoader, StripsAndFansProduceTheSpecTriangles) {
   EXPECT_EQ(s.warnings.size(), 1u);
   const glm::vec3 p[5] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 2, 0}};
   const auto strip = triangles(s.meshes[0]);
-  const int strip_expected[3][3] = {{0, 1, 2}, {2, 1, 3}, {2, 3, 4}};
+  // glTF 2.0 section 3.7.2.1: strip triangle i = (v_i, v_{i+1+i%2}, v_{i+2-i%2}).
+  const int strip_expected[3][3] = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}};
   ASSERT_EQ(strip.size(), 3u);
   for (int t = 0; t < 3; ++t)
     for (int k = 0; k < 3; ++k)
@@ -188,7 +189,7 @@ TEST(GltfLoader, SparseAccessorAndMorphTargetAtDefaultWeight) {
   const Mesh& m = s.meshes.at(0);
   // Sparse replaces vertex 2 by (0, 5, 0); the morph target adds 0.5 * (2, 0, 0) to vertex 1.
   expect_near(m.positions[0], {0, 0, 0});
-  expect_near(m.positions[1], {1, 0, 0} /* base */ + glm::vec3(1, 0, 0));
+  expect_near(m.positions[1], {2, 0, 0});  // (1, 0, 0) + 0.5 * (2, 0, 0)
   expect_near(m.positions[2], {0, 5, 0});
 }
 

@@ -9,6 +9,17 @@
 namespace pbrkit {
 namespace {
 
+// Element-wise equality with a short message (gtest would print whole vectors).
+template <typename T>
+void expect_same(const std::vector<T>& a, const std::vector<T>& b, const char* what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (!(a[i] == b[i])) {
+      ADD_FAILURE() << what << " differs first at element " << i;
+      return;
+    }
+}
+
 void expect_same_material(const Material& a, const Material& b) {
   EXPECT_EQ(a.name, b.name);
   EXPECT_EQ(a.base_color_factor, b.base_color_factor);
@@ -42,13 +53,13 @@ void expect_same_scene(const Scene& a, const Scene& b) {
   for (std::size_t i = 0; i < a.meshes.size(); ++i) {
     const Mesh &ma = a.meshes[i], &mb = b.meshes[i];
     EXPECT_EQ(ma.name, mb.name);
-    EXPECT_EQ(ma.positions, mb.positions);
-    EXPECT_EQ(ma.normals, mb.normals);
-    EXPECT_EQ(ma.tangents, mb.tangents);
-    EXPECT_EQ(ma.texcoords0, mb.texcoords0);
-    EXPECT_EQ(ma.texcoords1, mb.texcoords1);
-    EXPECT_EQ(ma.colors0, mb.colors0);
-    EXPECT_EQ(ma.indices, mb.indices);
+    expect_same(ma.positions, mb.positions, "positions");
+    expect_same(ma.normals, mb.normals, "normals");
+    expect_same(ma.tangents, mb.tangents, "tangents");
+    expect_same(ma.texcoords0, mb.texcoords0, "texcoords0");
+    expect_same(ma.texcoords1, mb.texcoords1, "texcoords1");
+    expect_same(ma.colors0, mb.colors0, "colors0");
+    expect_same(ma.indices, mb.indices, "indices");
     EXPECT_EQ(ma.material, mb.material);
   }
   ASSERT_EQ(a.materials.size(), b.materials.size());
@@ -123,6 +134,10 @@ TEST(GltfRoundTrip, OptionalFeatures) {
   m.base_color_texture.texcoord = 1;
   m.base_color_texture.transform = TextureTransform{{0.5f, 0.25f}, 0.3f, {2.0f, 3.0f}};
   m.emissive_texture.texture = 0;  // same source, also sRGB: shared on load
+  // Normal scale and occlusion strength only exist in glTF together with their textures;
+  // used as data, the same image loads as a second (linear) texture.
+  m.normal_texture.texture = 0;
+  m.occlusion_texture.texture = 0;
   s.materials.push_back(m);
   Mesh mesh = make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
   mesh.texcoords1 = mesh.texcoords0;
@@ -143,7 +158,9 @@ TEST(GltfRoundTrip, OptionalFeatures) {
   write_glb(s, path);
   const Scene loaded = load_scene(path.string());
   expect_same_scene(s, loaded);
-  ASSERT_EQ(loaded.textures.size(), 1u);
+  ASSERT_EQ(loaded.textures.size(), 2u);
+  EXPECT_TRUE(loaded.textures[0].srgb);
+  EXPECT_FALSE(loaded.textures[1].srgb);
   EXPECT_EQ(loaded.textures[0].sampler.wrap_s, WrapMode::kMirroredRepeat);
   // 8-bit sRGB storage: 1 and 0 are exact.
   EXPECT_EQ(loaded.textures[0].mips[0].pixel(1, 0)[0], 0.0f);

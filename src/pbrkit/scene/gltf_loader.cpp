@@ -218,6 +218,13 @@ class Loader {
  public:
   Loader(std::filesystem::path path, const LoadOptions& options)
       : path_(std::move(path)), file_(path_.string()), options_(options) {}
+  /// Loads from bytes already in memory; `path` names them and its folder resolves URIs.
+  Loader(std::string bytes, std::filesystem::path path, const LoadOptions& options)
+      : path_(std::move(path)),
+        file_(path_.string()),
+        options_(options),
+        bytes_(std::move(bytes)),
+        preloaded_(true) {}
 
   Scene load();
 
@@ -265,6 +272,7 @@ class Loader {
   std::string file_;
   LoadOptions options_;
   std::string bytes_;
+  bool preloaded_ = false;
   bool is_glb_ = false;
   std::string json_text_;
   tinygltf::Model model_;
@@ -279,7 +287,9 @@ class Loader {
 
 void Loader::parse_container() {
   const std::size_t limit = options_.limits.max_buffer_bytes + (std::size_t(64) << 20);
-  bytes_ = read_file_limited(path_, limit);
+  if (!preloaded_) bytes_ = read_file_limited(path_, limit);
+  if (bytes_.size() > limit)
+    error("", fmt::format("{} bytes is more than the limit of {}", bytes_.size(), limit));
   is_glb_ = bytes_.size() >= 4 && std::memcmp(bytes_.data(), "glTF", 4) == 0;
   if (is_glb_) {
     const GlbChunks chunks = parse_glb(bytes_.data(), bytes_.size(), file_);
@@ -846,7 +856,8 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
   if (normals_ok)
     for (auto& nrm : mesh.normals) {
       const float len = glm::length(nrm);
-      nrm = len > 0.0f ? nrm / len : glm::vec3(0, 0, 1);
+      // Renormalise only what is visibly off, so unit normals round-trip bit-exactly.
+      if (!(std::fabs(len - 1.0f) < 1e-4f)) nrm = len > 0.0f ? nrm / len : glm::vec3(0, 0, 1);
     }
   if (!mesh.tangents.empty() && !all_finite(mesh.tangents, 4)) {
     warning(fmt::format("{}: NaN/Inf tangents; regenerated", attr_where("TANGENT")));
@@ -1353,6 +1364,11 @@ Scene Loader::load() {
 
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   return Loader(path, options).load();
+}
+
+Scene load_gltf_from_memory(std::string bytes, const std::filesystem::path& name,
+                            const LoadOptions& options) {
+  return Loader(std::move(bytes), name, options).load();
 }
 
 }  // namespace pbrkit

@@ -9,4 +9,9 @@ namespace pbrkit {
 /// Loads a .gltf or .glb file (see load_scene for the contract).
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options);
 
+/// The same for a file's bytes already in memory (used by the fuzz target): `name` is
+/// used in messages and its folder resolves relative URIs.
+Scene load_gltf_from_memory(std::string bytes, const std::filesystem::path& name,
+                            const LoadOptions& options);
+
 }  // namespace pbrkit

@@ -134,7 +134,7 @@ with open(os.path.join(VALID, "textured_quad.bin"), "wb") as f:
     f.write(b.data)
 write_json(os.path.join(VALID, "textured_quad.gltf"), g)
 
-# 3. Strips and fans over the same 5 vertices (0..4). Strip -> (0,1,2) (2,1,3) (2,3,4);
+# 3. Strips and fans over the same 5 vertices (0..4). Strip -> (0,1,2) (1,3,2) (2,3,4);
 # fan -> (1,2,0) (2,3,0) (3,4,0).
 b = Builder()
 pos = b.accessor("f", [0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0, 2, 0], FLOAT, "VEC3", 5, minmax=([0, 0, 0], [1, 2, 0]))
