@@ -1,8 +1,50 @@
-// pbrkit view: placeholder until its issue lands (it is not listed in --help).
+// pbrkit view: the interactive OpenGL viewer (GLFW + Dear ImGui) over the library's
+// gl::run_viewer. --frames/--screenshot automate it for CI (render N frames, save, quit).
+#include <memory>
+
 #include "commands.h"
+#include "pbrkit/gl/viewer.h"
 
 namespace pbrkit::cli {
 
-void register_view_command(CLI::App& /*app*/) {}
+void register_view_command(CLI::App& app) {
+  auto o = std::make_shared<gl::ViewerOptions>();
+  auto* cmd = app.add_subcommand(
+      "view",
+      "Interactive OpenGL viewer: orbit (drag), pan (right drag), zoom (wheel); a panel for "
+      "environment, exposure, tone mapper, model, compensation, IBL, lights and material "
+      "overrides; F12/P screenshot (PNG + EXR), R reload, Esc quit. Needs an X display.");
+  cmd->add_option("scene", o->scene,
+                  "a .gltf/.glb file or a built-in scene: spheres, furnace, cornell")
+      ->capture_default_str();
+  cmd->add_option("--env", o->env, "environment map (.exr/.hdr); default: the built-in city.exr");
+  cmd->add_flag("--no-env", o->no_env, "no environment light");
+  cmd->add_option("--camera", o->camera, "initial glTF camera index");
+  cmd->add_option("--width", o->width, "window width")
+      ->check(CLI::Range(64, 8192))
+      ->capture_default_str();
+  cmd->add_option("--height", o->height, "window height")
+      ->check(CLI::Range(64, 8192))
+      ->capture_default_str();
+  cmd->add_option("--exposure", o->exposure, "exposure in EV")->capture_default_str();
+  cmd->add_option("--tonemap", o->tonemap, "tone mapper")
+      ->check(CLI::IsMember({"none", "pbr-neutral", "aces", "agx"}))
+      ->capture_default_str();
+  cmd->add_option("--model", o->model, "BRDF model: reference or classic")
+      ->check(CLI::IsMember({"reference", "classic"}))
+      ->capture_default_str();
+  cmd->add_flag("--multiscatter", o->multiscatter, "multiple-scattering compensation");
+  cmd->add_option("--background", o->background, "env, blur:<mip> or color:<r>,<g>,<b>")
+      ->capture_default_str();
+  cmd->add_option("--msaa", o->msaa, "MSAA samples")
+      ->check(CLI::Range(1, 16))
+      ->capture_default_str();
+  cmd->add_option("--frames", o->frames,
+                  "automation: render this many frames, save --screenshot, and quit")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--screenshot", o->screenshot,
+                  "screenshot PNG path (the linear EXR goes beside it); default out/view_<n>.png");
+  cmd->callback([o] { gl::run_viewer(*o); });
+}
 
 }  // namespace pbrkit::cli

@@ -18,4 +18,5 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/brdf_eval.cpp
   ${_pbrkit_gl_dir}/energy_texture.cpp
   ${_pbrkit_gl_dir}/renderer.cpp
+  ${_pbrkit_gl_dir}/viewer.cpp
   ${_pbrkit_gl_embedded})

@@ -1,0 +1,328 @@
+#include "pbrkit/gl/viewer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+// GLFW after epoxy (epoxy provides the GL declarations).
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <tbb/parallel_for.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "pbrkit/core/color.h"
+#include "pbrkit/gl/renderer.h"
+#include "pbrkit/ibl/bake.h"
+#include "pbrkit/image/environment.h"
+#include "pbrkit/image/image_io.h"
+#include "pbrkit/scene/camera.h"
+#include "pbrkit/scene/load.h"
+#include "pbrkit/util/error.h"
+#include "pbrkit/util/log.h"
+
+namespace pbrkit::gl {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Orbit camera around `target`: yaw about +Y, pitch above the horizon, distance.
+struct Orbit {
+  glm::vec3 target{0.0f};
+  float yaw = 0.0f, pitch = 0.35f, distance = 5.0f;
+  float yfov = 0.7854f;
+
+  static Orbit from_camera(const Camera& c, const Bounds& bounds) {
+    Orbit o;
+    o.target = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    const glm::vec3 d = c.position() - o.target;
+    o.distance = std::max(glm::length(d), 1e-3f);
+    o.pitch = std::asin(std::clamp(d.y / o.distance, -1.0f, 1.0f));
+    o.yaw = std::atan2(d.x, d.z);
+    if (c.type == Camera::Type::kPerspective) o.yfov = c.yfov;
+    return o;
+  }
+  Camera camera() const {
+    Camera c;
+    c.name = "viewer";
+    c.yfov = yfov;
+    c.znear = std::max(1e-3f * distance, 1e-4f);
+    const glm::vec3 eye =
+        target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
+                                      std::cos(pitch) * std::cos(yaw));
+    c.camera_to_world = glm::inverse(glm::lookAt(eye, target, glm::vec3(0.0f, 1.0f, 0.0f)));
+    return c;
+  }
+};
+
+struct ViewerState {
+  ViewerOptions options;
+  Scene scene;
+  std::optional<Environment> env;
+  std::optional<IblMaps> ibl;
+  std::vector<std::string> env_choices;  // "" = the built-in default
+  int env_choice = 0;
+  RenderSettings settings;
+  ToneMapper tone_mapper = ToneMapper::kPbrNeutral;
+  float exposure = 0.0f;
+  bool override_metallic = false, override_roughness = false;
+  float metallic = 1.0f, roughness = 0.5f;
+  Orbit orbit;
+};
+
+void load_environment(ViewerState& s, Renderer& renderer) {
+  s.env.reset();
+  s.ibl.reset();
+  if (!s.options.no_env) {
+    s.env = load_environment_or_default(s.env_choices[std::size_t(s.env_choice)], 0.0f, 1.0f);
+    BakeOptions bake;
+    bake.face_size = s.options.bake_size;
+    bake.min_face_size = std::min(8, bake.face_size);
+    bake.samples = s.options.bake_samples;
+    bake.irradiance_size = 16;
+    bake.lut_size = 32;
+    s.ibl = ibl_maps_from_bake(bake_environment(*s.env, bake), *s.env);
+  }
+  renderer.set_environment(s.env ? &*s.env : nullptr);
+  renderer.set_ibl(s.ibl ? &*s.ibl : nullptr);
+}
+
+void load_scene_into(ViewerState& s, Renderer& renderer, bool reset_camera) {
+  s.scene = load_scene(s.options.scene);
+  renderer.set_scene(s.scene);
+  s.settings.light_enabled.assign(s.scene.lights.size(), true);
+  if (reset_camera) {
+    const float aspect = float(s.options.width) / float(s.options.height);
+    s.orbit = Orbit::from_camera(select_camera(s.scene, s.options.camera, aspect),
+                                 s.scene.world_bounds());
+  }
+}
+
+void save_screenshot(const std::string& png, const Image& frame, const ViewerState& s) {
+  Image rgb(frame.width, frame.height, 3), display(frame.width, frame.height, 3);
+  for (int y = 0; y < frame.height; ++y)
+    for (int x = 0; x < frame.width; ++x) {
+      rgb.set_rgb(x, y, frame.rgb(x, y));
+      display.set_rgb(x, y, display_transform(frame.rgb(x, y), s.exposure, s.tone_mapper));
+    }
+  const std::filesystem::path parent = std::filesystem::path(png).parent_path();
+  if (!parent.empty()) std::filesystem::create_directories(parent);
+  const std::string exr = std::filesystem::path(png).replace_extension(".exr").string();
+  write_exr(exr, rgb, ExrPixelType::kFloat);
+  write_png(png, display);
+  note("wrote {} and {}", png, exr);
+}
+
+void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms) {
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("pbrkit view");
+  ImGui::Text("frame %.1f ms (GPU %.1f ms)", cpu_ms, gpu_ms);
+  ImGui::Text("%s", s.scene.source.c_str());
+  if (!s.options.no_env &&
+      ImGui::BeginCombo("environment",
+                        s.env_choices[std::size_t(s.env_choice)].empty()
+                            ? "default"
+                            : std::filesystem::path(s.env_choices[std::size_t(s.env_choice)])
+                                  .filename()
+                                  .c_str())) {
+    for (std::size_t i = 0; i < s.env_choices.size(); ++i) {
+      const std::string label = s.env_choices[i].empty()
+                                    ? "default"
+                                    : std::filesystem::path(s.env_choices[i]).filename().string();
+      if (ImGui::Selectable(label.c_str(), int(i) == s.env_choice) && int(i) != s.env_choice) {
+        s.env_choice = int(i);
+        load_environment(s, renderer);
+      }
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::SliderFloat("rotation", &s.settings.env_rotation_deg, -180.0f, 180.0f, "%.0f deg");
+  ImGui::SliderFloat("intensity", &s.settings.env_intensity, 0.0f, 4.0f);
+  ImGui::SliderFloat("exposure", &s.exposure, -6.0f, 6.0f, "%.1f EV");
+  int tm = int(s.tone_mapper);
+  const char* tone_mappers[] = {"none", "pbr-neutral", "aces", "agx"};
+  if (ImGui::Combo("tone mapper", &tm, tone_mappers, 4)) s.tone_mapper = ToneMapper(tm);
+  int model = s.settings.brdf.model == BrdfModel::kReference ? 0 : 1;
+  const char* models[] = {"reference", "classic"};
+  if (ImGui::Combo("model", &model, models, 2))
+    s.settings.brdf.model = model == 0 ? BrdfModel::kReference : BrdfModel::kClassic;
+  ImGui::Checkbox("multiple scattering", &s.settings.brdf.multiscatter);
+  ImGui::Checkbox("image-based lighting", &s.settings.ibl);
+  int irradiance = int(s.settings.irradiance);
+  const char* irradiance_modes[] = {"SH9", "cube"};
+  if (ImGui::Combo("irradiance", &irradiance, irradiance_modes, 2))
+    s.settings.irradiance = IrradianceMode(irradiance);
+  for (std::size_t i = 0; i < s.scene.lights.size() && i < 16; ++i) {
+    bool on = s.settings.light_enabled[i];
+    const std::string label = "light " + std::to_string(i) + " " + s.scene.lights[i].name;
+    if (ImGui::Checkbox(label.c_str(), &on)) s.settings.light_enabled[i] = on;
+  }
+  ImGui::Separator();
+  ImGui::Checkbox("override metallic", &s.override_metallic);
+  if (s.override_metallic) ImGui::SliderFloat("metallic", &s.metallic, 0.0f, 1.0f);
+  ImGui::Checkbox("override roughness", &s.override_roughness);
+  if (s.override_roughness) ImGui::SliderFloat("roughness", &s.roughness, 0.0f, 1.0f);
+  ImGui::TextUnformatted("drag: orbit, right drag: pan, wheel: zoom");
+  ImGui::TextUnformatted("F12/P: screenshot, R: reload, Esc: quit");
+  ImGui::End();
+}
+
+}  // namespace
+
+void run_viewer(const ViewerOptions& options) {
+  if (!glfwInit())
+    fail(
+        "pbrkit view: cannot open a window (GLFW could not initialise; is there an X display? "
+        "For a headless machine use xvfb-run, or 'pbrkit render --renderer gl')");
+  struct GlfwGuard {
+    ~GlfwGuard() { glfwTerminate(); }
+  } glfw_guard;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window =
+      glfwCreateWindow(options.width, options.height, "pbrkit view", nullptr, nullptr);
+  if (!window)
+    fail("pbrkit view: cannot create a {}x{} OpenGL 4.5 core window", options.width,
+         options.height);
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(options.frames > 0 ? 0 : 1);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's working directory
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 450");
+
+  {
+    ViewerState s;
+    s.options = options;
+    s.settings.brdf = {parse_brdf_model(options.model), options.multiscatter};
+    s.settings.background = parse_background(options.background);
+    s.settings.msaa = options.msaa;
+    s.tone_mapper = parse_tone_mapper(options.tonemap);
+    s.exposure = options.exposure;
+    s.env_choices.push_back(options.env);
+    for (const char* name : {"city", "forest", "night", "studio", "sunset", "warehouse"}) {
+      const std::filesystem::path p =
+          std::filesystem::path(PBRKIT_DATA_DIR).parent_path().parent_path() / "shared" / "assets" /
+          "hdri" / (std::string(name) + ".exr");
+      if (std::filesystem::exists(p)) s.env_choices.push_back(p.string());
+    }
+    Renderer renderer;
+    load_scene_into(s, renderer, true);
+    load_environment(s, renderer);
+
+    GLuint display_texture = 0, display_fbo = 0;
+    int display_w = 0, display_h = 0;
+    std::vector<unsigned char> pixels;
+    double cpu_ms = 0.0, gpu_ms = 0.0;
+    Image frame;
+    for (int frame_index = 0; !glfwWindowShouldClose(window); ++frame_index) {
+      const auto t0 = Clock::now();
+      glfwPollEvents();
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      ImGuiIO& io = ImGui::GetIO();
+
+      // Camera controls (when the panel does not want the mouse).
+      if (!io.WantCaptureMouse) {
+        if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+          s.orbit.yaw -= io.MouseDelta.x * 0.01f;
+          s.orbit.pitch = std::clamp(s.orbit.pitch + io.MouseDelta.y * 0.01f, -1.5f, 1.5f);
+        }
+        if (ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
+          const Camera c = s.orbit.camera();
+          const glm::vec3 right(c.camera_to_world[0]), up(c.camera_to_world[1]);
+          const float scale = s.orbit.distance * 0.002f;
+          s.orbit.target += (-io.MouseDelta.x * right + io.MouseDelta.y * up) * scale;
+        }
+        if (io.MouseWheel != 0.0f) s.orbit.distance *= std::pow(0.9f, io.MouseWheel);
+      }
+      bool screenshot = false;
+      if (!io.WantCaptureKeyboard) {
+        if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window, GLFW_TRUE);
+        if (ImGui::IsKeyPressed(GLFW_KEY_F12) || ImGui::IsKeyPressed(GLFW_KEY_P)) screenshot = true;
+        if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
+          try {
+            load_scene_into(s, renderer, false);
+          } catch (const Error& e) {
+            warn("reload failed: {}", e.what());
+          }
+        }
+      }
+      draw_panel(s, renderer, cpu_ms, gpu_ms);
+      s.settings.metallic_override = s.override_metallic ? s.metallic : -1.0f;
+      s.settings.roughness_override = s.override_roughness ? s.roughness : -1.0f;
+
+      int fb_w = 0, fb_h = 0;
+      glfwGetFramebufferSize(window, &fb_w, &fb_h);
+      if (fb_w > 0 && fb_h > 0) {
+        Camera camera = s.orbit.camera();
+        renderer.render(camera, fb_w, fb_h, s.settings);
+        frame = renderer.read_back();
+        gpu_ms = renderer.gpu_time_ms();
+        // The display transform on the CPU: the exact code of the PNG outputs.
+        pixels.resize(std::size_t(fb_w) * fb_h * 4);
+        tbb::parallel_for(0, fb_h, [&](int y) {
+          for (int x = 0; x < fb_w; ++x) {
+            const glm::vec3 c = display_transform(frame.rgb(x, y), s.exposure, s.tone_mapper);
+            unsigned char* p = pixels.data() + (std::size_t(y) * fb_w + x) * 4;
+            for (int k = 0; k < 3; ++k) p[k] = (unsigned char)(std::lround(c[k] * 255.0f));
+            p[3] = 255;
+          }
+        });
+        if (fb_w != display_w || fb_h != display_h) {
+          if (display_texture) glDeleteTextures(1, &display_texture);
+          if (display_fbo) glDeleteFramebuffers(1, &display_fbo);
+          glCreateTextures(GL_TEXTURE_2D, 1, &display_texture);
+          glTextureStorage2D(display_texture, 1, GL_RGBA8, fb_w, fb_h);
+          glCreateFramebuffers(1, &display_fbo);
+          glNamedFramebufferTexture(display_fbo, GL_COLOR_ATTACHMENT0, display_texture, 0);
+          display_w = fb_w, display_h = fb_h;
+        }
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTextureSubImage2D(display_texture, 0, 0, 0, fb_w, fb_h, GL_RGBA, GL_UNSIGNED_BYTE,
+                            pixels.data());
+        // Texture row 0 is the image's top row: flip while blitting to the window.
+        glBlitNamedFramebuffer(display_fbo, 0, 0, 0, fb_w, fb_h, 0, fb_h, fb_w, 0,
+                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+      }
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      glViewport(0, 0, fb_w, fb_h);
+      ImGui::Render();
+      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+      if (screenshot && !frame.empty()) {
+        const std::string path = options.screenshot.empty()
+                                     ? "out/view_" + std::to_string(frame_index) + ".png"
+                                     : options.screenshot;
+        save_screenshot(path, frame, s);
+      }
+      glfwSwapBuffers(window);
+      cpu_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+      if (options.frames > 0 && frame_index + 1 >= options.frames) {
+        if (!options.screenshot.empty() && !frame.empty())
+          save_screenshot(options.screenshot, frame, s);
+        break;
+      }
+    }
+    if (display_texture) glDeleteTextures(1, &display_texture);
+    if (display_fbo) glDeleteFramebuffers(1, &display_fbo);
+  }  // the renderer's GL objects go before the context
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+}
+
+}  // namespace pbrkit::gl

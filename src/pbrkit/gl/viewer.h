@@ -1,0 +1,35 @@
+#pragma once
+// `pbrkit view`: the interactive viewer. A GLFW window (X11) running the same Renderer as
+// the headless path, with an orbit / pan / zoom camera and a Dear ImGui panel for the
+// environment, exposure, tone mapper, model, compensation, IBL and lights, and live
+// metallic / roughness overrides (the seeds' sphere-grid experiment). Keys: F12 or P saves
+// a screenshot (EXR + PNG), R reloads the scene, Esc quits.
+#include <optional>
+#include <string>
+
+namespace pbrkit::gl {
+
+struct ViewerOptions {
+  std::string scene = "spheres";  ///< .gltf/.glb or a built-in scene name
+  std::string env;                ///< empty: the built-in default environment
+  bool no_env = false;
+  std::optional<int> camera;  ///< initial glTF camera
+  int width = 1280, height = 720;
+  float exposure = 0.0f;
+  std::string tonemap = "pbr-neutral";
+  std::string model = "reference";
+  bool multiscatter = false;
+  std::string background = "env";
+  int msaa = 4;
+  int bake_size = 128;
+  int bake_samples = 128;
+  /// Automation (CI): render this many frames, save `screenshot`, quit (0: interactive).
+  int frames = 0;
+  std::string screenshot;  ///< PNG path (the EXR goes beside it); also the F12 target
+};
+
+/// Opens the window and runs until closed (or `frames` frames). Throws pbrkit::Error when
+/// no window can be opened (e.g. no X display: run under xvfb-run).
+void run_viewer(const ViewerOptions& options);
+
+}  // namespace pbrkit::gl
