@@ -11,44 +11,48 @@
 namespace pbrkit {
 
 Distribution1D::Distribution1D(std::vector<float> weights) : weights_(std::move(weights)) {
-  cdf_.resize(weights_.size() + 1, 0.0);
+  // The running sum is kept in double; the normalised CDF is stored in float (half the
+  // memory of double, which matters for the per-row tables of large maps).
+  std::vector<double> cdf(weights_.size() + 1, 0.0);
   for (std::size_t i = 0; i < weights_.size(); ++i) {
     weights_[i] = std::isfinite(weights_[i]) ? std::max(weights_[i], 0.0f) : 0.0f;
-    cdf_[i + 1] = cdf_[i] + double(weights_[i]);
+    cdf[i + 1] = cdf[i] + double(weights_[i]);
   }
-  total_ = cdf_.back();
+  total_ = cdf.back();
   if (total_ <= 0.0) {
     // Nothing to prefer: uniform.
     std::fill(weights_.begin(), weights_.end(), 1.0f);
-    for (std::size_t i = 0; i < weights_.size(); ++i) cdf_[i + 1] = double(i + 1);
+    for (std::size_t i = 0; i < weights_.size(); ++i) cdf[i + 1] = double(i + 1);
     total_ = double(weights_.size());
   }
-  for (double& c : cdf_) c /= total_;
-  cdf_.back() = 1.0;
+  cdf_.resize(cdf.size());
+  for (std::size_t i = 0; i < cdf.size(); ++i) cdf_[i] = float(cdf[i] / total_);
+  cdf_.back() = 1.0f;
+  inv_total_ = float(1.0 / total_);
 }
 
 float Distribution1D::sample(float u, float& pdf, std::size_t& index) const {
   index = sample_discrete(u, pdf);
-  const double lo = cdf_[index], hi = cdf_[index + 1];
-  double du = (double(u) - lo) / (hi - lo);
-  du = std::clamp(du, 0.0, 1.0);
+  const float lo = cdf_[index], hi = cdf_[index + 1];
+  const float du = hi > lo ? std::clamp((u - lo) / (hi - lo), 0.0f, 1.0f) : 0.5f;
   pdf = this->pdf(index);
-  return std::min(float((double(index) + du) / double(size())), kOneMinusEpsilon);
+  return std::min((float(index) + du) / float(size()), kOneMinusEpsilon);
 }
 
 std::size_t Distribution1D::sample_discrete(float u, float& probability) const {
-  // The last index i with cdf_[i] <= u, skipping empty bins.
-  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), double(u));
+  // The last index i with cdf_[i] <= u; bins of zero weight have cdf_[i] == cdf_[i + 1]
+  // and are skipped by the search itself.
+  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
   std::size_t i = std::size_t(std::max<std::ptrdiff_t>(it - cdf_.begin() - 1, 0));
   i = std::min(i, size() - 1);
   while (i > 0 && weights_[i] == 0.0f) --i;
   while (i + 1 < size() && weights_[i] == 0.0f) ++i;
-  probability = float(double(weights_[i]) / total_);
+  probability = weights_[i] * inv_total_;
   return i;
 }
 
 float Distribution1D::pdf(std::size_t index) const {
-  return float(double(weights_[index]) / total_ * double(size()));
+  return weights_[index] * inv_total_ * float(size());
 }
 
 EnvironmentSampler::EnvironmentSampler(const Environment& env)

@@ -30,7 +30,8 @@ class Distribution1D {
 
  private:
   std::vector<float> weights_;
-  std::vector<double> cdf_;  ///< size() + 1 entries, cdf_[0] = 0, cdf_.back() = 1
+  std::vector<float> cdf_;  ///< size() + 1 entries, cdf_[0] = 0, cdf_.back() = 1
+  float inv_total_ = 0.0f;
   double total_ = 0.0;
 };
 

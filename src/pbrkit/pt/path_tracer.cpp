@@ -142,7 +142,8 @@ class Integrator {
       // Next-event estimation: one light sample (delta lights always; area lights and the
       // environment unless BSDF sampling alone is asked for).
       LightSample ls;
-      const float u_light = sampler.sample(pixel, index, dim);
+      // (The light choice needs no random number when there is a single light.)
+      const float u_light = lights_.size() > 1 ? sampler.sample(pixel, index, dim) : 0.5f;
       const glm::vec2 u_point = sampler.sample_2d(pixel, index, dim + 1);
       if (lights_.sample(hit.p, u_light, u_point, ls) &&
           (ls.delta || strategy != LightStrategy::kBsdfOnly) && ls.Li != glm::vec3(0.0f) &&
