@@ -168,7 +168,8 @@ Chi2Result chi2_sphere_test(const std::function<std::optional<glm::vec3>(float, 
         ++hist[cells + 1];
         continue;
       }
-      const double theta = std::acos(std::clamp(d.z / len, -1.0, 1.0));
+      // atan2 rather than acos(z): accurate near the poles, where sharp lobes live.
+      const double theta = std::atan2(std::hypot(d.x, d.y), d.z);
       double phi = std::atan2(d.y, d.x);
       if (phi < 0.0) phi += 2.0 * kPi;
       // Theta bins are (t0, t1]: a hemisphere sampler may return a direction exactly on

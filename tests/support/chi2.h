@@ -28,7 +28,7 @@ struct Chi2Options {
   /// resolved because GGX's heavy tails make the refinement criterion fire well before the peak.
   int integration_resolution = 4;
   double integration_tolerance = 1e-6;
-  int integration_max_depth = 12;
+  int integration_max_depth = 8;
   std::uint64_t seed = 1;
 };
 
