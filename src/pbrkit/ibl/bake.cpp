@@ -117,7 +117,7 @@ void build_mip_chain(Cubemap& cube, int min_size) {
 }
 
 std::vector<PrefilterSample> prefilter_samples(float roughness, int samples, int source_size,
-                                               int source_levels, bool filtered) {
+                                               int source_levels, bool filtered, float lod_bias) {
   std::vector<PrefilterSample> out;
   out.reserve(samples);
   const float alpha = sqr(std::max(roughness, kMinRoughness));
@@ -135,7 +135,8 @@ std::vector<PrefilterSample> prefilter_samples(float roughness, int samples, int
       // Omega_s = 1 / (N pdf).
       const float pdf = DistributionGGX(h, alpha) * 0.25f;
       const float omega_s = 1.0f / (float(samples) * pdf);
-      lod = std::clamp(0.5f * std::log2(omega_s / omega_p) + 1.0f, 0.0f, float(source_levels - 1));
+      lod = std::clamp(0.5f * std::log2(omega_s / omega_p) + lod_bias, 0.0f,
+                       float(source_levels - 1));
     }
     out.push_back({l, l.z, lod});
   }
@@ -170,11 +171,80 @@ glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<Prefilter
   return weight > 0.0f ? sum / weight : glm::vec3(0.0f);
 }
 
+namespace {
+
+// A source level flattened for the direct quadrature: structure-of-arrays so that the inner
+// loop is branch-free and vectorises.
+struct QuadratureSource {
+  std::vector<float> x, y, z;         // texel-centre directions
+  std::vector<float> r, g, b, omega;  // L dOmega per channel, and dOmega
+};
+
+QuadratureSource flatten_level(const Cubemap& cube, int level) {
+  QuadratureSource q;
+  const int size = cube.size(level);
+  for (int face = 0; face < 6; ++face)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const glm::vec3 w = cube_direction(
+            face, {(float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(size)});
+        const float dw = cube_texel_solid_angle(x, y, size);
+        const glm::vec3 L = cube.mips[level][face].rgb(x, y) * dw;
+        q.x.push_back(w.x), q.y.push_back(w.y), q.z.push_back(w.z);
+        q.r.push_back(L.x), q.g.push_back(L.y), q.b.push_back(L.z), q.omega.push_back(dw);
+      }
+  return q;
+}
+
+// P(R) = sum L D(h) max(0, R.l) dOmega / sum D(h) max(0, R.l) dOmega with n = v = R, so
+// (n.h)^2 = (1 + R.l) / 2 and D depends on R.l alone; D's constant alpha^2 / pi cancels.
+glm::vec3 quadrature_direction(const QuadratureSource& q, float alpha, glm::vec3 R) {
+  constexpr int kLanes = 8;  // independent partial sums: lets the compiler vectorise
+  float sr[kLanes] = {}, sg[kLanes] = {}, sb[kLanes] = {}, sw[kLanes] = {};
+  const float a2m1 = alpha * alpha - 1.0f;
+  const std::size_t n = q.x.size(), blocks = n / kLanes * kLanes;
+  auto term = [&](std::size_t i, float& r, float& g, float& b, float& w) {
+    const float c = R.x * q.x[i] + R.y * q.y[i] + R.z * q.z[i];
+    const float NdotL = std::max(c, 0.0f);
+    const float d = (0.5f + 0.5f * c) * a2m1 + 1.0f;
+    const float weight = NdotL / (d * d);
+    r += weight * q.r[i];
+    g += weight * q.g[i];
+    b += weight * q.b[i];
+    w += weight * q.omega[i];
+  };
+  for (std::size_t i = 0; i < blocks; i += kLanes)
+    for (int k = 0; k < kLanes; ++k) term(i + k, sr[k], sg[k], sb[k], sw[k]);
+  for (std::size_t i = blocks; i < n; ++i) term(i, sr[0], sg[0], sb[0], sw[0]);
+  float r = 0, g = 0, b = 0, w = 0;
+  for (int k = 0; k < kLanes; ++k) r += sr[k], g += sg[k], b += sb[k], w += sw[k];
+  return w > 0.0f ? glm::vec3(r, g, b) / w : glm::vec3(0.0f);
+}
+
+}  // namespace
+
+int quadrature_source_level(const Cubemap& source, float roughness) {
+  // Source texels (pi/2 / S rad across) at most alpha / 8, alpha being the angular scale
+  // of the lobe of l (about 2 alpha wide), and at least 64 px (or the finest level): small
+  // bright sources must not be smeared over a texel that spans a large part of the lobe.
+  const float alpha = sqr(std::max(roughness, kMinRoughness));
+  int level = source.levels() - 1;
+  while (level > 0 &&
+         (0.5f * kPi / float(source.size(level)) > 0.125f * alpha || source.size(level) < 64))
+    --level;
+  return level;
+}
+
+bool use_quadrature(const Cubemap& source, float roughness, int out_size) {
+  const double S = source.size(quadrature_source_level(source, roughness));
+  // At most 2^28 texel pairs per level (~0.3 s on one core), so only the small rough levels.
+  return roughness >= 0.25f && 36.0 * double(out_size) * out_size * S * S <= double(1 << 28);
+}
+
 Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
                            const ProgressCallback& progress) {
   const int face_size = source.size(0);
-  int levels = 1;
-  while ((face_size >> levels) >= options.min_face_size && (face_size >> levels) >= 1) ++levels;
+  const int levels = specular_levels(face_size, options.min_face_size);
   Cubemap out;
   out.mips.push_back(source.mips[0]);  // roughness 0: the mirror, a copy of the source
   struct Row {
@@ -182,30 +252,43 @@ Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
   };
   std::vector<Row> rows;
   std::vector<std::vector<PrefilterSample>> level_samples(levels);
+  std::vector<QuadratureSource> level_quadrature(levels);
+  std::vector<double> row_work(levels, 0.0);
   double total_work = 0.0;
   for (int m = 1; m < levels; ++m) {
     const int size = face_size >> m;
+    const float roughness = mip_roughness(m, levels, options.mapping);
     out.mips.push_back(make_faces(size));
-    level_samples[m] =
-        prefilter_samples(mip_roughness(m, levels, options.mapping), options.samples, face_size,
-                          source.levels(), options.filtered_importance_sampling);
+    if (options.quadrature_for_rough_levels && use_quadrature(source, roughness, size)) {
+      level_quadrature[m] = flatten_level(source, quadrature_source_level(source, roughness));
+      row_work[m] = double(size) * double(level_quadrature[m].x.size()) * 0.1;
+    } else {
+      level_samples[m] = prefilter_samples(roughness, options.samples, face_size, source.levels(),
+                                           options.filtered_importance_sampling);
+      row_work[m] = double(size) * double(level_samples[m].size());
+    }
     for (int face = 0; face < 6; ++face)
       for (int y = 0; y < size; ++y) rows.push_back({m, face, y});
-    total_work += 6.0 * size * size * double(level_samples[m].size());
+    total_work += 6.0 * size * row_work[m];
   }
   ProgressCounter counter(progress, std::max(total_work, 1.0));
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size()), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const Row row = rows[i];
       const int size = face_size >> row.level;
+      const float alpha =
+          sqr(std::max(mip_roughness(row.level, levels, options.mapping), kMinRoughness));
       const auto& samples = level_samples[row.level];
+      const auto& quadrature = level_quadrature[row.level];
       Image& img = out.mips[row.level][row.face];
       for (int x = 0; x < size; ++x) {
         const glm::vec3 R = cube_direction(
             row.face, {(float(x) + 0.5f) / float(size), (float(row.y) + 0.5f) / float(size)});
-        img.set_rgb(x, row.y, prefilter_direction(source, samples, R));
+        img.set_rgb(x, row.y,
+                    quadrature.x.empty() ? prefilter_direction(source, samples, R)
+                                         : quadrature_direction(quadrature, alpha, R));
       }
-      counter.add(double(size) * double(samples.size()), "specular");
+      counter.add(row_work[row.level], "specular");
     }
   });
   return out;

@@ -39,6 +39,10 @@ struct BakeOptions {
   RoughnessMapping mapping = RoughnessMapping::kLinear;
   BrdfModel model = BrdfModel::kReference;   ///< the G of the prefilter weights
   bool filtered_importance_sampling = true;  ///< Colbert & Krivanek 2007
+  /// Small levels with roughness >= 0.25 are prefiltered by direct quadrature over a
+  /// source level (exact up to the texel-centre rule) where that is cheap; the others by
+  /// importance sampling. False: importance sampling everywhere.
+  bool quadrature_for_rough_levels = true;
 };
 
 /// 9 SH coefficients (bands l <= 2) per colour channel. Convention: the coefficients of

@@ -3,4 +3,5 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/spherical_harmonics.cpp
   ${CMAKE_CURRENT_LIST_DIR}/brdf_lut.cpp
   ${CMAKE_CURRENT_LIST_DIR}/roughness_mapping.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/bake.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/bake.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/validate.cpp)
