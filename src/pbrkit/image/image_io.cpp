@@ -3,6 +3,7 @@
 #include <stb_image.h>
 #include <stb_image_write.h>
 
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -19,6 +20,7 @@
 #include <fstream>
 #include <map>
 #include <set>
+#include <string_view>
 
 #include "pbrkit/core/color.h"
 #include "pbrkit/util/atomic_file.h"
@@ -156,6 +158,48 @@ Image decode_exr(const unsigned char* bytes, std::size_t size, const std::string
   }
 }
 
+// Checks that the pixel data of a Radiance .hdr file is complete and well formed before
+// stb_image decodes it: stb's run-length decoder loops forever on a zero run length, which
+// is exactly what it reads past the end of a truncated file. Mirrors the format as stb reads
+// it (Greg Ward's new-style RLE scanlines, or flat RGBE when the first scanline is not RLE).
+void check_hdr_data(const unsigned char* b, std::size_t size, int width, int height,
+                    const std::string& name) {
+  const std::string_view text(reinterpret_cast<const char*>(b), size);
+  const auto blank = text.find("\n\n");
+  const auto eol = blank == std::string_view::npos ? blank : text.find('\n', blank + 2);
+  if (eol == std::string_view::npos) fail("{}: Radiance HDR header is incomplete", name);
+  std::size_t pos = eol + 1;
+  auto truncated = [&] { fail("{}: Radiance HDR pixel data is truncated", name); };
+  auto corrupt = [&] { fail("{}: Radiance HDR pixel data is corrupt (bad run length)", name); };
+  const std::size_t w = static_cast<std::size_t>(width);
+  for (int row = 0; row < height; ++row) {
+    if (size - pos < 4) truncated();
+    const bool rle = b[pos] == 2 && b[pos + 1] == 2 && !(b[pos + 2] & 0x80);
+    if (row == 0 && (!rle || width < 8 || width >= 32768)) {
+      // Flat RGBE: 4 bytes per pixel for the whole image.
+      if ((size - pos) / 4 / w < static_cast<std::size_t>(height)) truncated();
+      return;
+    }
+    if (!rle || ((std::size_t(b[pos + 2]) << 8) | b[pos + 3]) != w) corrupt();
+    pos += 4;
+    for (int k = 0; k < 4; ++k)
+      for (std::size_t i = 0; i < w;) {
+        if (pos >= size) truncated();
+        std::size_t count = b[pos++];
+        if (count > 128) {
+          count -= 128;
+          if (pos >= size) truncated();
+          ++pos;
+        } else {
+          if (size - pos < count) truncated();
+          pos += count;
+        }
+        if (count == 0 || count > w - i) corrupt();
+        i += count;
+      }
+  }
+}
+
 // PNG, JPEG and Radiance HDR through stb_image (Debian's libstb holds the implementation).
 Image decode_stb(const unsigned char* bytes, std::size_t size, const std::string& name,
                  Format format, const ImageReadOptions& options, ImageReadReport& report) {
@@ -171,6 +215,7 @@ Image decode_stb(const unsigned char* bytes, std::size_t size, const std::string
     return channels == 2 || channels == 4 ? channels - 1 : channels;
   };
   if (format == Format::kHdr) {
+    check_hdr_data(bytes, size, w, h, name);
     float* data = stbi_loadf_from_memory(bytes, len, &w, &h, &comp, 0);
     if (!data) fail("{}: cannot decode Radiance HDR: {}", name, stbi_failure_reason());
     image = Image(w, h, comp);
@@ -311,6 +356,9 @@ void write_exr_layers(const std::filesystem::path& path, const std::vector<ExrLa
   header.compression() = Imf::ZIP_COMPRESSION;
   Imf::FrameBuffer fb;
   std::set<std::string> seen;
+  // OpenEXR does not convert float slices to half channels on output: half layers are
+  // converted here (round to nearest, Imath's half constructor), one plane per channel.
+  std::vector<std::vector<half>> half_planes;
   for (const ExrLayer& layer : layers) {
     const Image* img = layer.image;
     if (!img) fail("{}: layer '{}' has no image", name, layer.name);
@@ -320,18 +368,25 @@ void write_exr_layers(const std::filesystem::path& path, const std::vector<ExrLa
     if (static_cast<int>(layer.channel_names.size()) != img->channels)
       fail("{}: layer '{}' names {} channels but its image has {}", name, layer.name,
            layer.channel_names.size(), img->channels);
-    const Imf::PixelType type = layer.type == ExrPixelType::kHalf ? Imf::HALF : Imf::FLOAT;
+    const bool is_half = layer.type == ExrPixelType::kHalf;
     const std::size_t xs = sizeof(float) * img->channels;
     for (int c = 0; c < img->channels; ++c) {
       const std::string full =
           layer.name.empty() ? layer.channel_names[c] : layer.name + "." + layer.channel_names[c];
       if (!seen.insert(full).second) fail("{}: channel '{}' is written twice", name, full);
-      header.channels().insert(full, Imf::Channel(type));
-      // OpenEXR converts the float slice to the channel's type (half) when writing.
-      fb.insert(full,
-                Imf::Slice(Imf::FLOAT,
-                           const_cast<char*>(reinterpret_cast<const char*>(img->data.data() + c)),
-                           xs, xs * w));
+      header.channels().insert(full, Imf::Channel(is_half ? Imf::HALF : Imf::FLOAT));
+      if (is_half) {
+        std::vector<half>& plane = half_planes.emplace_back(std::size_t(w) * h);
+        for (std::size_t i = 0; i < plane.size(); ++i)
+          plane[i] = half(img->data[i * img->channels + c]);
+        fb.insert(full, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(plane.data()), sizeof(half),
+                                   sizeof(half) * w));
+      } else {
+        fb.insert(full,
+                  Imf::Slice(Imf::FLOAT,
+                             const_cast<char*>(reinterpret_cast<const char*>(img->data.data() + c)),
+                             xs, xs * w));
+      }
     }
   }
   write_file_atomically(path, [&](const std::filesystem::path& temp) {
@@ -417,6 +472,8 @@ void write_png(const std::filesystem::path& path, const Image& display, int bits
     if (!out) fail("{}: no PNG writer available: {}", name, OIIO::geterror());
     const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
     OIIO::ImageSpec spec(display.width, display.height, display.channels, type);
+    // Our alpha is straight (unassociated): stop OIIO from un-premultiplying the colour.
+    spec.attribute("oiio:UnassociatedAlpha", 1);
     if (!out->open(temp.string(), spec)) fail("{}: cannot write PNG: {}", name, out->geterror());
     const void* data = bits == 8 ? static_cast<const void*>(q8.data()) : q16.data();
     if (!out->write_image(type, data) || !out->close())
