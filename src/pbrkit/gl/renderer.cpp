@@ -156,7 +156,7 @@ struct Renderer::State {
   GLuint msaa_fbo = 0, msaa_color = 0, msaa_depth = 0;
   GLuint resolve_fbo = 0, resolve_color = 0;
   int width = 0, height = 0, samples = 0;
-  GLuint timer = 0;
+  std::array<GLuint, 2> timer{};
   bool timer_pending = false;
 
   void release_scene() {
@@ -210,7 +210,7 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {
   glTextureSubImage2D(s.white_texture, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, white);
   s.specular_cube = upload_cube(nullptr);
   s.irradiance_cube = upload_cube(nullptr);
-  glCreateQueries(GL_TIME_ELAPSED, 1, &s.timer);
+  glCreateQueries(GL_TIMESTAMP, 2, s.timer.data());
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 }
 
@@ -223,7 +223,7 @@ Renderer::~Renderer() {
   glDeleteTextures(1, &s.specular_cube);
   glDeleteTextures(1, &s.irradiance_cube);
   if (s.env_texture) glDeleteTextures(1, &s.env_texture);
-  glDeleteQueries(1, &s.timer);
+  glDeleteQueries(2, s.timer.data());
 }
 
 void Renderer::set_scene(const Scene& scene) {
@@ -337,7 +337,8 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   const glm::mat4 projection = projection_matrix(camera, aspect);
   const glm::mat4 view_projection = projection * view;
 
-  glBeginQuery(GL_TIME_ELAPSED, s.timer);
+  // GPU time between two timestamps (llvmpipe's GL_TIME_ELAPSED reports nonsense).
+  glQueryCounter(s.timer[0], GL_TIMESTAMP);
   glBindFramebuffer(GL_FRAMEBUFFER, s.msaa_fbo);
   glViewport(0, 0, width, height);
   glDisable(GL_BLEND);
@@ -501,7 +502,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   // Resolve the samples into the single-sample float target.
   glBlitNamedFramebuffer(s.msaa_fbo, s.resolve_fbo, 0, 0, width, height, 0, 0, width, height,
                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glEndQuery(GL_TIME_ELAPSED);
+  glQueryCounter(s.timer[1], GL_TIMESTAMP);
   s.timer_pending = true;
 }
 
@@ -526,9 +527,10 @@ unsigned Renderer::framebuffer() const {
 
 double Renderer::gpu_time_ms() const {
   if (!state_->timer_pending) return 0.0;
-  GLuint64 ns = 0;
-  glGetQueryObjectui64v(state_->timer, GL_QUERY_RESULT, &ns);
-  return double(ns) * 1e-6;
+  GLuint64 begin = 0, end = 0;
+  glGetQueryObjectui64v(state_->timer[0], GL_QUERY_RESULT, &begin);
+  glGetQueryObjectui64v(state_->timer[1], GL_QUERY_RESULT, &end);
+  return end > begin ? double(end - begin) * 1e-6 : 0.0;
 }
 
 Image render_headless(const Scene& scene, const Camera& camera, int width, int height,

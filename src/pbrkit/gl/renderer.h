@@ -83,7 +83,7 @@ class Renderer {
   Image read_back() const;
   /// The resolved single-sample framebuffer of the last frame (for blitting in a window).
   unsigned framebuffer() const;
-  /// GPU time of the last render() in milliseconds (GL_TIME_ELAPSED query); waits for it.
+  /// GPU time of the last render() in milliseconds (two GL_TIMESTAMP queries); waits for it.
   double gpu_time_ms() const;
 
  private:

@@ -1,0 +1,105 @@
+// OpenGL renderer benchmarks (issue #6): the frame time of the built-in `spheres` scene
+// with IBL and two punctual lights at 1280x720 (wall clock with glFinish, and GPU time from
+// timestamp queries), and the time to the first image of a headless render including
+// context creation, shader compilation, the IBL bake and the readback.
+// Run with LP_NUM_THREADS=2 on llvmpipe; figures go to BENCHMARKS.md ("## OpenGL").
+#include <chrono>
+#include <memory>
+
+#include <benchmark/benchmark.h>
+#include <epoxy/gl.h>
+
+#include "pbrkit/gl/context.h"
+#include "pbrkit/gl/renderer.h"
+#include "pbrkit/ibl/bake.h"
+#include "pbrkit/scene/camera.h"
+#include "pbrkit/scene/load.h"
+
+namespace {
+
+using namespace pbrkit;
+
+Scene spheres_with_two_lights() {
+  Scene scene = builtin_scene("spheres");
+  Light key;
+  key.name = "key";
+  key.position = glm::vec3(4.0f, 5.0f, 8.0f);
+  key.intensity = 60.0f;
+  Light fill;
+  fill.name = "fill";
+  fill.position = glm::vec3(-6.0f, -2.0f, 6.0f);
+  fill.color = glm::vec3(0.6f, 0.7f, 1.0f);
+  fill.intensity = 30.0f;
+  scene.lights = {key, fill};
+  return scene;
+}
+
+BakeOptions viewer_bake() {
+  BakeOptions bake;  // what `pbrkit render --renderer gl` uses by default
+  bake.face_size = 128;
+  bake.min_face_size = 8;
+  bake.samples = 256;
+  bake.irradiance_size = 16;
+  bake.lut_size = 32;
+  return bake;
+}
+
+void BM_GlFrameSpheresIblTwoLights(benchmark::State& state) {
+  const int width = int(state.range(0)), height = int(state.range(1));
+  gl::HeadlessContext context;
+  gl::Renderer renderer;
+  const Scene scene = spheres_with_two_lights();
+  const Environment env = load_environment_or_default("", 0.0f, 1.0f);
+  const gl::IblMaps maps = gl::ibl_maps_from_bake(bake_environment(env, viewer_bake()), env);
+  renderer.set_scene(scene);
+  renderer.set_environment(&env);
+  renderer.set_ibl(&maps);
+  const Camera camera = select_camera(scene, std::nullopt, float(width) / float(height));
+  gl::RenderSettings settings;  // msaa 4, SH irradiance, reference model
+  // Warm-up: llvmpipe compiles the shaders' machine code at the first draw.
+  renderer.render(camera, width, height, settings);
+  glFinish();
+  double gpu_ms = 0.0;
+  for (auto _ : state) {
+    renderer.render(camera, width, height, settings);
+    glFinish();
+    gpu_ms += renderer.gpu_time_ms();
+  }
+  state.counters["gpu_ms"] = gpu_ms / double(state.iterations());
+  state.SetLabel(gl::describe_current_context());
+}
+BENCHMARK(BM_GlFrameSpheresIblTwoLights)
+    ->Args({1280, 720})
+    ->Args({320, 180})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(3.0);
+
+void BM_GlReadBack(benchmark::State& state) {
+  gl::HeadlessContext context;
+  gl::Renderer renderer;
+  renderer.set_scene(Scene{});
+  gl::RenderSettings settings;
+  settings.background.mode = gl::Background::Mode::kColor;
+  const Camera camera = auto_camera(Bounds{}, 16.0f / 9.0f);
+  renderer.render(camera, 1280, 720, settings);
+  for (auto _ : state) benchmark::DoNotOptimize(renderer.read_back());
+}
+BENCHMARK(BM_GlReadBack)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Everything `pbrkit render --renderer gl` does for its first image, minus the file writes.
+void BM_GlTimeToFirstImage(benchmark::State& state) {
+  const Scene scene = spheres_with_two_lights();
+  for (auto _ : state) {
+    const Environment env = load_environment_or_default("", 0.0f, 1.0f);
+    const gl::IblMaps maps = gl::ibl_maps_from_bake(bake_environment(env, viewer_bake()), env);
+    const Camera camera = select_camera(scene, std::nullopt, 1280.0f / 720.0f);
+    benchmark::DoNotOptimize(
+        gl::render_headless(scene, camera, 1280, 720, &env, &maps, gl::RenderSettings{}));
+  }
+}
+BENCHMARK(BM_GlTimeToFirstImage)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
+
+}  // namespace
+
+BENCHMARK_MAIN();
