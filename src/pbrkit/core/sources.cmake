@@ -4,3 +4,4 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/energy.cpp
   ${CMAKE_CURRENT_LIST_DIR}/material.cpp
   ${CMAKE_CURRENT_LIST_DIR}/color.cpp)
+target_sources(pbrkit PRIVATE ${CMAKE_CURRENT_LIST_DIR}/brdf_plots.cpp)
