@@ -62,6 +62,10 @@ double chi2_survival(double statistic, int dof);
 std::vector<double> integrate_pdf_over_bins(const std::function<double(glm::vec3)>& pdf,
                                             const Chi2Options& options = {});
 
+/// int f(w) dw over the sphere with the same adaptive cubature (2 x 2 bins split at the
+/// horizon), to roughly `tolerance` absolute: used for directional albedos.
+double integrate_over_sphere(const std::function<double(glm::vec3)>& f, double tolerance = 1e-6);
+
 /// Adaptive 1D quadrature (adaptive Simpson, Lyness 1969) of f over [a, b] in double
 /// precision, to absolute tolerance `eps`: used by the tests' brute-force integrals.
 double adaptive_simpson(const std::function<double(double)>& f, double a, double b, double eps,
