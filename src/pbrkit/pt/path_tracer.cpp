@@ -330,42 +330,58 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
     }
     return false;
   };
-  tbb::enumerable_thread_specific<std::uint64_t> ray_counts(0), sample_counts(0);
+  tbb::enumerable_thread_specific<std::uint64_t> ray_counts(0);
+  // Progress state shared with the worker threads: atomics only (the film itself is read
+  // by the reporter only between passes).
+  std::atomic<std::uint64_t> samples_taken{0};
+  std::atomic<double> work_done{0.0};
+  std::atomic<double> mean_noise{0.0};
   std::mutex progress_mutex;
   double last_progress = -1.0;
   const double work_total = double(film.pixel_count()) * double(total);
+  auto pass_statistics = [&] {
+    // Work done (a stopped pixel counts as finished) and the mean noise estimate.
+    double done = 0.0, noise = 0.0;
+    std::size_t noisy = 0;
+    for (std::size_t i = 0; i < film.pixel_count(); ++i) {
+      done += film.done[i] > 0.0f ? double(total) : double(film.count[i]);
+      const float e = film.pixel_noise(i);
+      if (std::isfinite(e)) {
+        noise += double(e);
+        ++noisy;
+      }
+    }
+    work_done = done;
+    mean_noise = noisy ? noise / double(noisy) : 0.0;
+  };
+  pass_statistics();
   auto report = [&](bool force) {
     if (!progress) return;
     std::lock_guard<std::mutex> lock(progress_mutex);
     const double now = elapsed();
     if (!force && now - last_progress < 0.25) return;
     last_progress = now;
-    double done = 0.0;
-    std::uint64_t samples = 0;
-    for (auto c : sample_counts) samples += c;
-    for (std::size_t i = 0; i < film.pixel_count(); ++i)
-      done += film.done[i] > 0.0f ? double(total) : double(film.count[i]);
-    const double rate = now > 0.0 ? double(samples) / now : 0.0;
-    std::string detail = fmt::format("{:.2f} M samples*px/s", rate * 1e-6);
-    if (!progress(std::min(1.0, done / work_total), detail)) stop = true;
+    const double rate = now > 0.0 ? double(samples_taken.load()) / now : 0.0;
+    const std::string detail =
+        fmt::format("{:.2f} M samples*px/s, noise {:.4f}", rate * 1e-6, mean_noise.load());
+    if (!progress(std::min(1.0, work_done.load() / work_total), detail)) stop = true;
   };
 
   double last_checkpoint = 0.0;
   std::uint32_t target = 0;
   bool complete = false;
   while (!complete && !should_stop()) {
-    target = next_target(target, total,
-                         settings.noise_threshold > 0.0f ? settings.min_spp : settings.min_spp);
+    target = next_target(target, total, settings.min_spp);
     arena.execute([&] {
       tbb::parallel_for(
           tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1),
           [&](const tbb::blocked_range2d<int>& r) {
             set_ftz_daz();
             std::uint64_t& rays = ray_counts.local();
-            std::uint64_t& samples = sample_counts.local();
             for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
               for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
                 if (should_stop()) return;
+                std::uint64_t tile_samples = 0;
                 const int x1 = std::min(settings.width, (tx + 1) * kTileSize);
                 const int y1 = std::min(settings.height, (ty + 1) * kTileSize);
                 for (int y = ty * kTileSize; y < y1; ++y)
@@ -391,9 +407,12 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
                       film.normal[i] += ps.normal;
                       film.depth[i] += ps.depth;
                       film.count[i] = float(s + 1);
-                      ++samples;
+                      ++tile_samples;
                     }
                   }
+                // Shared counters are touched once per tile, not per sample.
+                samples_taken.fetch_add(tile_samples, std::memory_order_relaxed);
+                work_done.fetch_add(double(tile_samples), std::memory_order_relaxed);
                 report(false);
               }
           });
@@ -407,6 +426,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
           film.done[i] = 1.0f;
     }
     complete = target >= total;
+    pass_statistics();
     if (!complete && settings.checkpoint && settings.checkpoint_interval > 0.0 &&
         elapsed() - last_checkpoint >= settings.checkpoint_interval) {
       settings.checkpoint(film);
@@ -419,11 +439,12 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
     for (std::size_t i = 0; i < film.pixel_count() && complete; ++i)
       complete = film.done[i] > 0.0f || film.count[i] >= float(total);
   }
+  pass_statistics();
   report(true);
 
   result.stats.render_seconds = elapsed();
   for (auto c : ray_counts) result.stats.rays += c;
-  for (auto c : sample_counts) result.stats.samples += c;
+  result.stats.samples = samples_taken.load();
   result.stats.complete = complete;
   result.stats.stopped = !complete;
   double noise = 0.0;
