@@ -1,0 +1,118 @@
+// Cost of one call of Brdf::eval / sample / pdf (core/material.h) for both G models, with
+// and without multiple-scattering compensation. Directions, random numbers and materials
+// are generated before timing, so the figures are of the BRDF, not of the RNG.
+#include <benchmark/benchmark.h>
+
+#include <vector>
+
+#include "pbrkit/core/material.h"
+#include "pbrkit/core/sampling.h"
+
+namespace pbrkit {
+namespace {
+
+constexpr std::size_t kCount = 4096;  // power of two: index with a mask
+constexpr std::size_t kMaterials = 64;
+
+struct Inputs {
+  std::vector<glm::vec3> wo, wi;
+  std::vector<float> u_lobe;
+  std::vector<glm::vec2> u;
+  std::vector<Brdf> brdfs;
+
+  Inputs(BrdfModel model, bool multiscatter) {
+    Pcg32 rng(2024);
+    for (std::size_t i = 0; i < kCount; ++i) {
+      // Cosine-distributed directions: the typical inputs of a path tracer.
+      wo.push_back(sample_cosine_hemisphere(rng.next_2d()).direction);
+      wi.push_back(sample_cosine_hemisphere(rng.next_2d()).direction);
+      u_lobe.push_back(rng.next_float());
+      u.push_back(rng.next_2d());
+    }
+    for (std::size_t m = 0; m < kMaterials; ++m)
+      brdfs.emplace_back(glm::vec3(rng.next_float(), rng.next_float(), rng.next_float()),
+                         rng.next_float(), rng.next_float(), BrdfOptions{model, multiscatter});
+  }
+};
+
+const Inputs& inputs(BrdfModel model, bool multiscatter) {
+  static const Inputs sets[4] = {{BrdfModel::kReference, false},
+                                 {BrdfModel::kReference, true},
+                                 {BrdfModel::kClassic, false},
+                                 {BrdfModel::kClassic, true}};
+  return sets[(model == BrdfModel::kClassic ? 2 : 0) + (multiscatter ? 1 : 0)];
+}
+
+template <BrdfModel kModel, bool kMultiscatter>
+void BM_Eval(benchmark::State& state) {
+  const Inputs& in = inputs(kModel, kMultiscatter);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Brdf& brdf = in.brdfs[i & (kMaterials - 1)];
+    benchmark::DoNotOptimize(brdf.eval(in.wo[i], in.wi[i]));
+    i = (i + 1) & (kCount - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+template <BrdfModel kModel, bool kMultiscatter>
+void BM_Sample(benchmark::State& state) {
+  const Inputs& in = inputs(kModel, kMultiscatter);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Brdf& brdf = in.brdfs[i & (kMaterials - 1)];
+    benchmark::DoNotOptimize(brdf.sample(in.wo[i], in.u_lobe[i], in.u[i]));
+    i = (i + 1) & (kCount - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+template <BrdfModel kModel, bool kMultiscatter>
+void BM_Pdf(benchmark::State& state) {
+  const Inputs& in = inputs(kModel, kMultiscatter);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const Brdf& brdf = in.brdfs[i & (kMaterials - 1)];
+    benchmark::DoNotOptimize(brdf.pdf(in.wo[i], in.wi[i]));
+    i = (i + 1) & (kCount - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+// Constructing a Brdf (per hit point in a path tracer): parameter clamping, F0 and, with
+// compensation, the table lookups for E_avg and Fms.
+template <bool kMultiscatter>
+void BM_Construct(benchmark::State& state) {
+  const Inputs& in = inputs(BrdfModel::kReference, kMultiscatter);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const float r = in.u[i].x, m = in.u[i].y;
+    Brdf brdf(in.wi[i], m, r, {BrdfModel::kReference, kMultiscatter});
+    benchmark::DoNotOptimize(brdf);
+    i = (i + 1) & (kCount - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+constexpr BrdfModel kRef = BrdfModel::kReference;
+constexpr BrdfModel kClassic = BrdfModel::kClassic;
+
+BENCHMARK(BM_Eval<kRef, false>)->Name("eval/reference");
+BENCHMARK(BM_Eval<kRef, true>)->Name("eval/reference/multiscatter");
+BENCHMARK(BM_Eval<kClassic, false>)->Name("eval/classic");
+BENCHMARK(BM_Eval<kClassic, true>)->Name("eval/classic/multiscatter");
+BENCHMARK(BM_Sample<kRef, false>)->Name("sample/reference");
+BENCHMARK(BM_Sample<kRef, true>)->Name("sample/reference/multiscatter");
+BENCHMARK(BM_Sample<kClassic, false>)->Name("sample/classic");
+BENCHMARK(BM_Sample<kClassic, true>)->Name("sample/classic/multiscatter");
+BENCHMARK(BM_Pdf<kRef, false>)->Name("pdf/reference");
+BENCHMARK(BM_Pdf<kRef, true>)->Name("pdf/reference/multiscatter");
+BENCHMARK(BM_Pdf<kClassic, false>)->Name("pdf/classic");
+BENCHMARK(BM_Pdf<kClassic, true>)->Name("pdf/classic/multiscatter");
+BENCHMARK(BM_Construct<false>)->Name("construct/reference");
+BENCHMARK(BM_Construct<true>)->Name("construct/reference/multiscatter");
+
+}  // namespace
+}  // namespace pbrkit
+
+BENCHMARK_MAIN();
