@@ -116,15 +116,36 @@ void build_mip_chain(Cubemap& cube, int min_size) {
   }
 }
 
+float ggx_cone_fraction(float alpha, float cos_theta_h) {
+  // The GGX NDF's CDF in theta_h (the inverse of the seeds' sampling formula):
+  // P(theta_h < t) = tan^2 t / (alpha^2 + tan^2 t).
+  if (cos_theta_h <= 0.0f) return 1.0f;
+  const float c2 = cos_theta_h * cos_theta_h;
+  const float tan2 = (1.0f - c2) / c2;
+  return tan2 / (alpha * alpha + tan2);
+}
+
 std::vector<PrefilterSample> prefilter_samples(float roughness, int samples, int source_size,
-                                               int source_levels, bool filtered, float lod_bias) {
+                                               int source_levels, bool filtered, float lod_bias,
+                                               float core_cos_h) {
   std::vector<PrefilterSample> out;
   out.reserve(samples);
   const float alpha = sqr(std::max(roughness, kMinRoughness));
   // Omega_p: solid angle of one texel of the source mip 0 (the average over the cube).
   const float omega_p = 4.0f * kPi / (6.0f * float(source_size) * float(source_size));
+  // Never read levels below kMinFisFaceSize px: lookups clamp at face edges (no cross-face
+  // filtering), so a 1-4 px face is a constant and sparse tail samples reading it draw the
+  // cube's face boundaries into the result as sharp-edged facets (seen in the previews).
+  int coarsest = source_levels - 1;
+  while (coarsest > 0 && (source_size >> coarsest) < kMinFisFaceSize) --coarsest;
+  const float max_lod = float(coarsest);
+  // Samples restricted to the cone theta_h < acos(core_cos_h): u.y scaled by the cone's
+  // probability, so the conditional pdf is pdf / fraction.
+  const float fraction = ggx_cone_fraction(alpha, core_cos_h);
   for (int i = 0; i < samples; ++i) {
-    const glm::vec3 h = sample_ggx_ndf(hammersley(i, samples), alpha).h;
+    glm::vec2 u = hammersley(std::uint32_t(i), std::uint32_t(samples));
+    u.y *= fraction;
+    const glm::vec3 h = sample_ggx_ndf(u, alpha).h;
     // n = v = R = +Z (Karis 2013): l = reflect(-v, h) = 2 (v.h) h - v.
     const glm::vec3 l(2.0f * h.z * h.x, 2.0f * h.z * h.y, 2.0f * h.z * h.z - 1.0f);
     if (l.z <= 0.0f) continue;
@@ -133,10 +154,9 @@ std::vector<PrefilterSample> prefilter_samples(float roughness, int samples, int
       // pdf(l) = D(h) (n.h) / (4 v.h) = D(h) / 4 when n = v. Colbert & Krivanek 2007
       // (GPU Gems 3, ch. 20, eq. 13): lod = 0.5 log2(Omega_s / Omega_p) + 1,
       // Omega_s = 1 / (N pdf).
-      const float pdf = DistributionGGX(h, alpha) * 0.25f;
+      const float pdf = DistributionGGX(h, alpha) * 0.25f / fraction;
       const float omega_s = 1.0f / (float(samples) * pdf);
-      lod = std::clamp(0.5f * std::log2(omega_s / omega_p) + lod_bias, 0.0f,
-                       float(source_levels - 1));
+      lod = std::clamp(0.5f * std::log2(omega_s / omega_p) + lod_bias, 0.0f, max_lod);
     }
     out.push_back({l, l.z, lod});
   }
@@ -196,16 +216,17 @@ QuadratureSource flatten_level(const Cubemap& cube, int level) {
   return q;
 }
 
-// P(R) = sum L D(h) max(0, R.l) dOmega / sum D(h) max(0, R.l) dOmega with n = v = R, so
-// (n.h)^2 = (1 + R.l) / 2 and D depends on R.l alone; D's constant alpha^2 / pi cancels.
-glm::vec3 quadrature_direction(const QuadratureSource& q, float alpha, glm::vec3 R) {
+// Sums over the source texels with R.l < cos_max of L w and w, w = max(0, R.l) / d^2 dOmega
+// where, with n = v = R, (n.h)^2 = (1 + R.l) / 2 and D(h) = alpha^2 / (pi d^2),
+// d = (n.h)^2 (alpha^2 - 1) + 1: so D(h) max(0, R.l) dOmega = alpha^2 / pi * w.
+glm::vec4 quadrature_sums(const QuadratureSource& q, float alpha, glm::vec3 R, float cos_max) {
   constexpr int kLanes = 8;  // independent partial sums: lets the compiler vectorise
   float sr[kLanes] = {}, sg[kLanes] = {}, sb[kLanes] = {}, sw[kLanes] = {};
   const float a2m1 = alpha * alpha - 1.0f;
   const std::size_t n = q.x.size(), blocks = n / kLanes * kLanes;
   auto term = [&](std::size_t i, float& r, float& g, float& b, float& w) {
     const float c = R.x * q.x[i] + R.y * q.y[i] + R.z * q.z[i];
-    const float NdotL = std::max(c, 0.0f);
+    const float NdotL = c < cos_max ? std::max(c, 0.0f) : 0.0f;
     const float d = (0.5f + 0.5f * c) * a2m1 + 1.0f;
     const float weight = NdotL / (d * d);
     r += weight * q.r[i];
@@ -218,7 +239,7 @@ glm::vec3 quadrature_direction(const QuadratureSource& q, float alpha, glm::vec3
   for (std::size_t i = blocks; i < n; ++i) term(i, sr[0], sg[0], sb[0], sw[0]);
   float r = 0, g = 0, b = 0, w = 0;
   for (int k = 0; k < kLanes; ++k) r += sr[k], g += sg[k], b += sb[k], w += sw[k];
-  return w > 0.0f ? glm::vec3(r, g, b) / w : glm::vec3(0.0f);
+  return {r, g, b, w};
 }
 
 }  // namespace
@@ -241,6 +262,85 @@ bool use_quadrature(const Cubemap& source, float roughness, int out_size) {
   return roughness >= 0.25f && 36.0 * double(out_size) * out_size * S * S <= double(1 << 28);
 }
 
+namespace {
+
+// How one specular level is computed.
+struct LevelPlan {
+  bool quadrature = false;  // direct quadrature over `texels` (all of the sphere)
+  float alpha = 0.0f;
+  // Importance-sampled levels: GGX samples restricted to the cone R.l >= cos_core, which
+  // holds `core_fraction` of the lobe, plus the tail (R.l < cos_core) by quadrature over
+  // the coarse `texels`: the sparse tail samples of a narrow lobe alias on small bright
+  // lights (streaks and facets in the previews); a quadrature has no such noise.
+  std::vector<PrefilterSample> samples;
+  int sample_count = 0;
+  float core_fraction = 1.0f;
+  float cos_core = -2.0f;
+  QuadratureSource texels;
+};
+
+LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int level, int levels) {
+  LevelPlan plan;
+  const int size = source.size(0) >> level;
+  const float roughness = mip_roughness(level, levels, options.mapping);
+  plan.alpha = sqr(std::max(roughness, kMinRoughness));
+  if (options.quadrature_for_rough_levels && use_quadrature(source, roughness, size)) {
+    plan.quadrature = true;
+    plan.texels = flatten_level(source, quadrature_source_level(source, roughness));
+    return plan;
+  }
+  float core_cos_h = 0.0f;  // whole hemisphere of h: no tail
+  if (options.quadrature_for_rough_levels) {
+    // The tail's source level: the finest with at most 2^28 texel pairs for this level.
+    int tail_level = 0;
+    while (tail_level + 1 < source.levels() &&
+           36.0 * double(size) * size * double(source.size(tail_level)) * source.size(tail_level) >
+               double(1 << 28))
+      ++tail_level;
+    // The core cone spans 4 tail texels (pi/2 / S rad each) in l, half that in h.
+    const float theta_l = std::min(4.0f * 0.5f * kPi / float(source.size(tail_level)), 1.2f);
+    plan.cos_core = std::cos(theta_l);
+    core_cos_h = std::cos(0.5f * theta_l);
+    plan.texels = flatten_level(source, tail_level);
+  }
+  plan.samples =
+      prefilter_samples(roughness, options.samples, source.size(0), source.levels(),
+                        options.filtered_importance_sampling, kPrefilterLodBias, core_cos_h);
+  plan.sample_count = options.samples;
+  plan.core_fraction = ggx_cone_fraction(plan.alpha, core_cos_h);
+  return plan;
+}
+
+glm::vec3 prefilter_planned(const Cubemap& source, const LevelPlan& plan, glm::vec3 R) {
+  if (plan.quadrature) {
+    const glm::vec4 s = quadrature_sums(plan.texels, plan.alpha, R, 2.0f);
+    return s.w > 0.0f ? glm::vec3(s) / s.w : glm::vec3(0.0f);
+  }
+  // Core: int_core L D/4 n.l dl ~= fraction / N sum L(l_i) n.l_i (l_i drawn from the
+  // conditional pdf D / (4 fraction)); the same without L for the normalisation.
+  const Frame frame(R);
+  glm::vec3 sum(0.0f);
+  float weight = 0.0f;
+  for (const PrefilterSample& smp : plan.samples) {
+    const glm::vec3 l = frame.t * smp.l.x + frame.b * smp.l.y + frame.n * smp.l.z;
+    sum += fetch(source, l, smp.lod) * smp.weight;
+    weight += smp.weight;
+  }
+  const float core_scale = plan.core_fraction / float(plan.sample_count);
+  glm::vec3 num = sum * core_scale;
+  float den = weight * core_scale;
+  if (!plan.texels.x.empty()) {
+    // Tail: D/4 n.l dOmega = alpha^2 / (4 pi) * w (see quadrature_sums).
+    const glm::vec4 s = quadrature_sums(plan.texels, plan.alpha, R, plan.cos_core);
+    const float k = plan.alpha * plan.alpha * 0.25f * kInvPi;
+    num += glm::vec3(s) * k;
+    den += s.w * k;
+  }
+  return den > 0.0f ? num / den : glm::vec3(0.0f);
+}
+
+}  // namespace
+
 Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
                            const ProgressCallback& progress) {
   const int face_size = source.size(0);
@@ -251,22 +351,15 @@ Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
     int level, face, y;
   };
   std::vector<Row> rows;
-  std::vector<std::vector<PrefilterSample>> level_samples(levels);
-  std::vector<QuadratureSource> level_quadrature(levels);
+  std::vector<LevelPlan> plans(levels);
   std::vector<double> row_work(levels, 0.0);
   double total_work = 0.0;
   for (int m = 1; m < levels; ++m) {
     const int size = face_size >> m;
-    const float roughness = mip_roughness(m, levels, options.mapping);
     out.mips.push_back(make_faces(size));
-    if (options.quadrature_for_rough_levels && use_quadrature(source, roughness, size)) {
-      level_quadrature[m] = flatten_level(source, quadrature_source_level(source, roughness));
-      row_work[m] = double(size) * double(level_quadrature[m].x.size()) * 0.1;
-    } else {
-      level_samples[m] = prefilter_samples(roughness, options.samples, face_size, source.levels(),
-                                           options.filtered_importance_sampling);
-      row_work[m] = double(size) * double(level_samples[m].size());
-    }
+    plans[m] = plan_level(source, options, m, levels);
+    row_work[m] =
+        double(size) * (double(plans[m].samples.size()) + 0.1 * double(plans[m].texels.x.size()));
     for (int face = 0; face < 6; ++face)
       for (int y = 0; y < size; ++y) rows.push_back({m, face, y});
     total_work += 6.0 * size * row_work[m];
@@ -276,17 +369,11 @@ Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const Row row = rows[i];
       const int size = face_size >> row.level;
-      const float alpha =
-          sqr(std::max(mip_roughness(row.level, levels, options.mapping), kMinRoughness));
-      const auto& samples = level_samples[row.level];
-      const auto& quadrature = level_quadrature[row.level];
       Image& img = out.mips[row.level][row.face];
       for (int x = 0; x < size; ++x) {
         const glm::vec3 R = cube_direction(
             row.face, {(float(x) + 0.5f) / float(size), (float(row.y) + 0.5f) / float(size)});
-        img.set_rgb(x, row.y,
-                    quadrature.x.empty() ? prefilter_direction(source, samples, R)
-                                         : quadrature_direction(quadrature, alpha, R));
+        img.set_rgb(x, row.y, prefilter_planned(source, plans[row.level], R));
       }
       counter.add(row_work[row.level], "specular");
     }

@@ -40,6 +40,10 @@ int specular_levels(int face_size, int min_face_size);
 /// samples, so we use 0.
 inline constexpr float kPrefilterLodBias = 0.0f;
 
+/// The coarsest source level that filtered importance sampling reads has faces of at least
+/// this size.
+inline constexpr int kMinFisFaceSize = 16;
+
 /// One precomputed prefilter sample in the local frame of R (n = v = R = +Z).
 struct PrefilterSample {
   glm::vec3 l;   ///< light direction, local frame
@@ -49,10 +53,16 @@ struct PrefilterSample {
 
 /// The `samples` Hammersley GGX samples for `roughness` (alpha = max(roughness,
 /// kMinRoughness)^2), those below the horizon dropped, each with its Colbert & Krivanek
-/// 2007 lod for a source cube of `source_size` px and `source_levels` levels.
+/// 2007 lod for a source cube of `source_size` px and `source_levels` levels. With
+/// core_cos_h > 0 the half vectors are restricted to theta_h < acos(core_cos_h) (the lobe's
+/// core; the lod then uses the conditional pdf).
 std::vector<PrefilterSample> prefilter_samples(float roughness, int samples, int source_size,
                                                int source_levels, bool filtered = true,
-                                               float lod_bias = kPrefilterLodBias);
+                                               float lod_bias = kPrefilterLodBias,
+                                               float core_cos_h = 0.0f);
+
+/// The GGX NDF's probability of theta_h < acos(cos_theta_h) (1 for cos_theta_h <= 0).
+float ggx_cone_fraction(float alpha, float cos_theta_h);
 
 /// The prefiltered radiance in direction R (unit): sum L(l) n.l / sum n.l over `samples`.
 glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<PrefilterSample>& samples,

@@ -5,4 +5,5 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/roughness_mapping.cpp
   ${CMAKE_CURRENT_LIST_DIR}/bake.cpp
   ${CMAKE_CURRENT_LIST_DIR}/validate.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/ktx2.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/ktx2.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/bake_output.cpp)
