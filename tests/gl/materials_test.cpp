@@ -1,0 +1,75 @@
+// glTF material features of the GL renderer with closed-form expectations (no lights, no
+// environment, so only the feature under test contributes): emission is added as is,
+// alpha MASK discards below the cutoff, alpha BLEND composites "over" the background.
+#include <gtest/gtest.h>
+
+#include "gl_test_context.h"
+#include "pbrkit/gl/renderer.h"
+#include "pbrkit/scene/camera.h"
+#include "pbrkit/scene/load.h"
+
+namespace pbrkit::gl {
+namespace {
+
+constexpr int kSize = 32;
+const glm::vec3 kBackground(0.1f, 0.2f, 0.3f);
+
+// The furnace sphere with `material`, rendered against a solid background; the centre.
+glm::vec3 centre_pixel(const Material& material) {
+  testing::context();
+  Scene scene = builtin_scene("furnace");
+  scene.materials.at(0) = material;
+  RenderSettings settings;
+  settings.msaa = 1;
+  settings.background.mode = Background::Mode::kColor;
+  settings.background.color = kBackground;
+  const Camera camera = select_camera(scene, std::nullopt, 1.0f);
+  const Image image = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, settings);
+  return image.rgb(kSize / 2, kSize / 2);
+}
+
+Material emissive_material() {
+  Material m;
+  m.base_color_factor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  m.metallic_factor = 0.0f;
+  m.emissive_factor = glm::vec3(0.2f, 0.5f, 1.0f);
+  m.emissive_strength = 2.0f;  // KHR_materials_emissive_strength
+  return m;
+}
+
+TEST(GlMaterials, EmissionIsAdded) {
+  const glm::vec3 c = centre_pixel(emissive_material());
+  EXPECT_NEAR(c.r, 0.4f, 1e-5f);
+  EXPECT_NEAR(c.g, 1.0f, 1e-5f);
+  EXPECT_NEAR(c.b, 2.0f, 1e-5f);
+}
+
+TEST(GlMaterials, AlphaMaskDiscardsBelowTheCutoff) {
+  Material m = emissive_material();
+  m.alpha_mode = AlphaMode::kMask;
+  m.alpha_cutoff = 0.5f;
+  m.base_color_factor.a = 0.3f;
+  const glm::vec3 hidden = centre_pixel(m);
+  EXPECT_NEAR(hidden.r, kBackground.r, 1e-6f);
+  EXPECT_NEAR(hidden.b, kBackground.b, 1e-6f);
+  m.base_color_factor.a = 0.7f;
+  EXPECT_NEAR(centre_pixel(m).b, 2.0f, 1e-5f);
+}
+
+TEST(GlMaterials, AlphaBlendCompositesOver) {
+  Material m = emissive_material();
+  m.alpha_mode = AlphaMode::kBlend;
+  m.base_color_factor.a = 0.25f;
+  m.double_sided = true;  // the far side of the sphere is blended first, then the near one
+  const glm::vec3 c = centre_pixel(m);
+  // Two layers (back then front), each out = 0.25 emission + 0.75 below.
+  const glm::vec3 e(0.4f, 1.0f, 2.0f);
+  const glm::vec3 back = 0.25f * e + 0.75f * kBackground;
+  const glm::vec3 expected = 0.25f * e + 0.75f * back;
+  EXPECT_NEAR(c.r, expected.r, 1e-4f);
+  EXPECT_NEAR(c.g, expected.g, 1e-4f);
+  EXPECT_NEAR(c.b, expected.b, 1e-4f);
+}
+
+}  // namespace
+}  // namespace pbrkit::gl
