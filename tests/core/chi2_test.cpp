@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "pbrkit/core/material.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"
 #include "support/chi2.h"
@@ -112,6 +113,26 @@ TEST(Chi2Test, RejectsWrongDistribution) {
       },
       [](glm::vec3 w) { return w.z > 0.0f ? 1.0 / (2.0 * kPiD) : 0.0; });
   EXPECT_FALSE(b.passed) << b.report;
+}
+
+TEST(Chi2Test, RejectsSubtlyWrongBrdfPdf) {
+  // The material sampler with compensation on, offered the pdf of the same material with
+  // compensation off: only the lobe-selection probability differs (a few percent).
+  const glm::vec3 wo = glm::normalize(glm::vec3(0.3f, 0.2f, 0.6f));
+  const Brdf on(glm::vec3(0.8f), 0.5f, 0.6f, {BrdfModel::kReference, true});
+  const Brdf off(glm::vec3(0.8f), 0.5f, 0.6f, {BrdfModel::kReference, false});
+  ASSERT_NE(on.specular_probability(wo), off.specular_probability(wo));
+  auto sampler = [&](float u_lobe, glm::vec2 u) -> std::optional<glm::vec3> {
+    const BrdfSample s = on.sample(wo, u_lobe, u);
+    if (!s.valid) return std::nullopt;
+    return s.wi;
+  };
+  const Chi2Result wrong =
+      chi2_sphere_test(sampler, [&](glm::vec3 wi) { return double(off.pdf(wo, wi)); });
+  EXPECT_FALSE(wrong.passed) << wrong.report;
+  const Chi2Result right =
+      chi2_sphere_test(sampler, [&](glm::vec3 wi) { return double(on.pdf(wo, wi)); });
+  EXPECT_TRUE(right.passed) << right.report;
 }
 
 TEST(Chi2Test, RejectsUnaccountedRejections) {
