@@ -12,6 +12,7 @@
 #include <set>
 
 #include <draco/compression/decode.h>
+#include <meshoptimizer.h>
 #include <tiny_gltf.h>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -33,8 +34,8 @@ using nlohmann::json;
 
 // Extensions this loader implements; any other one in extensionsRequired is an error.
 const std::set<std::string> kSupportedExtensions = {
-    "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_lights_punctual",
-    "KHR_mesh_quantization", "KHR_draco_mesh_compression"};
+    "KHR_materials_emissive_strength", "KHR_texture_transform",      "KHR_lights_punctual",
+    "KHR_mesh_quantization",           "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
 
 constexpr std::size_t kMaxImageFileBytes = std::size_t(1) << 30;
 
@@ -241,6 +242,8 @@ class Loader {
 
   void parse_container();
   void rebuild_glb();
+  bool prepare_meshopt_fallbacks(json& root);
+  void decode_meshopt_views();
   void check_json(const json& root);
   void check_uris(const json& root);
   void check_buffer_views();
@@ -280,6 +283,7 @@ class Loader {
   std::map<std::pair<int, bool>, int> texture_cache_;
   std::size_t texture_bytes_ = 0;
   std::size_t triangles_ = 0;
+  std::map<std::size_t, std::size_t> meshopt_fallbacks_;  // buffer -> real byteLength
   // Decoded Draco primitives: (mesh, primitive) -> attribute name -> accessor index of a
   // synthetic accessor appended to the model.
   std::map<std::pair<int, int>, std::pair<std::map<std::string, int>, int>> draco_;
@@ -308,11 +312,11 @@ void Loader::parse_container() {
     error("", fmt::format("invalid JSON: {}", e.what()));
   }
   check_json(root);
+  bool modified = prepare_meshopt_fallbacks(root);
   check_uris(root);
   // tinygltf insists that an indices accessor has a bufferView, which a Draco-compressed
   // primitive's does not (its indices come from the Draco stream): drop those references
   // before tinygltf parses the JSON.
-  bool modified = false;
   if (root.contains("meshes")) {
     for (json& mesh : root["meshes"]) {
       if (!mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
@@ -328,6 +332,107 @@ void Loader::parse_container() {
   if (modified) {
     json_text_ = root.dump();
     if (is_glb_) rebuild_glb();
+  }
+}
+
+// EXT_meshopt_compression: a buffer marked {"fallback": true} may have no uri; its bytes
+// are produced by decoding. tinygltf refuses uri-less buffers in .gltf files, so such a
+// buffer is given a 1-byte placeholder here and sized to its byteLength after parsing.
+bool Loader::prepare_meshopt_fallbacks(json& root) {
+  if (!root.contains("buffers")) return false;
+  bool modified = false;
+  json& buffers = root["buffers"];
+  for (std::size_t i = 0; i < buffers.size(); ++i) {
+    json& b = buffers[i];
+    if (b.contains("uri") || !b.contains("extensions") || !b["extensions"].is_object()) continue;
+    const json& ext = b["extensions"].contains("EXT_meshopt_compression")
+                          ? b["extensions"]["EXT_meshopt_compression"]
+                          : json();
+    if (!ext.is_object() || !ext.contains("fallback") || ext["fallback"] != true) continue;
+    if (is_glb_ && i == 0) continue;  // the GLB BIN chunk
+    const std::string where = fmt::format("buffers[{}].byteLength", i);
+    if (!b.contains("byteLength") || !b["byteLength"].is_number_unsigned())
+      error(where, "missing or not a non-negative integer");
+    const std::uint64_t length = b["byteLength"];
+    if (length > options_.limits.max_buffer_bytes)
+      error(where, fmt::format("{} bytes is more than the limit of {}", length,
+                               options_.limits.max_buffer_bytes));
+    meshopt_fallbacks_[i] = std::size_t(length);
+    b["uri"] = "data:application/octet-stream;base64,AA==";
+    b["byteLength"] = 1;
+    modified = true;
+  }
+  return modified;
+}
+
+void Loader::decode_meshopt_views() {
+  for (std::size_t i = 0; i < model_.bufferViews.size(); ++i) {
+    const auto& view = model_.bufferViews[i];
+    const auto it = view.extensions.find("EXT_meshopt_compression");
+    if (it == view.extensions.end()) continue;
+    const std::string where = fmt::format("bufferViews[{}].extensions.EXT_meshopt_compression", i);
+    const tinygltf::Value& e = it->second;
+    auto integer = [&](const char* name, int fallback, bool required) {
+      const tinygltf::Value& v = e.Get(name);
+      if (!v.IsInt()) {
+        if (required || v.Type() != tinygltf::NULL_TYPE) error(where + "." + name, "missing or not an integer");
+        return fallback;
+      }
+      const int x = v.GetNumberAsInt();
+      if (x < 0) error(where + "." + name, "must not be negative");
+      return x;
+    };
+    const int buffer = integer("buffer", 0, true);
+    const std::size_t offset = std::size_t(integer("byteOffset", 0, false));
+    const std::size_t length = std::size_t(integer("byteLength", 0, true));
+    const std::size_t stride = std::size_t(integer("byteStride", 0, true));
+    const std::size_t count = std::size_t(integer("count", 0, true));
+    const std::string mode = e.Get("mode").IsString() ? e.Get("mode").Get<std::string>() : "";
+    const std::string filter =
+        e.Get("filter").IsString() ? e.Get("filter").Get<std::string>() : "NONE";
+    if (std::size_t(buffer) >= model_.buffers.size())
+      error(where + ".buffer", fmt::format("buffer {} does not exist", buffer));
+    const auto& src = model_.buffers[std::size_t(buffer)].data;
+    if (offset > src.size() || length > src.size() - offset)
+      error(where, fmt::format("byteOffset {} + byteLength {} exceeds buffer {} ({} bytes)", offset,
+                               length, buffer, src.size()));
+    if (count * stride > view.byteLength || stride == 0)
+      error(where, fmt::format("count {} x byteStride {} does not fit the bufferView's {} bytes",
+                               count, stride, view.byteLength));
+    std::vector<unsigned char> out(count * stride);
+    int rc = -1;
+    if (mode == "ATTRIBUTES") {
+      if (stride % 4 != 0 || stride > 256)
+        error(where + ".byteStride", "must be a multiple of 4 up to 256 for ATTRIBUTES");
+      rc = meshopt_decodeVertexBuffer(out.data(), count, stride, src.data() + offset, length);
+    } else if (mode == "TRIANGLES" || mode == "INDICES") {
+      if (stride != 2 && stride != 4) error(where + ".byteStride", "must be 2 or 4 for indices");
+      if (mode == "TRIANGLES" && count % 3 != 0)
+        error(where + ".count", "must be a multiple of 3 for TRIANGLES");
+      rc =
+          mode == "TRIANGLES"
+              ? meshopt_decodeIndexBuffer(out.data(), count, stride, src.data() + offset, length)
+              : meshopt_decodeIndexSequence(out.data(), count, stride, src.data() + offset, length);
+    } else {
+      error(where + ".mode", fmt::format("invalid mode '{}'", mode));
+    }
+    if (rc != 0) error(where, fmt::format("meshopt decoding failed (code {})", rc));
+    if (filter == "OCTAHEDRAL") {
+      if (stride != 4 && stride != 8)
+        error(where + ".filter", "OCTAHEDRAL needs byteStride 4 or 8");
+      meshopt_decodeFilterOct(out.data(), count, stride);
+    } else if (filter == "QUATERNION") {
+      if (stride != 8) error(where + ".filter", "QUATERNION needs byteStride 8");
+      meshopt_decodeFilterQuat(out.data(), count, stride);
+    } else if (filter == "EXPONENTIAL") {
+      if (stride % 4 != 0) error(where + ".filter", "EXPONENTIAL needs a byteStride multiple of 4");
+      meshopt_decodeFilterExp(out.data(), count, stride);
+    } else if (filter != "NONE") {
+      error(where + ".filter", fmt::format("invalid filter '{}'", filter));
+    }
+    // The bufferView (already bounds-checked) now holds the decoded bytes.
+    auto& dst = model_.buffers[std::size_t(view.buffer)].data;
+    std::memcpy(dst.data() + view.byteOffset, out.data(), out.size());
   }
 }
 
@@ -592,7 +697,9 @@ std::vector<std::uint32_t> Loader::read_indices(int index, const std::string& wh
     // Rare, but allowed: go through the float path (exact for indices below 2^24).
     const std::vector<float> f = read_floats(index, where, 1, true);
     std::vector<std::uint32_t> out(f.size());
-    for (std::size_t i = 0; i < f.size(); ++i) out[i] = std::uint32_t(f[i]);
+    // Out-of-range values become UINT32_MAX, which the vertex-count check then rejects.
+    for (std::size_t i = 0; i < f.size(); ++i)
+      out[i] = f[i] >= 0.0f && f[i] < 4294967040.0f ? std::uint32_t(f[i]) : 0xFFFFFFFFu;
     return out;
   }
   std::vector<std::uint32_t> out(a.count);
@@ -770,7 +877,10 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
     if (w == 0.0f) continue;
     if (!std::isfinite(w))
       error(fmt::format("meshes[{}].weights[{}]", mesh_index, t), "is not finite");
-    for (const auto& [name, acc] : prim.targets[t]) {
+    for (const auto& target : prim.targets[t]) {
+      // (no structured binding: clang 14 cannot capture one in the lambda below)
+      const std::string& name = target.first;
+      const int acc = target.second;
       const std::string tw = fmt::format("{}.targets[{}].{}", where, t, name);
       auto apply = [&](auto& dst, int comps) {
         if (dst.empty()) return;
@@ -1348,7 +1458,10 @@ Scene Loader::load() {
     if (model_.buffers[i].data.size() > options_.limits.max_buffer_bytes)
       error(fmt::format("buffers[{}]", i), "exceeds the buffer size limit");
   }
+  for (const auto& [index, length] : meshopt_fallbacks_)
+    if (index < model_.buffers.size()) model_.buffers[index].data.assign(length, 0);
   check_buffer_views();
+  decode_meshopt_views();
   decode_draco_primitives();
   if (!model_.animations.empty())
     note("{}: {} animation(s) ignored (the scene is shown at rest)", file_,
