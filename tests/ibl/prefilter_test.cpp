@@ -45,10 +45,20 @@ TEST(Prefilter, LodGrowsWithRoughnessAndSampleSparsity) {
   EXPECT_LT(mean_lod(0.5f, 1024), mean_lod(1.0f, 1024));
   EXPECT_LT(mean_lod(0.5f, 1024), mean_lod(0.5f, 64));
   // At roughness 1 the lobe's solid-angle element per sample is 1/(N D/4) with D ~ 1/pi:
-  // lod at the pole = 0.5 log2(4 pi / N / (4 pi / (6 256^2))) + bias.
-  const auto s = prefilter_samples(1.0f, 1024, 256, 9);
-  EXPECT_NEAR(s[0].lod, 0.5f * std::log2(6.0f * 256.0f * 256.0f / 1024.0f) + kPrefilterLodBias,
+  // lod at the pole = 0.5 log2(4 pi / N / (4 pi / (6 1024^2))) + bias (~5.3, below the
+  // cap at the 16 px level, 6).
+  const auto s = prefilter_samples(1.0f, 4096, 1024, 11);
+  EXPECT_NEAR(s[0].lod, 0.5f * std::log2(6.0f * 1024.0f * 1024.0f / 4096.0f) + kPrefilterLodBias,
               0.05f);
+  // Coarse sampling never reads faces below kMinFisFaceSize px.
+  for (const auto& p : prefilter_samples(1.0f, 16, 256, 9))
+    EXPECT_LE(p.lod, std::log2(256.0f / kMinFisFaceSize) + 1e-5f);
+  // Core-restricted samples stay in the cone and read finer levels (denser samples).
+  const float cos_h = std::cos(0.2f);
+  const auto core = prefilter_samples(0.5f, 256, 256, 9, true, kPrefilterLodBias, cos_h);
+  for (const auto& p : core) EXPECT_GE(p.l.z, std::cos(0.4f) - 1e-5f);
+  EXPECT_NEAR(ggx_cone_fraction(0.25f, cos_h),
+              std::pow(std::tan(0.2f), 2.0f) / (0.0625f + std::pow(std::tan(0.2f), 2.0f)), 1e-5f);
 }
 
 // A smooth but strongly varying environment (a bright warm lobe, a cool sky gradient).
@@ -95,6 +105,32 @@ TEST(Prefilter, MatchesBruteForceQuadratureOnAStudio) {
   // The studio is very peaky (brightest 1% of the pixels hold 86% of the energy).
   expect_matches_reference(
       Environment::load(default_environment_path().parent_path() / "studio.exr"));
+}
+
+// The default path at a size where the sharp level is importance-sampled (core) with a
+// quadrature tail: 128 px faces, levels at roughness 0, 0.25, 0.5, 0.75, 1.
+void expect_split_matches_reference(const Environment& env, double max_mean, double max_max) {
+  BakeOptions options;
+  options.face_size = 128;
+  options.min_face_size = 8;
+  Cubemap source = resample_to_cube(env, options.face_size);
+  build_mip_chain(source, 1);
+  ASSERT_FALSE(use_quadrature(source, 0.25f, 64));
+  const auto errors =
+      validate_prefilter(env, prefilter_specular(source, options), options.mapping, 3);
+  for (const PrefilterError& e : errors) {
+    std::printf("%s roughness %.2f: mean %.4f max %.4f\n", env.source.c_str(), e.roughness,
+                e.mean_relative, e.max_relative);
+    EXPECT_LT(e.mean_relative, max_mean) << env.source << " " << e.roughness;
+    EXPECT_LT(e.max_relative, max_max) << env.source << " " << e.roughness;
+  }
+}
+
+TEST(Prefilter, SampledCoreWithQuadratureTailMatchesReference) {
+  expect_split_matches_reference(blob_environment(), 0.005, 0.01);
+  // Studio's lights are up to 2.8e5 times the median: a few percent at worst texels.
+  expect_split_matches_reference(
+      Environment::load(default_environment_path().parent_path() / "studio.exr"), 0.015, 0.05);
 }
 
 // Noise: the mean absolute second difference along rows, relative to the mean value. A
