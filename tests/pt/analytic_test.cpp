@@ -39,7 +39,7 @@ Scene sphere_scene(const Material& m) {
   Scene scene;
   scene.source = "test:sphere";
   scene.materials.push_back(m);
-  add_mesh_instance(scene, make_uv_sphere(1.0f, 192, 96), 0);
+  add_mesh_instance(scene, make_uv_sphere(1.0f, 128, 64), 0);
   return scene;
 }
 
@@ -93,7 +93,7 @@ TEST(PathTracerAnalytic, DiffuseSphereInUniformEnvironment) {
   const AlbedoTable albedo(Brdf(glm::vec3(rho), 0.0f, 1.0f));
   const ResidualStats s = residual_stats(sphere_residuals(res.color, half, L, albedo, 0.97f));
   ASSERT_GT(s.n, 400u);
-  // Tessellation (192 x 96 segments) moves normals by < 1e-3; allow 0.2% of L for it.
+  // Tessellation (128 x 64 segments) moves normals by < 1e-3; allow 0.2% of L for it.
   EXPECT_LT(std::fabs(s.mean), 4.0 * s.std_error + 2e-3 * L)
       << "mean residual " << s.mean << " +- " << s.std_error;
   // Sanity of the closed form itself: the albedo at normal incidence is close to rho

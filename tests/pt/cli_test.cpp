@@ -36,7 +36,7 @@ TEST(PathTracerCli, InterruptedRenderWritesAValidImageAndExits130) {
       ::dup2(devnull, 1);
       ::dup2(devnull, 2);
     }
-    ::execl(cli.c_str(), cli.c_str(), "render", "spheres", "--renderer", "path", "--width", "32",
+    ::execl(cli.c_str(), cli.c_str(), "render", "cornell", "--renderer", "path", "--width", "32",
             "--height", "24", "--spp", "1000000", "--noise-threshold", "0", "--threads", "1",
             "--checkpoint", ckpt.c_str(), "--checkpoint-interval", "0.05", "-o", out.c_str(),
             static_cast<char*>(nullptr));
@@ -70,7 +70,7 @@ TEST(PathTracerCli, InterruptedRenderWritesAValidImageAndExits130) {
 TEST(PathTracerCli, MergedSampleRangesEqualTheFullRender) {
   const auto dir = scratch_dir();
   const std::string base = cli_path().string() +
-                           " render spheres --renderer path --width 24 --height 16 --spp 8 "
+                           " render cornell --renderer path --width 24 --height 16 --spp 8 "
                            "--noise-threshold 0 --float ";
   std::string log;
   ASSERT_EQ(run_command(base + "-o " + (dir / "full.png").string(), &log), 0) << log;
