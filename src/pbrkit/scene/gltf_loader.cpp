@@ -375,7 +375,8 @@ void Loader::decode_meshopt_views() {
     auto integer = [&](const char* name, int fallback, bool required) {
       const tinygltf::Value& v = e.Get(name);
       if (!v.IsInt()) {
-        if (required || v.Type() != tinygltf::NULL_TYPE) error(where + "." + name, "missing or not an integer");
+        if (required || v.Type() != tinygltf::NULL_TYPE)
+          error(where + "." + name, "missing or not an integer");
         return fallback;
       }
       const int x = v.GetNumberAsInt();
