@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <vector>
 
 #include <fmt/format.h>
 #include <pmmintrin.h>
@@ -418,12 +419,29 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
           });
     });
     if (should_stop()) break;
-    // Adaptive sampling: pixels whose two half-buffer estimates agree stop here.
+    // Adaptive sampling: pixels whose two half-buffer estimates agree stop here. As in
+    // Cycles (adaptive_sampling_filter_x/y), a pixel only stops when its 3x3 neighbours
+    // agree too: a pixel whose few samples all missed a small bright light looks
+    // "converged" at 0, and its noisier neighbours keep it going.
     if (settings.noise_threshold > 0.0f && target >= settings.min_spp) {
+      const int w = settings.width, h = settings.height;
+      std::vector<std::uint8_t> converged(film.pixel_count(), 0);
       for (std::size_t i = 0; i < film.pixel_count(); ++i)
-        if (film.done[i] == 0.0f && film.count[i] >= float(target) &&
-            film.pixel_noise(i) < settings.noise_threshold)
-          film.done[i] = 1.0f;
+        converged[i] = film.done[i] > 0.0f || (film.count[i] >= float(target) &&
+                                               film.pixel_noise(i) < settings.noise_threshold);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+          const std::size_t i = std::size_t(y) * w + x;
+          if (film.done[i] > 0.0f || !converged[i]) continue;
+          bool all = true;
+          for (int dy = -1; dy <= 1 && all; ++dy)
+            for (int dx = -1; dx <= 1 && all; ++dx) {
+              const int xx = x + dx, yy = y + dy;
+              if (xx >= 0 && xx < w && yy >= 0 && yy < h)
+                all = converged[std::size_t(yy) * w + xx] != 0;
+            }
+          if (all) film.done[i] = 1.0f;
+        }
     }
     complete = target >= total;
     pass_statistics();
