@@ -29,6 +29,14 @@ Distribution1D::Distribution1D(std::vector<float> weights) : weights_(std::move(
   for (std::size_t i = 0; i < cdf.size(); ++i) cdf_[i] = float(cdf[i] / total_);
   cdf_.back() = 1.0f;
   inv_total_ = float(1.0 / total_);
+  const std::size_t n = weights_.size();
+  guide_.resize(n);
+  std::size_t i = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const float u = float(k) / float(n);
+    while (i + 1 < n && cdf_[i + 1] <= u) ++i;
+    guide_[k] = std::uint32_t(i);
+  }
 }
 
 float Distribution1D::sample(float u, float& pdf, std::size_t& index) const {
@@ -40,13 +48,14 @@ float Distribution1D::sample(float u, float& pdf, std::size_t& index) const {
 }
 
 std::size_t Distribution1D::sample_discrete(float u, float& probability) const {
-  // The last index i with cdf_[i] <= u; bins of zero weight have cdf_[i] == cdf_[i + 1]
-  // and are skipped by the search itself.
-  const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
-  std::size_t i = std::size_t(std::max<std::ptrdiff_t>(it - cdf_.begin() - 1, 0));
-  i = std::min(i, size() - 1);
+  // The bin i with cdf_[i] <= u < cdf_[i + 1] (bins of zero weight have an empty interval
+  // and are never chosen), found from the guide table's starting point.
+  const std::size_t n = size();
+  std::size_t i = guide_[std::min(std::size_t(std::max(u, 0.0f) * float(n)), n - 1)];
+  while (i > 0 && cdf_[i] > u) --i;  // float rounding of u * n
+  while (i + 1 < n && cdf_[i + 1] <= u) ++i;
   while (i > 0 && weights_[i] == 0.0f) --i;
-  while (i + 1 < size() && weights_[i] == 0.0f) ++i;
+  while (i + 1 < n && weights_[i] == 0.0f) ++i;
   probability = weights_[i] * inv_total_;
   return i;
 }

@@ -6,6 +6,7 @@
 // pdf() is the density of sample() with respect to solid angle and matches what
 // Environment::eval returns for the same direction.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -32,6 +33,9 @@ class Distribution1D {
   std::vector<float> weights_;
   std::vector<float> cdf_;  ///< size() + 1 entries, cdf_[0] = 0, cdf_.back() = 1
   float inv_total_ = 0.0f;
+  /// guide_[k]: the bin containing u = k / size(), where the search for u starts (a guide
+  /// table, Chen & Asau 1974): one or two steps instead of a binary search.
+  std::vector<std::uint32_t> guide_;
   double total_ = 0.0;
 };
 
