@@ -1,5 +1,6 @@
 // pbrkit info FILE: a readable summary of a glTF file or built-in scene (in the spirit of
 // glTF-Transform's `inspect`), or the same numbers as JSON with --json.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <map>
@@ -66,6 +67,12 @@ void run_info(const InfoOptions& opt) {
     j["bounds"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
   j["extensions_used"] = scene.extensions_used;
   j["extensions_required"] = scene.extensions_required;
+  const std::vector<std::string> supported = supported_gltf_extensions();
+  std::vector<std::string> unsupported;
+  for (const std::string& e : scene.extensions_used)
+    if (std::find(supported.begin(), supported.end(), e) == supported.end())
+      unsupported.push_back(e);
+  j["extensions_unsupported"] = unsupported;
   j["warnings"] = scene.warnings;
   if (opt.json) {
     std::printf("%s\n", j.dump(2).c_str());
@@ -103,6 +110,7 @@ void run_info(const InfoOptions& opt) {
   };
   std::printf("  extensions   used: %s\n", list(scene.extensions_used).c_str());
   std::printf("               required: %s\n", list(scene.extensions_required).c_str());
+  std::printf("               unsupported (ignored): %s\n", list(unsupported).c_str());
   std::printf("  warnings     %zu\n", scene.warnings.size());
   for (const std::string& w : scene.warnings) std::printf("    %s\n", w.c_str());
 }

@@ -4,6 +4,7 @@
 #include <set>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "pbrkit/core/color.h"
 #include "pbrkit/scene/camera.h"
@@ -266,6 +267,27 @@ TEST(GltfLoader, LimitsAreEnforced) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("images[0]"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace pbrkit
+
+namespace pbrkit {
+namespace {
+
+TEST(GltfLoader, InfoListsUnsupportedExtensionsAndCounts) {
+  std::string out;
+  const int status = test::run_command(
+      test::cli_path().string() + " info --json '" + valid("cameras_lights.gltf") + "'", &out);
+  ASSERT_EQ(status, 0) << out;
+  const auto json_start = out.find('{');
+  ASSERT_NE(json_start, std::string::npos) << out;
+  const nlohmann::json j = nlohmann::json::parse(out.substr(json_start));
+  EXPECT_EQ(j["extensions_unsupported"], nlohmann::json::array({"EXT_fancy_optional"}));
+  EXPECT_EQ(j["lights"].size(), 3u);
+  EXPECT_EQ(j["cameras"].size(), 2u);
+  EXPECT_EQ(j["triangles"], 1);
+  EXPECT_EQ(j["nodes"], 6);
 }
 
 }  // namespace

@@ -1476,6 +1476,10 @@ Scene Loader::load() {
 
 }  // namespace
 
+std::vector<std::string> supported_gltf_extensions() {
+  return {kSupportedExtensions.begin(), kSupportedExtensions.end()};
+}
+
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
   return Loader(path, options).load();
 }

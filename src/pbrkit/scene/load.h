@@ -25,6 +25,10 @@ struct LoadOptions {
 /// where possible, the JSON path of the bad element (e.g. "accessors[3].count").
 Scene load_scene(const std::string& path_or_name, const LoadOptions& options = {});
 
+/// The glTF extensions load_scene implements (any other one in extensionsRequired is an
+/// Error; in extensionsUsed only, a warning).
+std::vector<std::string> supported_gltf_extensions();
+
 /// Names of the built-in scenes.
 std::vector<std::string> builtin_scene_names();
 bool is_builtin_scene(const std::string& name);
