@@ -26,7 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kHelp =
-    "Plot the BRDF's building blocks (the seeds' curves) as CSV + PNG (PNG needs gnuplot):\n"
+    "Writes <dir>/brdf_{D,G1,fresnel,albedo}.{csv,png} (the PNGs need gnuplot):\n"
     "  brdf_D        GGX D vs n.h for alpha 0.1..1 (log y). D is a density over solid angle\n"
     "                (1/sr), so it exceeds 1 for small alpha (peak 1/(pi alpha^2) = 31.8 at\n"
     "                alpha 0.1); what integrates to 1 over the hemisphere is D(h) (n.h).\n"
@@ -203,7 +203,9 @@ void run_brdf(const std::string& out_dir) {
 
 void register_brdf_command(CLI::App& app) {
   auto out = std::make_shared<std::string>("out");
-  auto* cmd = app.add_subcommand("brdf", kHelp);
+  auto* cmd = app.add_subcommand(
+      "brdf",
+      "Plot the BRDF's building blocks (GGX D, G1, Fresnel, albedo) as CSV + PNG (gnuplot).");
   cmd->add_option("-o,--output", *out, "output directory (created if missing)")
       ->capture_default_str();
   cmd->footer(kHelp);
