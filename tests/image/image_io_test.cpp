@@ -12,6 +12,7 @@
 #include <stb_image_write.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <limits>
@@ -370,6 +371,36 @@ TEST(ImageIo, BadInputGivesErrorsNamingTheFile) {
   EXPECT_TRUE(contains(msg, "too large") && contains(msg, "1000")) << msg;
   msg = expect_error([&] { read_image(test::test_data("images/night.exr"), small); });
   EXPECT_TRUE(contains(msg, "too large")) << msg;
+}
+
+// A scan-line EXR's chunk offset table is trusted by OpenEXR to seek; offsets near 2^64
+// made our in-memory stream compute pos + n with wrap-around and read before the buffer
+// (found by fuzz_image; ASan reports it). Every absurd offset must give a clean error.
+TEST(ImageIo, ExrWithAbsurdChunkOffsetsFailsCleanly) {
+  const fs::path dir = test::scratch_dir();
+  write_exr(dir / "one_chunk.exr", Image(4, 4, 3, 0.25f));
+  const std::string bytes = read_bytes(dir / "one_chunk.exr");
+  // One chunk (ZIP holds 16 lines): its 8-byte table entry points just past itself.
+  std::size_t table = 0;
+  for (std::size_t p = 8; p + 8 <= bytes.size(); ++p) {
+    std::uint64_t v;
+    std::memcpy(&v, bytes.data() + p, 8);
+    if (v == p + 8) table = p;
+  }
+  ASSERT_NE(table, 0u) << "offset table not found";
+  for (std::uint64_t bad : {~std::uint64_t(0), ~std::uint64_t(0) - 3, std::uint64_t(bytes.size()),
+                            std::uint64_t(bytes.size()) + 4096}) {
+    std::string corrupt = bytes;
+    std::memcpy(corrupt.data() + table, &bad, 8);
+    try {
+      const Image img = decode_image(corrupt.data(), corrupt.size(), "corrupt.exr");
+      // OpenEXR may rebuild the table by scanning the chunks; then the pixels are right.
+      EXPECT_EQ(img.width, 4);
+      EXPECT_FLOAT_EQ(img.data[0], 0.25f);
+    } catch (const Error& e) {
+      EXPECT_TRUE(contains(e.what(), "corrupt.exr")) << e.what();
+    }
+  }
 }
 
 TEST(ImageIo, FailedWritesLeaveNothingBehind) {

@@ -59,7 +59,9 @@ class MemoryIStream : public Imf::IStream {
   MemoryIStream(const unsigned char* data, std::size_t size, const std::string& name)
       : Imf::IStream(name.c_str()), data_(data), size_(size) {}
   bool read(char c[], int n) override {
-    if (n < 0 || pos_ + static_cast<std::size_t>(n) > size_)
+    // seekg() takes any 64-bit offset a corrupt file names, so pos_ may lie past the end;
+    // compare without forming pos_ + n, which could wrap around (found by fuzz_image).
+    if (n < 0 || pos_ > size_ || static_cast<std::size_t>(n) > size_ - pos_)
       throw std::runtime_error("unexpected end of file (truncated?)");
     std::memcpy(c, data_ + pos_, static_cast<std::size_t>(n));
     pos_ += static_cast<std::size_t>(n);
