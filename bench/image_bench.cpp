@@ -13,7 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const fs::path kNight = fs::path(PBRKIT_SHARED_DIR) / "assets/hdri/night.exr";
+const fs::path kNight = fs::path(PBRKIT_ASSETS_DIR) / "hdri/night.exr";
 
 pbrkit::Image test_image(int w, int h) {
   std::mt19937 rng(1);

@@ -14,7 +14,7 @@ std::filesystem::path test_data(const std::string& name) {
 }
 
 std::filesystem::path shared_asset(const std::string& name) {
-  return std::filesystem::path(PBRKIT_SHARED_DIR) / "assets" / name;
+  return std::filesystem::path(PBRKIT_ASSETS_DIR) / name;
 }
 
 std::filesystem::path cli_path() {

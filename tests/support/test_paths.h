@@ -7,8 +7,8 @@ namespace pbrkit::test {
 
 /// tests/data/<name>
 std::filesystem::path test_data(const std::string& name);
-/// ../shared/assets/<name> (read-only; tests copy what they need into tests/data when it
-/// must travel with the repository)
+/// tests/data/assets/<name>: the project's copy of ../shared/assets (HDRIs and glTF
+/// models, with their licences in tests/data/assets/LICENSES.md)
 std::filesystem::path shared_asset(const std::string& name);
 /// The built pbrkit executable.
 std::filesystem::path cli_path();
