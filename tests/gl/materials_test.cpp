@@ -3,6 +3,9 @@
 // alpha MASK discards below the cutoff, alpha BLEND composites "over" the background.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "gl_test_context.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/scene/camera.h"
@@ -69,6 +72,43 @@ TEST(GlMaterials, AlphaBlendCompositesOver) {
   EXPECT_NEAR(c.r, expected.r, 1e-4f);
   EXPECT_NEAR(c.g, expected.g, 1e-4f);
   EXPECT_NEAR(c.b, expected.b, 1e-4f);
+}
+
+// Vertex normals that point against the winding are turned to the viewer's side (the rule
+// the path tracer uses): a lit sphere whose normals all point inwards renders as the same
+// sphere with outward normals. Single-sided (front faces only) and double-sided.
+TEST(GlMaterials, NormalsAgainstWindingShadeLikeConsistentOnes) {
+  testing::context();
+  for (bool double_sided : {false, true}) {
+    auto render = [&](bool flip) {
+      Scene scene = builtin_scene("furnace");
+      scene.materials.at(0).base_color_factor = glm::vec4(0.8f, 0.8f, 0.8f, 1.0f);
+      scene.materials.at(0).metallic_factor = 0.0f;
+      scene.materials.at(0).roughness_factor = 0.5f;
+      scene.materials.at(0).double_sided = double_sided;
+      if (flip)
+        for (Mesh& mesh : scene.meshes)
+          for (glm::vec3& n : mesh.normals) n = -n;
+      Light light;
+      light.type = Light::Type::kPoint;
+      light.intensity = 20.0f;
+      light.position = glm::vec3(1.5f, 2.0f, 4.0f);
+      scene.lights.push_back(light);
+      RenderSettings settings;
+      settings.msaa = 1;
+      settings.background.mode = Background::Mode::kColor;
+      settings.background.color = glm::vec3(0.0f);
+      const Camera camera = select_camera(scene, std::nullopt, 1.0f);
+      return render_headless(scene, camera, kSize, kSize, nullptr, nullptr, settings);
+    };
+    const Image consistent = render(false);
+    const Image flipped = render(true);
+    ASSERT_GT(consistent.rgb(kSize / 2, kSize / 2).r, 0.05f);
+    double max_diff = 0.0;
+    for (std::size_t i = 0; i < consistent.data.size(); ++i)
+      max_diff = std::max(max_diff, double(std::fabs(consistent.data[i] - flipped.data[i])));
+    EXPECT_LT(max_diff, 1e-5) << "double_sided " << double_sided;
+  }
 }
 
 }  // namespace

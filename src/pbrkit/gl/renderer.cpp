@@ -449,7 +449,6 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
                         : m.alpha_mode == AlphaMode::kMask ? 1
                                                            : 2);
     p.set("uAlphaCutoff", m.alpha_cutoff);
-    p.set("uDoubleSided", m.double_sided ? 1 : 0);
     const std::array<const TextureRef*, 5> refs = {&m.base_color_texture,
                                                    &m.metallic_roughness_texture, &m.normal_texture,
                                                    &m.occlusion_texture, &m.emissive_texture};

@@ -106,11 +106,8 @@ class Integrator {
       const glm::vec3 wo = -direction;
       // Double-sided materials shade the side they are seen from; single-sided back
       // faces were culled in closest_hit.
+      // (shade_inputs turns the shading normal to the same side.)
       if (glm::dot(hit.ng, wo) < 0.0f) hit.ng = -hit.ng;
-      // The interpolated normal belongs on the viewer's side of the triangle too: meshes
-      // whose vertex normals disagree with their winding (common in exported files) would
-      // otherwise shade from inside the surface.
-      if (glm::dot(hit.ns, hit.ng) < 0.0f) hit.ns = -hit.ns;
       // Emission (glTF emission is seen from the front, or from both sides when
       // double-sided; a culled back face never gets here).
       const glm::vec3 Le = material_emission(scene_, *material, hit);

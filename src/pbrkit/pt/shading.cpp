@@ -38,7 +38,13 @@ ShadingInputs shade_inputs(const Scene& scene, const Material& m, const SurfaceH
   const glm::vec4 mr = lookup(scene, m.metallic_roughness_texture, hit);
   s.metallic = m.metallic_factor * mr.b;  // glTF: metalness in B, roughness in G
   s.roughness = m.roughness_factor * mr.g;
-  s.ns = hit.ns;
+  // The shading normal goes to the viewer's side of the triangle: the back of a
+  // double-sided surface, and meshes whose vertex normals disagree with their winding
+  // (common in exported files), would otherwise be shaded from inside. As in the glTF
+  // spec and the Khronos sample viewer, the whole normal-mapped normal is reversed (the
+  // same rule as pbr_fragment.glsl), so both renderers agree.
+  const float side = glm::dot(hit.ns, hit.ng) < 0.0f ? -1.0f : 1.0f;
+  s.ns = side * hit.ns;
   if (m.normal_texture.valid() && hit.tangent != glm::vec4(0.0f)) {
     // Tangent-space normal map (glTF 2.0 section 3.9.3): n = normalize(T x + B y + N z)
     // with x, y scaled by normalTextureInfo.scale; B = cross(N, T) * w. The tangent is
@@ -54,7 +60,7 @@ ShadingInputs shade_inputs(const Scene& scene, const Material& m, const SurfaceH
       c.y *= m.normal_scale;
       const glm::vec3 mapped = t * c.x + b * c.y + n * c.z;
       const float ml = glm::length(mapped);
-      if (ml > 0.0f && std::isfinite(ml)) s.ns = mapped / ml;
+      if (ml > 0.0f && std::isfinite(ml)) s.ns = side * mapped / ml;
     }
   }
   return s;

@@ -23,8 +23,9 @@ glm::vec2 texture_uv(const TextureRef& ref, const SurfaceHit& hit);
 float material_alpha(const Scene& scene, const Material& m, const SurfaceHit& hit);
 /// Emitted radiance (emissiveFactor x strength x emissiveTexture), both sides.
 glm::vec3 material_emission(const Scene& scene, const Material& m, const SurfaceHit& hit);
-/// Base colour, metallic, roughness and the normal-mapped shading normal. `hit.ns` and
-/// `hit.ng` must already face the viewer side chosen by the caller.
+/// Base colour, metallic, roughness and the normal-mapped shading normal, turned to the
+/// side of `hit.ng`, which must already face the viewer. `hit.ns` is the interpolated
+/// vertex normal as the mesh gives it.
 ShadingInputs shade_inputs(const Scene& scene, const Material& m, const SurfaceHit& hit);
 
 }  // namespace pbrkit

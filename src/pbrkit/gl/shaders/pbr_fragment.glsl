@@ -24,7 +24,6 @@ uniform float uNormalScale;
 uniform float uOcclusionStrength;
 uniform int uAlphaMode;  // 0 opaque, 1 mask, 2 blend
 uniform float uAlphaCutoff;
-uniform bool uDoubleSided;
 // Per texture: whether bound, which TEXCOORD set, the KHR_texture_transform matrix.
 uniform bool uHasTexture[5];
 uniform int uTexcoordSet[5];
@@ -90,17 +89,24 @@ void main() {
   if (uMetallicOverride >= 0.0) metallic = uMetallicOverride;
   if (uRoughnessOverride >= 0.0) roughness = uRoughnessOverride;
 
+  vec3 v = normalize(uCameraPosition - vPosition);
+  // The shading normal goes to the viewer's side of the triangle (the back of a
+  // double-sided surface, or vertex normals against the winding), the whole normal-mapped
+  // normal reversed as the glTF spec and the Khronos sample viewer do: the same rule as
+  // the path tracer's shade_inputs. The triangle's normal comes from the derivatives of
+  // the (planar) position, turned towards the viewer.
+  vec3 ng = cross(dFdx(vPosition), dFdy(vPosition));
+  if (dot(ng, v) < 0.0) ng = -ng;
   vec3 n = normalize(vNormal);
-  if (uDoubleSided && !gl_FrontFacing) n = -n;
+  float side = dot(n, ng) < 0.0 ? -1.0 : 1.0;
   if (uHasTexture[2] && dot(vTangent.xyz, vTangent.xyz) > 0.0) {
     vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
     vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
-    if (uDoubleSided && !gl_FrontFacing) b = -b;
     vec3 tn = texture(uNormalTexture, texcoord(2)).xyz * 2.0 - 1.0;
     tn.xy *= uNormalScale;
     n = normalize(mat3(t, b, n) * tn);
   }
-  vec3 v = normalize(uCameraPosition - vPosition);
+  n *= side;
   mat3 frame = frame_from_normal(n);
   vec3 wo = to_local(frame, v);
 
