@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <mutex>
 #include <vector>
 
@@ -29,6 +30,21 @@ using Clock = std::chrono::steady_clock;
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
+
+// Process CPU time (all threads): std::clock on POSIX systems.
+double cpu_seconds() {
+  return double(std::clock()) / CLOCKS_PER_SEC;
+}
+
+// Wall and CPU time of one stage.
+struct StageTimer {
+  Clock::time_point wall = Clock::now();
+  double cpu = cpu_seconds();
+  void stop(double& wall_s, double& cpu_s) const {
+    wall_s = seconds_since(wall);
+    cpu_s = cpu_seconds() - cpu;
+  }
+};
 
 bool is_power_of_two(int n) {
   return n > 0 && (n & (n - 1)) == 0;
@@ -447,7 +463,6 @@ BakeResult bake_environment(const Environment& env, const BakeOptions& options,
   check_bake_options(options);
   if (env.map.empty()) fail("{}: the environment map is empty", env.source);
   BakeResult result;
-  const auto t_start = Clock::now();
   // Progress weights: the stages' typical share of the run time.
   auto stage = [&](double begin, double end) -> ProgressCallback {
     if (!progress) return {};
@@ -456,34 +471,32 @@ BakeResult bake_environment(const Environment& env, const BakeOptions& options,
     };
   };
 
-  auto t0 = Clock::now();
+  const StageTimer all;
+  StageTimer t;
   result.environment = resample_to_cube(env, options.face_size);
   build_mip_chain(result.environment, 1);
-  result.timings.cube_s = seconds_since(t0);
+  t.stop(result.timings.cube_s, result.timings.cube_cpu_s);
   if (progress) progress(0.1, "cube");
 
-  t0 = Clock::now();
-  {
-    BakeOptions o = options;
-    result.specular = prefilter_specular(result.environment, o, stage(0.1, 0.85));
-  }
-  result.timings.specular_s = seconds_since(t0);
+  t = StageTimer();
+  result.specular = prefilter_specular(result.environment, options, stage(0.1, 0.85));
+  t.stop(result.timings.specular_s, result.timings.specular_cpu_s);
 
-  t0 = Clock::now();
+  t = StageTimer();
   result.sh = project_sh_irradiance(result.environment, 0);
-  result.timings.sh_s = seconds_since(t0);
+  t.stop(result.timings.sh_s, result.timings.sh_cpu_s);
 
-  t0 = Clock::now();
+  t = StageTimer();
   result.irradiance = irradiance_cube(result.environment, options.irradiance_size);
-  result.timings.irradiance_s = seconds_since(t0);
+  t.stop(result.timings.irradiance_s, result.timings.irradiance_cpu_s);
   if (progress) progress(0.9, "irradiance");
 
-  t0 = Clock::now();
+  t = StageTimer();
   result.lut = compute_brdf_lut(options.model, options.lut_size);
-  result.timings.lut_s = seconds_since(t0);
+  t.stop(result.timings.lut_s, result.timings.lut_cpu_s);
   if (progress) progress(1.0, "done");
 
-  result.timings.total_s = seconds_since(t_start);
+  all.stop(result.timings.total_s, result.timings.total_cpu_s);
   return result;
 }
 

@@ -55,8 +55,13 @@ using SH9 = std::array<glm::vec3, 9>;
 /// Evaluates the irradiance E(n) from SH9 coefficients (world directions).
 glm::vec3 eval_sh_irradiance(const SH9& sh, glm::vec3 n);
 
+/// Wall-clock seconds of each stage, and the process CPU seconds (all threads, std::clock)
+/// spent during it: on a shared machine the CPU time is the figure that shows what the work
+/// costs.
 struct BakeTimings {
   double cube_s = 0, specular_s = 0, irradiance_s = 0, sh_s = 0, lut_s = 0, total_s = 0;
+  double cube_cpu_s = 0, specular_cpu_s = 0, irradiance_cpu_s = 0, sh_cpu_s = 0, lut_cpu_s = 0,
+         total_cpu_s = 0;
 };
 
 struct BakeResult {
