@@ -19,6 +19,7 @@
 #include "pbrkit/core/sampling.h"
 #include "pbrkit/ibl/bake_stages.h"
 #include "pbrkit/ibl/cube_lookup.h"
+#include "pbrkit/ibl/prefilter_kernels.h"
 #include "pbrkit/ibl/spherical_harmonics.h"
 #include "pbrkit/util/error.h"
 
@@ -207,59 +208,6 @@ glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<Prefilter
   return weight > 0.0f ? sum / weight : glm::vec3(0.0f);
 }
 
-namespace {
-
-// A source level flattened for the direct quadrature: structure-of-arrays so that the inner
-// loop is branch-free and vectorises.
-struct QuadratureSource {
-  std::vector<float> x, y, z;         // texel-centre directions
-  std::vector<float> r, g, b, omega;  // L dOmega per channel, and dOmega
-};
-
-QuadratureSource flatten_level(const Cubemap& cube, int level) {
-  QuadratureSource q;
-  const int size = cube.size(level);
-  for (int face = 0; face < 6; ++face)
-    for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) {
-        const glm::vec3 w = cube_direction(
-            face, {(float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(size)});
-        const float dw = cube_texel_solid_angle(x, y, size);
-        const glm::vec3 L = cube.mips[level][face].rgb(x, y) * dw;
-        q.x.push_back(w.x), q.y.push_back(w.y), q.z.push_back(w.z);
-        q.r.push_back(L.x), q.g.push_back(L.y), q.b.push_back(L.z), q.omega.push_back(dw);
-      }
-  return q;
-}
-
-// Sums over the source texels with R.l < cos_max of L w and w, w = max(0, R.l) / d^2 dOmega
-// where, with n = v = R, (n.h)^2 = (1 + R.l) / 2 and D(h) = alpha^2 / (pi d^2),
-// d = (n.h)^2 (alpha^2 - 1) + 1: so D(h) max(0, R.l) dOmega = alpha^2 / pi * w.
-glm::vec4 quadrature_sums(const QuadratureSource& q, float alpha, glm::vec3 R, float cos_max) {
-  constexpr int kLanes = 8;  // independent partial sums: lets the compiler vectorise
-  float sr[kLanes] = {}, sg[kLanes] = {}, sb[kLanes] = {}, sw[kLanes] = {};
-  const float a2m1 = alpha * alpha - 1.0f;
-  const std::size_t n = q.x.size(), blocks = n / kLanes * kLanes;
-  auto term = [&](std::size_t i, float& r, float& g, float& b, float& w) {
-    const float c = R.x * q.x[i] + R.y * q.y[i] + R.z * q.z[i];
-    const float NdotL = c < cos_max ? std::max(c, 0.0f) : 0.0f;
-    const float d = (0.5f + 0.5f * c) * a2m1 + 1.0f;
-    const float weight = NdotL / (d * d);
-    r += weight * q.r[i];
-    g += weight * q.g[i];
-    b += weight * q.b[i];
-    w += weight * q.omega[i];
-  };
-  for (std::size_t i = 0; i < blocks; i += kLanes)
-    for (int k = 0; k < kLanes; ++k) term(i + k, sr[k], sg[k], sb[k], sw[k]);
-  for (std::size_t i = blocks; i < n; ++i) term(i, sr[0], sg[0], sb[0], sw[0]);
-  float r = 0, g = 0, b = 0, w = 0;
-  for (int k = 0; k < kLanes; ++k) r += sr[k], g += sg[k], b += sb[k], w += sw[k];
-  return {r, g, b, w};
-}
-
-}  // namespace
-
 int quadrature_source_level(const Cubemap& source, float roughness) {
   // Source texels (pi/2 / S rad across) at most alpha / 8, alpha being the angular scale
   // of the lobe of l (about 2 alpha wide), and at least 64 px (or the finest level): small
@@ -288,11 +236,11 @@ struct LevelPlan {
   // holds `core_fraction` of the lobe, plus the tail (R.l < cos_core) by quadrature over
   // the coarse `texels`: the sparse tail samples of a narrow lobe alias on small bright
   // lights (streaks and facets in the previews); a quadrature has no such noise.
-  std::vector<PrefilterSample> samples;
+  detail::SampleSet samples;
   int sample_count = 0;
   float core_fraction = 1.0f;
   float cos_core = -2.0f;
-  QuadratureSource texels;
+  detail::QuadratureSource texels;
 };
 
 LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int level, int levels) {
@@ -302,7 +250,7 @@ LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int leve
   plan.alpha = sqr(std::max(roughness, kMinRoughness));
   if (options.quadrature_for_rough_levels && use_quadrature(source, roughness, size)) {
     plan.quadrature = true;
-    plan.texels = flatten_level(source, quadrature_source_level(source, roughness));
+    plan.texels = detail::flatten_level(source, quadrature_source_level(source, roughness));
     return plan;
   }
   float core_cos_h = 0.0f;  // whole hemisphere of h: no tail
@@ -317,11 +265,12 @@ LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int leve
     const float theta_l = std::min(4.0f * 0.5f * kPi / float(source.size(tail_level)), 1.2f);
     plan.cos_core = std::cos(theta_l);
     core_cos_h = std::cos(0.5f * theta_l);
-    plan.texels = flatten_level(source, tail_level);
+    plan.texels = detail::flatten_level(source, tail_level);
   }
-  plan.samples =
+  plan.samples = detail::make_sample_set(
       prefilter_samples(roughness, options.samples, source.size(0), source.levels(),
-                        options.filtered_importance_sampling, kPrefilterLodBias, core_cos_h);
+                        options.filtered_importance_sampling, kPrefilterLodBias, core_cos_h),
+      source);
   plan.sample_count = options.samples;
   plan.core_fraction = ggx_cone_fraction(plan.alpha, core_cos_h);
   return plan;
@@ -329,25 +278,17 @@ LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int leve
 
 glm::vec3 prefilter_planned(const Cubemap& source, const LevelPlan& plan, glm::vec3 R) {
   if (plan.quadrature) {
-    const glm::vec4 s = quadrature_sums(plan.texels, plan.alpha, R, 2.0f);
+    const glm::vec4 s = detail::quadrature_sums(plan.texels, plan.alpha, R, 2.0f);
     return s.w > 0.0f ? glm::vec3(s) / s.w : glm::vec3(0.0f);
   }
   // Core: int_core L D/4 n.l dl ~= fraction / N sum L(l_i) n.l_i (l_i drawn from the
   // conditional pdf D / (4 fraction)); the same without L for the normalisation.
-  const Frame frame(R);
-  glm::vec3 sum(0.0f);
-  float weight = 0.0f;
-  for (const PrefilterSample& smp : plan.samples) {
-    const glm::vec3 l = frame.t * smp.l.x + frame.b * smp.l.y + frame.n * smp.l.z;
-    sum += fetch(source, l, smp.lod) * smp.weight;
-    weight += smp.weight;
-  }
   const float core_scale = plan.core_fraction / float(plan.sample_count);
-  glm::vec3 num = sum * core_scale;
-  float den = weight * core_scale;
+  glm::vec3 num = detail::sample_sum(source, plan.samples, R) * core_scale;
+  float den = plan.samples.weight_sum * core_scale;
   if (!plan.texels.x.empty()) {
     // Tail: D/4 n.l dOmega = alpha^2 / (4 pi) * w (see quadrature_sums).
-    const glm::vec4 s = quadrature_sums(plan.texels, plan.alpha, R, plan.cos_core);
+    const glm::vec4 s = detail::quadrature_sums(plan.texels, plan.alpha, R, plan.cos_core);
     const float k = plan.alpha * plan.alpha * 0.25f * kInvPi;
     num += glm::vec3(s) * k;
     den += s.w * k;
@@ -355,10 +296,28 @@ glm::vec3 prefilter_planned(const Cubemap& source, const LevelPlan& plan, glm::v
   return den > 0.0f ? num / den : glm::vec3(0.0f);
 }
 
+// A copy of `cube` with 4 channels (A = 1).
+Cubemap to_rgba(const Cubemap& cube) {
+  Cubemap out;
+  for (const auto& level : cube.mips) {
+    out.mips.push_back(make_faces(level[0].width));
+    for (int face = 0; face < 6; ++face)
+      for (int y = 0; y < level[face].height; ++y)
+        for (int x = 0; x < level[face].width; ++x)
+          out.mips.back()[face].set_rgb(x, y, level[face].rgb(x, y));
+  }
+  return out;
+}
+
 }  // namespace
 
-Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
+Cubemap prefilter_specular(const Cubemap& input, const BakeOptions& options,
                            const ProgressCallback& progress) {
+  // The sampled core loads each texel as one RGBA vector: other channel counts are copied
+  // to RGBA first (bake_environment's cubes are RGBA already).
+  Cubemap rgba;
+  if (!input.mips.empty() && input.mips[0][0].channels != 4) rgba = to_rgba(input);
+  const Cubemap& source = rgba.mips.empty() ? input : rgba;
   const int face_size = source.size(0);
   const int levels = specular_levels(face_size, options.min_face_size);
   Cubemap out;
@@ -375,7 +334,7 @@ Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
     out.mips.push_back(make_faces(size));
     plans[m] = plan_level(source, options, m, levels);
     row_work[m] =
-        double(size) * (double(plans[m].samples.size()) + 0.1 * double(plans[m].texels.x.size()));
+        double(size) * (double(plans[m].samples.x.size()) + 0.1 * double(plans[m].texels.x.size()));
     for (int face = 0; face < 6; ++face)
       for (int y = 0; y < size; ++y) rows.push_back({m, face, y});
     total_work += 6.0 * size * row_work[m];

@@ -4,6 +4,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/brdf_lut.cpp
   ${CMAKE_CURRENT_LIST_DIR}/roughness_mapping.cpp
   ${CMAKE_CURRENT_LIST_DIR}/bake.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/prefilter_kernels.cpp
   ${CMAKE_CURRENT_LIST_DIR}/validate.cpp
   ${CMAKE_CURRENT_LIST_DIR}/ktx2.cpp
   ${CMAKE_CURRENT_LIST_DIR}/bake_output.cpp)
