@@ -45,6 +45,10 @@ glm::vec2 hammersley(std::uint32_t i, std::uint32_t n);
 /// different seeds ("dimension padding"), so any number of dimensions is available.
 /// Deterministic: sample(pixel, index, dim) depends on nothing else, which makes renders
 /// independent of thread count and splittable into sample ranges.
+///
+/// Renderers should draw whole blocks with sample_block(): the index shuffle and the Sobol
+/// matrix product are shared by the block's four dimensions (the values are exactly those
+/// of sample()).
 class OwenSobolSampler {
  public:
   explicit OwenSobolSampler(std::uint32_t seed = 0) : seed_(seed) {}
@@ -53,6 +57,12 @@ class OwenSobolSampler {
   glm::vec2 sample_2d(std::uint32_t pixel_id, std::uint32_t index, std::uint32_t dim) const {
     return {sample(pixel_id, index, dim), sample(pixel_id, index, dim + 1)};
   }
+  /// The seed of pixel `pixel_id`'s sequence (what sample_block takes; hoist it out of
+  /// the sample loop).
+  std::uint32_t pixel_seed(std::uint32_t pixel_id) const;
+  /// Dimensions 4 block .. 4 block + 3 of sample `index` of the pixel whose pixel_seed()
+  /// is `pixel_seed`: component k equals sample(pixel_id, index, 4 block + k).
+  glm::vec4 sample_block(std::uint32_t pixel_seed, std::uint32_t index, std::uint32_t block) const;
   std::uint32_t seed() const { return seed_; }
 
  private:

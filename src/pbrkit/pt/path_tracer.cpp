@@ -31,10 +31,11 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr int kTileSize = 16;
-// Sampler dimensions: 0-1 the pixel filter, then 8 per bounce (two 4D Sobol blocks):
-// light choice, light point (2), BSDF lobe, BSDF direction (2), Russian roulette, spare.
-constexpr std::uint32_t kFilterDims = 4;
-constexpr std::uint32_t kDimsPerBounce = 8;
+// Sampler dimensions, drawn as 4D Sobol blocks: block 0 the pixel filter (dims 0-1), then
+// two blocks per bounce: (light choice, light point (2), BSDF lobe) and (BSDF direction
+// (2), Russian roulette, spare).
+constexpr std::uint32_t kFilterBlocks = 1;
+constexpr std::uint32_t kBlocksPerBounce = 2;
 
 // Power heuristic with beta = 2 (Veach 1997, eq. 9.13).
 inline float power_heuristic(float f, float g) {
@@ -78,8 +79,10 @@ class Integrator {
 
   // One path through pixel `pixel` for sample `index` (Veach's path tracer with NEE and
   // MIS, in pbrt-v4's PathIntegrator form). `rays` counts the rays traced.
+  // `pixel_seed` is sampler.pixel_seed(pixel).
   PathSample trace(glm::vec3 origin, glm::vec3 direction, const OwenSobolSampler& sampler,
-                   std::uint32_t pixel, std::uint32_t index, std::uint64_t& rays) const {
+                   std::uint32_t pixel, std::uint32_t pixel_seed, std::uint32_t index,
+                   std::uint64_t& rays) const {
     PathSample out;
     glm::vec3 beta(1.0f);
     float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
@@ -136,14 +139,15 @@ class Integrator {
       const Frame frame(in.ns);
       const glm::vec3 wo_local = frame.to_local(wo);
       const Brdf brdf(in.base_color, in.metallic, in.roughness, settings_.brdf);
-      const std::uint32_t dim = kFilterDims + std::uint32_t(depth) * kDimsPerBounce;
+      const std::uint32_t block = kFilterBlocks + std::uint32_t(depth) * kBlocksPerBounce;
+      const glm::vec4 u_nee = sampler.sample_block(pixel_seed, index, block);
 
       // Next-event estimation: one light sample (delta lights always; area lights and the
       // environment unless BSDF sampling alone is asked for).
       LightSample ls;
       // (The light choice needs no random number when there is a single light.)
-      const float u_light = lights_.size() > 1 ? sampler.sample(pixel, index, dim) : 0.5f;
-      const glm::vec2 u_point = sampler.sample_2d(pixel, index, dim + 1);
+      const float u_light = lights_.size() > 1 ? u_nee.x : 0.5f;
+      const glm::vec2 u_point(u_nee.y, u_nee.z);
       if (lights_.sample(hit.p, u_light, u_point, ls) &&
           (ls.delta || strategy != LightStrategy::kBsdfOnly) && ls.Li != glm::vec3(0.0f) &&
           glm::dot(ls.wi, hit.ng) > 0.0f) {
@@ -159,8 +163,9 @@ class Integrator {
       }
 
       // Continue the path by sampling the BRDF (visible-normal GGX or cosine).
-      const float u_lobe = sampler.sample(pixel, index, dim + 3);
-      const glm::vec2 u_dir = sampler.sample_2d(pixel, index, dim + 4);
+      const glm::vec4 u_bsdf = sampler.sample_block(pixel_seed, index, block + 1);
+      const float u_lobe = u_nee.w;
+      const glm::vec2 u_dir(u_bsdf.x, u_bsdf.y);
       const BrdfSample bs = brdf.sample(wo_local, u_lobe, u_dir);
       if (!bs.valid) break;
       const glm::vec3 wi = frame.to_world(bs.wi);
@@ -174,7 +179,7 @@ class Integrator {
         const float q = std::max(beta.x, std::max(beta.y, beta.z));
         if (!(q > 0.0f)) break;
         if (q < 1.0f) {
-          if (sampler.sample(pixel, index, dim + 6) >= q) break;
+          if (u_bsdf.z >= q) break;
           beta /= q;
         }
       }
@@ -388,9 +393,10 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
                     const std::size_t i = std::size_t(y) * settings.width + x;
                     if (film.done[i] > 0.0f) continue;
                     const auto pixel = std::uint32_t(i);
+                    const std::uint32_t pixel_seed = sampler.pixel_seed(pixel);
                     for (auto s = std::uint32_t(film.count[i]); s < target; ++s) {
                       const std::uint32_t index = begin + s;
-                      const glm::vec2 uf = sampler.sample_2d(pixel, index, 0);
+                      const glm::vec2 uf(sampler.sample_block(pixel_seed, index, 0));
                       const glm::vec2 off = settings.filter == PixelFilter::kTent
                                                 ? glm::vec2(sample_tent(uf.x), sample_tent(uf.y))
                                                 : uf - 0.5f;
@@ -398,8 +404,8 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
                           (float(x) + 0.5f + off.x) / float(settings.width) * 2.0f - 1.0f,
                           1.0f - (float(y) + 0.5f + off.y) / float(settings.height) * 2.0f);
                       const Ray ray = generate_ray(camera, aspect, ndc);
-                      const PathSample ps =
-                          integrator.trace(ray.origin, ray.direction, sampler, pixel, index, rays);
+                      const PathSample ps = integrator.trace(ray.origin, ray.direction, sampler,
+                                                             pixel, pixel_seed, index, rays);
                       film.sum[i] += ps.L;
                       if ((index & 1u) == 0u) film.sum_even[i] += ps.L;
                       film.albedo[i] += ps.albedo;
