@@ -403,6 +403,60 @@ TEST(ImageIo, ExrWithAbsurdChunkOffsetsFailsCleanly) {
   }
 }
 
+// OpenEXR's C++ API allocates from the header while opening a file, so a tiny file
+// declaring a huge image (a 173-byte input made it allocate 2 GB), a huge attribute or
+// thousands of channels must be refused before it sees the file (found by fuzz_image).
+TEST(ImageIo, ExrDeclaringHugeSizesIsRefusedBeforeDecoding) {
+  const fs::path dir = test::scratch_dir();
+  write_exr(dir / "small.exr", Image(4, 4, 3, 0.25f));
+  const std::string bytes = read_bytes(dir / "small.exr");
+  const std::string key = std::string("dataWindow") + '\0' + "box2i" + '\0';
+  const std::size_t at = bytes.find(key);
+  ASSERT_NE(at, std::string::npos);
+  const std::size_t box = at + key.size() + 4;  // after the int32 size (16)
+  ImageReadOptions limit;
+  limit.max_pixels = std::size_t(1) << 20;  // the fuzz target's order of magnitude
+  for (const auto& [max_x, max_y] :
+       {std::pair{16776704, 0}, std::pair{0, 2000000000}, std::pair{70000, 70000}}) {
+    std::string huge = bytes;
+    std::memcpy(huge.data() + box + 8, &max_x, 4);
+    std::memcpy(huge.data() + box + 12, &max_y, 4);
+    const std::string msg =
+        expect_error([&] { decode_image(huge.data(), huge.size(), "huge.exr", limit); });
+    // Refused by our limit, or by OpenEXRCore's own sanity limit on data windows.
+    EXPECT_TRUE(contains(msg, "huge.exr") &&
+                (contains(msg, "too large") || contains(msg, "Invalid data window")))
+        << msg;
+  }
+  // An attribute whose declared size runs past the end of the file (OpenEXR would allocate
+  // it first; a fuzzer input declared 1.7 GB in a 352-byte file).
+  {
+    std::string cut = bytes;
+    const std::int32_t absurd = 1769144412;
+    std::memcpy(cut.data() + at + key.size(), &absurd, 4);
+    const std::string msg =
+        expect_error([&] { decode_image(cut.data(), cut.size(), "cut.exr", limit); });
+    EXPECT_TRUE(contains(msg, "cut.exr") && contains(msg, "Invalid size")) << msg;
+  }
+  // 2000 channels of a 1024 x 1024 image: within the pixel limit, not within its memory.
+  {
+    const fs::path many = dir / "many.exr";
+    Imf::Header header(1024, 1024);
+    for (int c = 0; c < 2000; ++c)
+      header.channels().insert(std::string("c").append(std::to_string(c)), Imf::Channel(Imf::HALF));
+    { Imf::OutputFile out(many.string().c_str(), header); }  // header only: no pixels
+    const std::string b = read_bytes(many);
+    const std::string msg =
+        expect_error([&] { decode_image(b.data(), b.size(), "many.exr", limit); });
+    EXPECT_TRUE(contains(msg, "many.exr") && contains(msg, "2000 channels")) << msg;
+  }
+  // The fuzzer's own input (a corrupt header around the same data window).
+  const std::string found = read_bytes(test::test_data("fuzz/image/exr_data_window_16m_wide.exr"));
+  const std::string msg =
+      expect_error([&] { decode_image(found.data(), found.size(), "fuzz.exr", limit); });
+  EXPECT_TRUE(contains(msg, "fuzz.exr")) << msg;
+}
+
 TEST(ImageIo, FailedWritesLeaveNothingBehind) {
   const fs::path dir = test::scratch_dir();
   const Image img(4, 4, 3, 0.5f);

@@ -11,6 +11,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/openexr.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -76,6 +77,76 @@ class MemoryIStream : public Imf::IStream {
   std::size_t pos_ = 0;
 };
 
+// Validates an EXR's headers before the C++ API opens it. OpenEXR's C++ classes
+// (Imf::InputFile) allocate from the header's numbers while opening a file: a 173-byte
+// file declaring a 16 M-pixel-wide data window made them allocate 2 GB for line buffers,
+// a 352-byte one declaring a 1.7 GB attribute allocated that (both found by fuzz_image).
+// OpenEXRCore, OpenEXR's C library made for untrusted input, parses the headers with
+// bounds checks (strict mode: every attribute's size checked against its type and the
+// file), and its answers are checked here against the pixel limit: the data window, the
+// tile size, and the samples per line of all channels together (line buffers hold every
+// channel, so a header with thousands of channels is refused as well).
+thread_local std::string g_exr_core_error;
+
+void check_exr_headers(const unsigned char* b, std::size_t n, const std::string& name,
+                       const ImageReadOptions& options) {
+  struct Source {
+    const unsigned char* bytes;
+    std::size_t size;
+  } source{b, n};
+  exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+  init.user_data = &source;
+  init.read_fn = [](exr_const_context_t, void* user, void* buffer, std::uint64_t size,
+                    std::uint64_t offset, exr_stream_error_func_ptr_t) -> std::int64_t {
+    const auto* src = static_cast<const Source*>(user);
+    if (offset >= src->size) return 0;
+    const std::uint64_t count = std::min<std::uint64_t>(size, src->size - offset);
+    std::memcpy(buffer, src->bytes + offset, std::size_t(count));
+    return std::int64_t(count);
+  };
+  init.size_fn = [](exr_const_context_t, void* user) -> std::int64_t {
+    return std::int64_t(static_cast<const Source*>(user)->size);
+  };
+  init.error_handler_fn = [](exr_const_context_t, exr_result_t, const char* message) {
+    g_exr_core_error = message ? message : "";
+  };
+  init.flags = EXR_CONTEXT_FLAG_STRICT_HEADER;
+  g_exr_core_error.clear();
+  exr_context_t context = nullptr;
+  const exr_result_t started = exr_start_read(&context, name.c_str(), &init);
+  struct Finish {
+    exr_context_t& c;
+    ~Finish() { exr_finish(&c); }
+  } finish{context};
+  if (started != EXR_ERR_SUCCESS)
+    fail("{}: not a valid OpenEXR file: {}", name,
+         g_exr_core_error.empty() ? exr_get_default_error_message(started) : g_exr_core_error);
+  int parts = 0;
+  if (exr_get_count(context, &parts) != EXR_ERR_SUCCESS || parts < 1)
+    fail("{}: OpenEXR file has no parts", name);
+  for (int part = 0; part < parts; ++part) {
+    exr_attr_box2i_t dw{};
+    if (exr_get_data_window(context, part, &dw) != EXR_ERR_SUCCESS)
+      fail("{}: OpenEXR part {} has no data window", name, part);
+    const long long w = static_cast<long long>(dw.max.x) - dw.min.x + 1;
+    const long long h = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+    check_size(name, w, h, options);
+    std::uint32_t tx = 0, ty = 0;
+    if (exr_get_tile_descriptor(context, part, &tx, &ty, nullptr, nullptr) == EXR_ERR_SUCCESS)
+      check_size(name, tx, ty, options);
+    const exr_attr_chlist_t* channels = nullptr;
+    if (exr_get_channels(context, part, &channels) == EXR_ERR_SUCCESS && channels) {
+      const auto samples_per_line = static_cast<unsigned long long>(w) *
+                                    static_cast<unsigned long long>(channels->num_channels);
+      if (samples_per_line > 4ull * options.max_pixels / static_cast<unsigned long long>(h))
+        fail(
+            "{}: image is too large ({} x {} pixels in {} channels; the limit is {} pixels of "
+            "4 channels)",
+            name, w, h, channels->num_channels, options.max_pixels);
+    }
+  }
+}
+
 // Order of channels inside a layer: R, G, B, A first (in that order), then the rest
 // alphabetically; a lone Y is grey.
 int channel_rank(const std::string& c) {
@@ -114,6 +185,7 @@ Image read_exr_channels(Imf::InputFile& file, const std::vector<std::string>& na
 Image decode_exr(const unsigned char* bytes, std::size_t size, const std::string& name,
                  const ImageReadOptions& options) {
   try {
+    check_exr_headers(bytes, size, name, options);
     MemoryIStream stream(bytes, size, name);
     Imf::InputFile file(stream);
     const Imath::Box2i dw = file.header().dataWindow();
@@ -410,6 +482,7 @@ std::vector<std::pair<std::string, Image>> read_exr_layers(const std::filesystem
   std::vector<std::pair<std::string, Image>> result;
   ImageReadReport report;
   try {
+    check_exr_headers(b, bytes.size(), name, ImageReadOptions{});
     MemoryIStream stream(b, bytes.size(), name);
     Imf::InputFile file(stream);
     const Imath::Box2i dw = file.header().dataWindow();
