@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <map>
 #include <mutex>
 #include <vector>
 
@@ -240,17 +241,35 @@ struct LevelPlan {
   int sample_count = 0;
   float core_fraction = 1.0f;
   float cos_core = -2.0f;
-  detail::QuadratureSource texels;
+  const detail::QuadratureSource* texels = nullptr;  // see FlatLevels
 };
 
-LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int level, int levels) {
+// Source levels flattened for the quadratures, each once (levels 3 to 5 of the default bake
+// all read the 64 px level).
+class FlatLevels {
+ public:
+  explicit FlatLevels(const Cubemap& source) : source_(source) {}
+  const detail::QuadratureSource* get(int level) {
+    auto it = levels_.find(level);
+    if (it == levels_.end())
+      it = levels_.emplace(level, detail::flatten_level(source_, level)).first;
+    return &it->second;
+  }
+
+ private:
+  const Cubemap& source_;
+  std::map<int, detail::QuadratureSource> levels_;  // nodes never move
+};
+
+LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int level, int levels,
+                     FlatLevels& flat) {
   LevelPlan plan;
   const int size = source.size(0) >> level;
   const float roughness = mip_roughness(level, levels, options.mapping);
   plan.alpha = sqr(std::max(roughness, kMinRoughness));
   if (options.quadrature_for_rough_levels && use_quadrature(source, roughness, size)) {
     plan.quadrature = true;
-    plan.texels = detail::flatten_level(source, quadrature_source_level(source, roughness));
+    plan.texels = flat.get(quadrature_source_level(source, roughness));
     return plan;
   }
   float core_cos_h = 0.0f;  // whole hemisphere of h: no tail
@@ -265,7 +284,7 @@ LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int leve
     const float theta_l = std::min(4.0f * 0.5f * kPi / float(source.size(tail_level)), 1.2f);
     plan.cos_core = std::cos(theta_l);
     core_cos_h = std::cos(0.5f * theta_l);
-    plan.texels = detail::flatten_level(source, tail_level);
+    plan.texels = flat.get(tail_level);
   }
   plan.samples = detail::make_sample_set(
       prefilter_samples(roughness, options.samples, source.size(0), source.levels(),
@@ -278,7 +297,7 @@ LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int leve
 
 glm::vec3 prefilter_planned(const Cubemap& source, const LevelPlan& plan, glm::vec3 R) {
   if (plan.quadrature) {
-    const glm::vec4 s = detail::quadrature_sums(plan.texels, plan.alpha, R, 2.0f);
+    const glm::vec4 s = detail::quadrature_sums(*plan.texels, plan.alpha, R, 2.0f);
     return s.w > 0.0f ? glm::vec3(s) / s.w : glm::vec3(0.0f);
   }
   // Core: int_core L D/4 n.l dl ~= fraction / N sum L(l_i) n.l_i (l_i drawn from the
@@ -286,9 +305,9 @@ glm::vec3 prefilter_planned(const Cubemap& source, const LevelPlan& plan, glm::v
   const float core_scale = plan.core_fraction / float(plan.sample_count);
   glm::vec3 num = detail::sample_sum(source, plan.samples, R) * core_scale;
   float den = plan.samples.weight_sum * core_scale;
-  if (!plan.texels.x.empty()) {
+  if (plan.texels) {
     // Tail: D/4 n.l dOmega = alpha^2 / (4 pi) * w (see quadrature_sums).
-    const glm::vec4 s = detail::quadrature_sums(plan.texels, plan.alpha, R, plan.cos_core);
+    const glm::vec4 s = detail::quadrature_sums(*plan.texels, plan.alpha, R, plan.cos_core);
     const float k = plan.alpha * plan.alpha * 0.25f * kInvPi;
     num += glm::vec3(s) * k;
     den += s.w * k;
@@ -327,14 +346,15 @@ Cubemap prefilter_specular(const Cubemap& input, const BakeOptions& options,
   };
   std::vector<Row> rows;
   std::vector<LevelPlan> plans(levels);
+  FlatLevels flat(source);
   std::vector<double> row_work(levels, 0.0);
   double total_work = 0.0;
   for (int m = 1; m < levels; ++m) {
     const int size = face_size >> m;
     out.mips.push_back(make_faces(size));
-    plans[m] = plan_level(source, options, m, levels);
-    row_work[m] =
-        double(size) * (double(plans[m].samples.x.size()) + 0.1 * double(plans[m].texels.x.size()));
+    plans[m] = plan_level(source, options, m, levels, flat);
+    row_work[m] = double(size) * (double(plans[m].samples.x.size()) +
+                                  0.1 * double(plans[m].texels ? plans[m].texels->x.size() : 0));
     for (int face = 0; face < 6; ++face)
       for (int y = 0; y < size; ++y) rows.push_back({m, face, y});
     total_work += 6.0 * size * row_work[m];
@@ -363,21 +383,7 @@ Cubemap irradiance_cube(const Cubemap& source, int size) {
   // enough that the texel-centre rule is accurate to ~1e-4 of E.
   int level = 0;
   while (level + 1 < source.levels() && source.size(level) > 64) ++level;
-  const int src_size = source.size(level);
-  struct Texel {
-    glm::vec3 w;
-    glm::vec3 L_dOmega;
-  };
-  std::vector<Texel> texels;
-  texels.reserve(std::size_t(6) * src_size * src_size);
-  for (int face = 0; face < 6; ++face)
-    for (int y = 0; y < src_size; ++y)
-      for (int x = 0; x < src_size; ++x) {
-        const glm::vec3 w = cube_direction(
-            face, {(float(x) + 0.5f) / float(src_size), (float(y) + 0.5f) / float(src_size)});
-        texels.push_back(
-            {w, source.mips[level][face].rgb(x, y) * cube_texel_solid_angle(x, y, src_size)});
-      }
+  const detail::QuadratureSource texels = detail::flatten_level(source, level);
   Cubemap out;
   out.mips.push_back(make_faces(size));
   tbb::parallel_for(0, 6 * size, [&](int r) {
@@ -385,12 +391,7 @@ Cubemap irradiance_cube(const Cubemap& source, int size) {
     for (int x = 0; x < size; ++x) {
       const glm::vec3 n =
           cube_direction(face, {(float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(size)});
-      glm::vec3 E(0.0f);
-      for (const Texel& t : texels) {
-        const float c = glm::dot(n, t.w);
-        if (c > 0.0f) E += t.L_dOmega * c;
-      }
-      out.mips[0][face].set_rgb(x, y, E);
+      out.mips[0][face].set_rgb(x, y, detail::cosine_sum(texels, n));
     }
   });
   return out;

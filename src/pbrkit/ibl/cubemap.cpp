@@ -9,7 +9,7 @@
 
 namespace pbrkit {
 
-glm::vec3 cube_direction(int face, glm::vec2 st) {
+glm::vec3 cube_face_point(int face, glm::vec2 st) {
   const float sc = 2.0f * st.x - 1.0f;
   const float tc = 2.0f * st.y - 1.0f;
   // Table 8.19 read backwards: for each face, the direction whose major axis is the face
@@ -35,7 +35,11 @@ glm::vec3 cube_direction(int face, glm::vec2 st) {
       d = {-sc, -tc, -1.0f};
       break;  // -Z: sc = -rx, tc = -ry
   }
-  return glm::normalize(d);
+  return d;
+}
+
+glm::vec3 cube_direction(int face, glm::vec2 st) {
+  return glm::normalize(cube_face_point(face, st));
 }
 
 CubeCoord cube_coord(glm::vec3 d) {

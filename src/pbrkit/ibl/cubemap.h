@@ -23,6 +23,9 @@ struct Cubemap {
 
 /// Unit direction through (s, t) of `face` (0..5 = +X, -X, +Y, -Y, +Z, -Z).
 glm::vec3 cube_direction(int face, glm::vec2 st);
+/// The point at (s, t) on `face` of the cube [-1, 1]^3 (cube_direction before normalising):
+/// affine in s and t.
+glm::vec3 cube_face_point(int face, glm::vec2 st);
 
 struct CubeCoord {
   int face;

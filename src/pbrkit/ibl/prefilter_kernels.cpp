@@ -122,40 +122,117 @@ QuadratureSource flatten_level(const Cubemap& cube, int level) {
   QuadratureSource q;
   const int size = cube.size(level);
   q.size = size;
+  // Texel solid angles are the same on every face: 4 atan2 per texel of one face only.
+  std::vector<float> omega(std::size_t(size) * size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      omega[std::size_t(y) * size + x] = cube_texel_solid_angle(x, y, size);
+  const std::size_t n = std::size_t(6) * size * size;
+  for (auto* v : {&q.x, &q.y, &q.z, &q.r, &q.g, &q.b, &q.omega}) v->resize(n);
   for (int face = 0; face < 6; ++face)
-    for (int y = 0; y < size; ++y)
+    for (int y = 0; y < size; ++y) {
+      const float t = (float(y) + 0.5f) / float(size);
+      const glm::vec3 p0 = cube_face_point(face, {0.0f, t});
+      q.row_a.push_back(p0);
+      q.row_b.push_back(cube_face_point(face, {1.0f, t}) - p0);
       for (int x = 0; x < size; ++x) {
-        const glm::vec3 w = cube_direction(
-            face, {(float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(size)});
-        const float dw = cube_texel_solid_angle(x, y, size);
+        const std::size_t i = (std::size_t(face) * size + y) * size + x;
+        const glm::vec3 w = cube_direction(face, {(float(x) + 0.5f) / float(size), t});
+        const float dw = omega[std::size_t(y) * size + x];
         const glm::vec3 L = cube.mips[level][face].rgb(x, y) * dw;
-        q.x.push_back(w.x), q.y.push_back(w.y), q.z.push_back(w.z);
-        q.r.push_back(L.x), q.g.push_back(L.y), q.b.push_back(L.z), q.omega.push_back(dw);
+        q.x[i] = w.x, q.y[i] = w.y, q.z[i] = w.z;
+        q.r[i] = L.x, q.g[i] = L.y, q.b[i] = L.z, q.omega[i] = dw;
       }
+    }
   return q;
 }
 
+namespace {
+
+constexpr int kBlock = simd::kLanes;
+
+// Calls body(begin, end) for the texels of each row of q that may have R.l > 0, a
+// superset: along a row the texel points are p(s) = a + s b (cube_face_point, affine), so
+// R.l has the sign of R.a + s R.b and the texels with R.l > 0 are one interval, found with
+// a margin of two texels and widened to whole SIMD vectors (in rows of a multiple of
+// kBlock texels; smaller faces are summed whole). About half the sphere is skipped; the
+// skipped texels have zero weight.
+template <class Body>
+void for_each_visible_span(const QuadratureSource& q, glm::vec3 R, Body body) {
+  const int size = q.size;
+  const bool blocks = size % kBlock == 0;
+  for (int row = 0; row < 6 * size; ++row) {
+    const float A = glm::dot(R, q.row_a[std::size_t(row)]);
+    const float B = glm::dot(R, q.row_b[std::size_t(row)]);
+    // The whole row behind R (beyond rounding: |A|, |B| <= 2, errors ~1e-7): skipped.
+    if (A + std::max(B, 0.0f) < -1e-5f) continue;
+    int begin = 0, end = size;
+    // Texel x has s = (x + 0.5) / size; R.p(s) > 0 for s > -A / B (B > 0) or s < -A / B
+    // (B < 0). Rows nearly perpendicular to R (small |B|, where the rounding of A moves
+    // the edge far) are summed whole.
+    if (blocks && std::abs(B) > 1e-4f) {
+      const float edge = std::clamp(-A / B * float(size) - 0.5f, -4.0f, float(size) + 4.0f);
+      if (B > 0.0f) {
+        begin = std::clamp(int(std::floor(edge)) - 2, 0, size) / kBlock * kBlock;
+      } else {
+        end = (std::clamp(int(std::ceil(edge)) + 2, 0, size) + kBlock - 1) / kBlock * kBlock;
+      }
+    }
+    const std::size_t base = std::size_t(row) * size;
+    if (begin < end) body(base + begin, base + end);
+  }
+}
+
+}  // namespace
+
 glm::vec4 quadrature_sums(const QuadratureSource& q, float alpha, glm::vec3 R, float cos_max) {
-  constexpr int kLanes = 8;  // independent partial sums: lets the compiler vectorise
-  float sr[kLanes] = {}, sg[kLanes] = {}, sb[kLanes] = {}, sw[kLanes] = {};
+  using simd::floatv;
   const float a2m1 = alpha * alpha - 1.0f;
-  const std::size_t n = q.x.size(), blocks = n / kLanes * kLanes;
-  auto term = [&](std::size_t i, float& r, float& g, float& b, float& w) {
-    const float c = R.x * q.x[i] + R.y * q.y[i] + R.z * q.z[i];
-    const float NdotL = c < cos_max ? std::max(c, 0.0f) : 0.0f;
-    const float d = (0.5f + 0.5f * c) * a2m1 + 1.0f;
-    const float weight = NdotL / (d * d);
-    r += weight * q.r[i];
-    g += weight * q.g[i];
-    b += weight * q.b[i];
-    w += weight * q.omega[i];
-  };
-  for (std::size_t i = 0; i < blocks; i += kLanes)
-    for (int k = 0; k < kLanes; ++k) term(i + k, sr[k], sg[k], sb[k], sw[k]);
-  for (std::size_t i = blocks; i < n; ++i) term(i, sr[0], sg[0], sb[0], sw[0]);
-  float r = 0, g = 0, b = 0, w = 0;
-  for (int k = 0; k < kLanes; ++k) r += sr[k], g += sg[k], b += sb[k], w += sw[k];
-  return {r, g, b, w};
+  floatv sr = 0.0f, sg = 0.0f, sb = 0.0f, sw = 0.0f;
+  glm::vec4 tail(0.0f);  // faces smaller than a vector
+  for_each_visible_span(q, R, [&](std::size_t begin, std::size_t end) {
+    std::size_t i = begin;
+    for (; i + kBlock <= end; i += kBlock) {
+      const floatv c =
+          R.x * simd::load(&q.x[i]) + R.y * simd::load(&q.y[i]) + R.z * simd::load(&q.z[i]);
+      floatv NdotL = max(c, floatv(0.0f));
+      where(c >= cos_max, NdotL) = 0.0f;
+      const floatv d = (0.5f + 0.5f * c) * a2m1 + 1.0f;
+      const floatv weight = NdotL / (d * d);
+      sr += weight * simd::load(&q.r[i]);
+      sg += weight * simd::load(&q.g[i]);
+      sb += weight * simd::load(&q.b[i]);
+      sw += weight * simd::load(&q.omega[i]);
+    }
+    for (; i < end; ++i) {
+      const float c = R.x * q.x[i] + R.y * q.y[i] + R.z * q.z[i];
+      const float NdotL = c < cos_max ? std::max(c, 0.0f) : 0.0f;
+      const float d = (0.5f + 0.5f * c) * a2m1 + 1.0f;
+      tail += NdotL / (d * d) * glm::vec4(q.r[i], q.g[i], q.b[i], q.omega[i]);
+    }
+  });
+  return glm::vec4(reduce(sr), reduce(sg), reduce(sb), reduce(sw)) + tail;
+}
+
+glm::vec3 cosine_sum(const QuadratureSource& q, glm::vec3 n) {
+  using simd::floatv;
+  floatv sr = 0.0f, sg = 0.0f, sb = 0.0f;
+  glm::vec3 tail(0.0f);
+  for_each_visible_span(q, n, [&](std::size_t begin, std::size_t end) {
+    std::size_t i = begin;
+    for (; i + kBlock <= end; i += kBlock) {
+      const floatv c =
+          max(n.x * simd::load(&q.x[i]) + n.y * simd::load(&q.y[i]) + n.z * simd::load(&q.z[i]),
+              floatv(0.0f));
+      sr += c * simd::load(&q.r[i]);
+      sg += c * simd::load(&q.g[i]);
+      sb += c * simd::load(&q.b[i]);
+    }
+    for (; i < end; ++i)
+      tail += std::max(n.x * q.x[i] + n.y * q.y[i] + n.z * q.z[i], 0.0f) *
+              glm::vec3(q.r[i], q.g[i], q.b[i]);
+  });
+  return glm::vec3(reduce(sr), reduce(sg), reduce(sb)) + tail;
 }
 
 }  // namespace pbrkit::detail

@@ -42,6 +42,9 @@ struct QuadratureSource {
   int size = 0;                       // face size
   std::vector<float> x, y, z;         // texel-centre directions
   std::vector<float> r, g, b, omega;  // L dOmega per channel, and dOmega
+  // Row k (face k / size, y = k % size) lies on the points row_a[k] + s row_b[k], s in
+  // [0, 1] (cube_face_point): lets the sums skip the texels behind R.
+  std::vector<glm::vec3> row_a, row_b;
 };
 
 QuadratureSource flatten_level(const Cubemap& cube, int level);
@@ -50,5 +53,8 @@ QuadratureSource flatten_level(const Cubemap& cube, int level);
 /// where, with n = v = R, (n.h)^2 = (1 + R.l) / 2 and D(h) = alpha^2 / (pi d^2),
 /// d = (n.h)^2 (alpha^2 - 1) + 1: so D(h) max(0, R.l) dOmega = alpha^2 / pi * w.
 glm::vec4 quadrature_sums(const QuadratureSource& q, float alpha, glm::vec3 R, float cos_max);
+
+/// The irradiance sum over the texels of L max(0, n.l) dOmega (RGB).
+glm::vec3 cosine_sum(const QuadratureSource& q, glm::vec3 n);
 
 }  // namespace pbrkit::detail
