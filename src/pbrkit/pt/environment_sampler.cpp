@@ -7,65 +7,85 @@
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
+#include "pbrkit/util/error.h"
 
 namespace pbrkit {
 
-Distribution1D::Distribution1D(std::vector<float> weights) : weights_(std::move(weights)) {
+namespace {
+
+// int(f) for an integral f clamped to [lo, hi]; NaN gives lo (no undefined conversion).
+inline int clamp_floor(float f, int lo, int hi) {
+  return f >= float(hi) ? hi : f > float(lo) ? int(f) : lo;
+}
+
+}  // namespace
+
+Distribution1D::Distribution1D(std::vector<float> weights) {
   // The running sum is kept in double; the normalised CDF is stored in float (half the
   // memory of double, which matters for the per-row tables of large maps).
-  std::vector<double> cdf(weights_.size() + 1, 0.0);
-  for (std::size_t i = 0; i < weights_.size(); ++i) {
-    weights_[i] = std::isfinite(weights_[i]) ? std::max(weights_[i], 0.0f) : 0.0f;
-    cdf[i + 1] = cdf[i] + double(weights_[i]);
+  const std::size_t n = weights.size();
+  std::vector<double> cdf(n + 1, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    weights[i] = std::isfinite(weights[i]) ? std::max(weights[i], 0.0f) : 0.0f;
+    cdf[i + 1] = cdf[i] + double(weights[i]);
   }
   total_ = cdf.back();
   if (total_ <= 0.0) {
     // Nothing to prefer: uniform.
-    std::fill(weights_.begin(), weights_.end(), 1.0f);
-    for (std::size_t i = 0; i < weights_.size(); ++i) cdf[i + 1] = double(i + 1);
-    total_ = double(weights_.size());
+    std::fill(weights.begin(), weights.end(), 1.0f);
+    for (std::size_t i = 0; i < n; ++i) cdf[i + 1] = double(i + 1);
+    total_ = double(n);
   }
-  cdf_.resize(cdf.size());
-  for (std::size_t i = 0; i < cdf.size(); ++i) cdf_[i] = float(cdf[i] / total_);
-  cdf_.back() = 1.0f;
+  bins_.resize(n + 1);
+  for (std::size_t i = 0; i <= n; ++i)
+    bins_[i] = {float(cdf[i] / total_), i < n ? weights[i] : 0.0f};
+  bins_.back().cdf = 1.0f;
   inv_total_ = float(1.0 / total_);
-  const std::size_t n = weights_.size();
   guide_.resize(n);
   std::size_t i = 0;
   for (std::size_t k = 0; k < n; ++k) {
     const float u = float(k) / float(n);
-    while (i + 1 < n && cdf_[i + 1] <= u) ++i;
+    while (i + 1 < n && bins_[i + 1].cdf <= u) ++i;
     guide_[k] = std::uint32_t(i);
   }
 }
 
 float Distribution1D::sample(float u, float& pdf, std::size_t& index) const {
   index = sample_discrete(u, pdf);
-  const float lo = cdf_[index], hi = cdf_[index + 1];
+  const float lo = bins_[index].cdf, hi = bins_[index + 1].cdf;
   const float du = hi > lo ? std::clamp((u - lo) / (hi - lo), 0.0f, 1.0f) : 0.5f;
   pdf = this->pdf(index);
   return std::min((float(index) + du) / float(size()), kOneMinusEpsilon);
 }
 
 std::size_t Distribution1D::sample_discrete(float u, float& probability) const {
-  // The bin i with cdf_[i] <= u < cdf_[i + 1] (bins of zero weight have an empty interval
+  // The bin i with cdf[i] <= u < cdf[i + 1] (bins of zero weight have an empty interval
   // and are never chosen), found from the guide table's starting point.
   const std::size_t n = size();
   std::size_t i = guide_[std::min(std::size_t(std::max(u, 0.0f) * float(n)), n - 1)];
-  while (i > 0 && cdf_[i] > u) --i;  // float rounding of u * n
-  while (i + 1 < n && cdf_[i + 1] <= u) ++i;
-  while (i > 0 && weights_[i] == 0.0f) --i;
-  while (i + 1 < n && weights_[i] == 0.0f) ++i;
-  probability = weights_[i] * inv_total_;
+  while (i > 0 && bins_[i].cdf > u) --i;  // float rounding of u * n
+  while (i + 1 < n && bins_[i + 1].cdf <= u) ++i;
+  while (i > 0 && bins_[i].weight == 0.0f) --i;
+  while (i + 1 < n && bins_[i].weight == 0.0f) ++i;
+  probability = bins_[i].weight * inv_total_;
   return i;
 }
 
 float Distribution1D::pdf(std::size_t index) const {
-  return weights_[index] * inv_total_ * float(size());
+  return bins_[index].weight * inv_total_ * float(size());
 }
 
 EnvironmentSampler::EnvironmentSampler(const Environment& env)
     : env_(env), width_(env.map.width), height_(env.map.height) {
+  // The same rotation as world_to_env(d, env.rotation_deg), evaluated once.
+  const float a = -env.rotation_deg * (kPi / 180.0f);
+  cos_rot_ = std::cos(a);
+  sin_rot_ = std::sin(a);
+  const float a_inv = -(-env.rotation_deg) * (kPi / 180.0f);  // env_to_world's
+  cos_inv_ = std::cos(a_inv);
+  sin_inv_ = std::sin(a_inv);
+  if (width_ > 65536) fail("{}: the environment is wider than 65536 texels", env.source);
+
   // Environment::eval interpolates bilinearly, so radiance inside texel (x, y) can come
   // from its 8 neighbours; the weight takes their maximum so that the pdf is positive
   // wherever eval is (the estimator stays unbiased).
@@ -74,7 +94,8 @@ EnvironmentSampler::EnvironmentSampler(const Environment& env)
     for (int x = 0; x < width_; ++x)
       lum[std::size_t(y) * width_ + x] = luminance(env.map.rgb(x, y));
   std::vector<float> row_weights(height_);
-  conditional_.reserve(height_);
+  std::vector<Distribution1D> conditional;
+  conditional.reserve(height_);
   double mean = 0.0, solid = 0.0;
   for (int y = 0; y < height_; ++y) {
     const float sin_theta = std::sin(kPi * (float(y) + 0.5f) / float(height_));
@@ -93,39 +114,100 @@ EnvironmentSampler::EnvironmentSampler(const Environment& env)
       mean += double(lum[std::size_t(y) * width_ + x]) * sin_theta;
       solid += sin_theta;
     }
-    conditional_.emplace_back(std::move(w));
+    conditional.emplace_back(std::move(w));
     row_weights[y] = float(row_sum);
   }
   marginal_ = Distribution1D(std::move(row_weights));
   mean_luminance_ = solid > 0.0 ? float(mean / solid) * env.intensity : 0.0f;
+
+  // The texel table (see texels_): radiance and p(u, v) side by side.
+  const std::size_t pw = std::size_t(width_) + 2;
+  texels_.resize(pw * std::size_t(height_ + 2));
+  for (int y = -1; y <= height_; ++y)
+    for (int x = -1; x <= width_; ++x) {
+      const int xx = (x + width_) % width_, yy = std::clamp(y, 0, height_ - 1);
+      const bool inside = x == xx && y == yy;
+      const float pdf_uv =
+          inside ? conditional[std::size_t(y)].pdf(std::size_t(x)) * marginal_.pdf(std::size_t(y))
+                 : 0.0f;
+      texels_[std::size_t(y + 1) * pw + std::size_t(x + 1)] = {env.map.rgb(xx, yy), pdf_uv};
+    }
+  const std::size_t w = std::size_t(width_);
+  row_cdf_.resize((w + 1) * std::size_t(height_));
+  row_guide_.resize(w * std::size_t(height_));
+  for (std::size_t y = 0; y < std::size_t(height_); ++y) {
+    for (std::size_t i = 0; i <= w; ++i) row_cdf_[y * (w + 1) + i] = conditional[y].cdf(i);
+    for (std::size_t k = 0; k < w; ++k)
+      row_guide_[y * w + k] = std::uint16_t(conditional[y].guide(k));
+  }
+}
+
+float EnvironmentSampler::sample_column(std::size_t row, float u, float& pdf_uv) const {
+  // Distribution1D::sample_discrete and sample, line by line.
+  const std::size_t n = std::size_t(width_);
+  const float* cdf = row_cdf_.data() + row * (n + 1);
+  const glm::vec4* texel = texels_.data() + (row + 1) * (n + 2) + 1;  // texel[i].w: p(u, v)
+  std::size_t i = row_guide_[row * n + std::min(std::size_t(std::max(u, 0.0f) * float(n)), n - 1)];
+  while (i > 0 && cdf[i] > u) --i;  // float rounding of u * n
+  while (i + 1 < n && cdf[i + 1] <= u) ++i;
+  while (i > 0 && texel[i].w == 0.0f) --i;
+  while (i + 1 < n && texel[i].w == 0.0f) ++i;
+  pdf_uv = texel[i].w;
+  const float lo = cdf[i], hi = cdf[i + 1];
+  const float du = hi > lo ? std::clamp((u - lo) / (hi - lo), 0.0f, 1.0f) : 0.5f;
+  return std::min((float(i) + du) / float(n), kOneMinusEpsilon);
 }
 
 EnvironmentSampler::Sample EnvironmentSampler::sample(glm::vec2 u) const {
   Sample s;
-  float pdf_v = 0.0f, pdf_u = 0.0f;
-  std::size_t row = 0, col = 0;
+  float pdf_v = 0.0f, pdf_uv = 0.0f;
+  std::size_t row = 0;
   const float v = marginal_.sample(u.y, pdf_v, row);
-  const float uu = conditional_[row].sample(u.x, pdf_u, col);
-  const float sin_theta = std::sin(kPi * v);
+  const float uu = sample_column(row, u.x, pdf_uv);
+  // equirect_direction({uu, v}), sharing sin(theta) with the Jacobian.
+  const float phi = (uu - 0.5f) * 2.0f * kPi, theta = v * kPi;
+  const float sin_theta = std::sin(theta);
   if (!(sin_theta > 0.0f)) return s;
   // p(omega) = p(u, v) / (2 pi^2 sin(theta)): the Jacobian of the lat-long map.
-  s.pdf = pdf_u * pdf_v / (2.0f * kPi * kPi * sin_theta);
-  s.direction = env_to_world(equirect_direction({uu, v}), env_.rotation_deg);
-  s.radiance = env_.eval(s.direction);
+  s.pdf = pdf_uv / (2.0f * kPi * kPi * sin_theta);
+  s.direction = to_world({sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)});
+  s.radiance = eval(s.direction);
   return s;
 }
 
 float EnvironmentSampler::pdf(glm::vec3 d) const {
-  const glm::vec3 local = world_to_env(d, env_.rotation_deg);
+  float p = 0.0f;
+  eval(d, &p);
+  return p;
+}
+
+glm::vec3 EnvironmentSampler::eval(glm::vec3 d, float* pdf) const {
+  const glm::vec3 local = to_env(d);
   const glm::vec2 uv = equirect_uv(local);
-  // sqrt(x^2 + z^2) rather than sqrt(1 - y^2): no cancellation near the poles.
-  const float sin_theta = std::sqrt(local.x * local.x + local.z * local.z);
-  if (!(sin_theta > 0.0f)) return 0.0f;
-  const int x = std::clamp(int(uv.x * float(width_)), 0, width_ - 1);
-  const int y = std::clamp(int(uv.y * float(height_)), 0, height_ - 1);
-  const float pdf_v = marginal_.pdf(std::size_t(y));
-  const float pdf_u = conditional_[std::size_t(y)].pdf(std::size_t(x));
-  return pdf_u * pdf_v / (2.0f * kPi * kPi * sin_theta);
+  // Environment::eval's bilinear lookup: texel centres at (i + 0.5) / size; the border
+  // holds the wrapped columns and clamped rows. (The clamps only guard against NaN.)
+  const float x = uv.x * float(width_) - 0.5f;
+  const float y = uv.y * float(height_) - 0.5f;
+  const float x0f = std::floor(x), y0f = std::floor(y);
+  const float fx = x - x0f, fy = y - y0f;
+  const int x0 = clamp_floor(x0f, -1, width_ - 1);
+  const int y0 = clamp_floor(y0f, -1, height_ - 1);
+  const std::size_t pw = std::size_t(width_) + 2;
+  const glm::vec4* row0 = texels_.data() + std::size_t(y0 + 1) * pw + std::size_t(x0 + 1);
+  const glm::vec4* row1 = row0 + pw;
+  if (pdf) {
+    // The texel that contains uv (one of the four just read), its p(u, v) converted to
+    // solid angle; sqrt(x^2 + z^2) rather than sqrt(1 - y^2): no cancellation near the
+    // poles.
+    const float sin_theta = std::sqrt(local.x * local.x + local.z * local.z);
+    const int xc = std::clamp(int(uv.x * float(width_)), 0, width_ - 1);
+    const int yc = std::clamp(int(uv.y * float(height_)), 0, height_ - 1);
+    const float pdf_uv = texels_[std::size_t(yc + 1) * pw + std::size_t(xc + 1)].w;
+    *pdf = sin_theta > 0.0f ? pdf_uv / (2.0f * kPi * kPi * sin_theta) : 0.0f;
+  }
+  const glm::vec3 c = glm::mix(glm::mix(glm::vec3(row0[0]), glm::vec3(row0[1]), fx),
+                               glm::mix(glm::vec3(row1[0]), glm::vec3(row1[1]), fx), fy);
+  return c * env_.intensity;
 }
 
 }  // namespace pbrkit

@@ -26,12 +26,23 @@ class Distribution1D {
   std::size_t sample_discrete(float u, float& probability) const;
   float pdf(std::size_t index) const;  ///< density of the continuous sample in bin index
   float probability(std::size_t index) const { return pdf(index) / float(size()); }
-  std::size_t size() const { return weights_.size(); }
+  std::size_t size() const { return guide_.size(); }
   double total() const { return total_; }
+  /// The normalised CDF at the start of bin i (i <= size(); cdf(size()) = 1).
+  float cdf(std::size_t i) const { return bins_[i].cdf; }
+  /// The guide table's entry k < size(): the bin containing u = k / size().
+  std::uint32_t guide(std::size_t k) const { return guide_[k]; }
 
  private:
-  std::vector<float> weights_;
-  std::vector<float> cdf_;  ///< size() + 1 entries, cdf_[0] = 0, cdf_.back() = 1
+  /// Bin i's CDF value (the start of its interval) beside its weight: a sample reads
+  /// cdf[i], cdf[i + 1] and weight[i], which this layout keeps in one cache line (the
+  /// environment's per-row tables are too large for the caches, and separate arrays cost
+  /// a miss each).
+  struct Bin {
+    float cdf;
+    float weight;
+  };
+  std::vector<Bin> bins_;  ///< size() + 1 entries, cdf 0 first and 1 last (weight 0)
   float inv_total_ = 0.0f;
   /// guide_[k]: the bin containing u = k / size(), where the search for u starts (a guide
   /// table, Chen & Asau 1974): one or two steps instead of a binary search.
@@ -51,14 +62,48 @@ class EnvironmentSampler {
   Sample sample(glm::vec2 u) const;
   /// Solid-angle density of sample() at world direction `d` (unit).
   float pdf(glm::vec3 d) const;
+  /// Environment::eval(d) (the same value, without its per-call rotation set-up and
+  /// wrapping), and pdf(d) in `pdf` unless it is null: both from one conversion of the
+  /// direction to map coordinates.
+  glm::vec3 eval(glm::vec3 d, float* pdf = nullptr) const;
   /// Average radiance luminance over the sphere (for light selection by power).
   float mean_luminance() const { return mean_luminance_; }
 
  private:
+  /// world_to_env(d, rotation) with the rotation's cosine and sine computed once (the
+  /// same arithmetic, so the same bits).
+  glm::vec3 to_env(glm::vec3 d) const {
+    return {cos_rot_ * d.x + sin_rot_ * d.z, d.y, -sin_rot_ * d.x + cos_rot_ * d.z};
+  }
+  /// env_to_world(d, rotation), likewise.
+  glm::vec3 to_world(glm::vec3 d) const {
+    return {cos_inv_ * d.x + sin_inv_ * d.z, d.y, -sin_inv_ * d.x + cos_inv_ * d.z};
+  }
+  /// Samples a column of row `row` from p(u | v) by inverting the row's CDF (what
+  /// Distribution1D::sample computes, on the compact tables): returns u in [0, 1) and the
+  /// texel's p(u, v) in `pdf_uv`.
+  float sample_column(std::size_t row, float u, float& pdf_uv) const;
+
   const Environment& env_;
   int width_ = 0, height_ = 0;
-  Distribution1D marginal_;                  ///< over rows
-  std::vector<Distribution1D> conditional_;  ///< per row, over columns
+  /// world_to_env's rotation (cos, sin), computed once.
+  float cos_rot_ = 1.0f, sin_rot_ = 0.0f;
+  float cos_inv_ = 1.0f, sin_inv_ = 0.0f;  ///< the inverse rotation's
+  /// The map with a one-texel border (the wrapped columns left and right, the first and
+  /// last rows repeated above and below), so a bilinear lookup needs no wrapping or
+  /// clamping: (width + 2) x (height + 2) texels of RGB radiance and, in w, the texel's
+  /// sampling density p(u, v) = p(v) p(u | v) (0 in the border). A ray that escapes reads
+  /// its radiance and its pdf from the same cache lines: the texel containing a point is
+  /// one of its four bilinear neighbours.
+  std::vector<glm::vec4> texels_;
+  Distribution1D marginal_;  ///< p(v), over rows (small: stays in cache)
+  /// p(u | v), per row: the CDF, (width + 1) floats per row, 0 first and 1 last, and a
+  /// guide table of width entries per row (Chen & Asau 1974; 16 bits, as width <= 65536).
+  /// The bin weights are not stored: the texels' p(u, v) stands for them (zero exactly
+  /// where they are zero), which halves the per-row tables; they are visited at random
+  /// and do not fit in the caches.
+  std::vector<float> row_cdf_;
+  std::vector<std::uint16_t> row_guide_;
   float mean_luminance_ = 0.0f;
 };
 

@@ -36,6 +36,9 @@ class LightSet {
   /// Selection x solid-angle pdf with which sample() would have produced direction `d`
   /// towards the environment.
   float environment_pdf(glm::vec3 d) const;
+  /// The environment's radiance towards `d` (Environment::eval) and, unless `pdf` is null,
+  /// environment_pdf(d), sharing one direction-to-map conversion. Needs environment().
+  glm::vec3 environment_radiance(glm::vec3 d, float* pdf) const;
   /// Same for a hit on an emissive triangle, seen from `from` (hit.p on the light).
   float triangle_pdf(const SurfaceHit& hit, glm::vec3 from) const;
 

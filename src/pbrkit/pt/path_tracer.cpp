@@ -95,12 +95,13 @@ class Integrator {
       const bool found = closest_hit(origin, direction, pixel, index, depth, rays, hit, material);
       if (!found) {
         if (env && (depth > 0 || settings_.env_visible)) {
-          const glm::vec3 Le = env->eval(direction);
+          const bool mis = depth > 0 && strategy == LightStrategy::kMis;
+          float env_pdf = 0.0f;
+          const glm::vec3 Le = lights_.environment_radiance(direction, mis ? &env_pdf : nullptr);
           float w = 1.0f;
           if (depth > 0) {
             if (strategy == LightStrategy::kLightOnly) w = 0.0f;
-            if (strategy == LightStrategy::kMis)
-              w = power_heuristic(prev_pdf, lights_.environment_pdf(direction));
+            if (mis) w = power_heuristic(prev_pdf, env_pdf);
           }
           out.L += beta * Le * w;
         }
