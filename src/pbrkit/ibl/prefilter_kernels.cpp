@@ -14,6 +14,14 @@ SampleSet make_sample_set(const std::vector<PrefilterSample>& samples, const Cub
   if (source.levels() > kMaxSampledLevels)
     fail("prefilter: the source has {} levels, at most {} supported", source.levels(),
          kMaxSampledLevels);
+  // Samples that read one level first, then those that read two: the sum does not depend
+  // on the order (up to rounding), and the fetch loop's branch on the second level is then
+  // taken in one run instead of at random (the lod follows the Hammersley radical inverse).
+  std::vector<PrefilterSample> sorted = samples;
+  std::stable_partition(sorted.begin(), sorted.end(), [&](const PrefilterSample& p) {
+    const int l0 = std::min(int(p.lod), source.levels() - 1);
+    return !(l0 + 1 < source.levels() && p.lod - float(l0) > 0.0f);
+  });
   SampleSet s;
   const std::size_t n =
       (samples.size() + simd::kLanes - 1) / simd::kLanes * std::size_t(simd::kLanes);
@@ -22,7 +30,7 @@ SampleSet make_sample_set(const std::vector<PrefilterSample>& samples, const Cub
   };
   for (std::size_t i = 0; i < n; ++i) {
     // Padding: a zero-weight sample at the pole of level 0.
-    const PrefilterSample p = i < samples.size() ? samples[i] : PrefilterSample{{0, 0, 1}, 0, 0};
+    const PrefilterSample p = i < sorted.size() ? sorted[i] : PrefilterSample{{0, 0, 1}, 0, 0};
     const int l0 = std::min(int(p.lod), source.levels() - 1);
     const float f = l0 + 1 < source.levels() ? p.lod - float(l0) : 0.0f;
     s.x.push_back(p.l.x), s.y.push_back(p.l.y), s.z.push_back(p.l.z);
@@ -39,23 +47,52 @@ SampleSet make_sample_set(const std::vector<PrefilterSample>& samples, const Cub
 namespace {
 
 using Rgba = simd::stdx::fixed_size_simd<float, 4>;
+using intv = simd::stdx::rebind_simd_t<int, simd::floatv>;
 
-// w times the bilinear RGBA lookup at texel coordinates (x, y) (already clamped to
-// [0, size - 1]) of a face of `size` px, clamped at the face's edges (cube_lookup.h). The
-// four taps are summed as a tree: short dependency chains.
-inline Rgba bilinear(const float* face, int size, float x, float y, float w) {
-  const int x0 = int(x), y0 = int(y);
-  const float fx = x - float(x0), fy = y - float(y0);
-  const int dx = x0 + 1 < size ? 4 : 0;
-  const int dy = y0 + 1 < size ? 4 * size : 0;
-  const float* p = face + 4 * (std::size_t(y0) * size + x0);
-  const float wy0 = w * (1.0f - fy), wy1 = w * fy;
-  const Rgba top = (wy0 * (1.0f - fx)) * Rgba(p, simd::stdx::element_aligned) +
-                   (wy0 * fx) * Rgba(p + dx, simd::stdx::element_aligned);
-  const Rgba bottom = (wy1 * (1.0f - fx)) * Rgba(p + dy, simd::stdx::element_aligned) +
-                      (wy1 * fx) * Rgba(p + dy + dx, simd::stdx::element_aligned);
-  return top + bottom;
-}
+// The bilinear taps of kLanes lookups on one level (cube_lookup.h's bilinear: texel centres
+// at i + 0.5, clamped within the face), set up with vector arithmetic: per lane the texel
+// offset of the top-left tap, the offsets to its right and lower neighbours (0 at the
+// face's last column or row), and the four tap weights times the sample's weight.
+struct Taps {
+  alignas(64) std::array<int, simd::kLanes> offset, right, down;
+  alignas(64) std::array<float, simd::kLanes> w00, w10, w01, w11;
+
+  // (s, t) in [0, 2] across the face; half = size / 2, last = size - 1 per lane.
+  void set(simd::floatv s, simd::floatv t, simd::floatv half, simd::floatv last, simd::floatv w) {
+    using simd::floatv;
+    const floatv x = clamp(s * half - 0.5f, floatv(0.0f), last);
+    const floatv y = clamp(t * half - 0.5f, floatv(0.0f), last);
+    // Truncation is the floor here (x, y >= 0); y size + x < 2^24 is exact in float.
+    const floatv x0 = simd::stdx::static_simd_cast<floatv>(simd::stdx::static_simd_cast<intv>(x));
+    const floatv y0 = simd::stdx::static_simd_cast<floatv>(simd::stdx::static_simd_cast<intv>(y));
+    const floatv fx = x - x0, fy = y - y0;
+    const floatv size = last + 1.0f;
+    floatv dx = 0.0f, dy = 0.0f;
+    where(x0 < last, dx) = 4.0f;
+    where(y0 < last, dy) = 4.0f * size;
+    (4 * simd::stdx::static_simd_cast<intv>(y0 * size + x0))
+        .copy_to(offset.data(), simd::stdx::vector_aligned);
+    simd::stdx::static_simd_cast<intv>(dx).copy_to(right.data(), simd::stdx::vector_aligned);
+    simd::stdx::static_simd_cast<intv>(dy).copy_to(down.data(), simd::stdx::vector_aligned);
+    const floatv wy0 = w * (1.0f - fy), wy1 = w * fy;
+    (wy0 * (1.0f - fx)).copy_to(w00.data(), simd::stdx::vector_aligned);
+    (wy0 * fx).copy_to(w10.data(), simd::stdx::vector_aligned);
+    (wy1 * (1.0f - fx)).copy_to(w01.data(), simd::stdx::vector_aligned);
+    (wy1 * fx).copy_to(w11.data(), simd::stdx::vector_aligned);
+  }
+
+  // Lane k's weighted bilinear RGBA value from `face`; the taps summed as a tree (short
+  // dependency chains).
+  Rgba fetch(const float* face, int k) const {
+    const float* p = face + offset[std::size_t(k)];
+    const int dx = right[std::size_t(k)], dy = down[std::size_t(k)];
+    const Rgba top = w00[std::size_t(k)] * Rgba(p, simd::stdx::element_aligned) +
+                     w10[std::size_t(k)] * Rgba(p + dx, simd::stdx::element_aligned);
+    const Rgba bottom = w01[std::size_t(k)] * Rgba(p + dy, simd::stdx::element_aligned) +
+                        w11[std::size_t(k)] * Rgba(p + dy + dx, simd::stdx::element_aligned);
+    return top + bottom;
+  }
+};
 
 }  // namespace
 
@@ -70,7 +107,8 @@ glm::vec3 sample_sum(const Cubemap& source, const SampleSet& set, glm::vec3 R) {
     for (int f = 0; f < 6; ++f) data[l][f] = source.mips[l][f].data.data();
   std::array<Rgba, simd::kLanes> acc;
   acc.fill(0.0f);
-  alignas(64) std::array<float, simd::kLanes> u0, v0, u1, v1, faces;
+  Taps fine, coarse;
+  alignas(64) std::array<int, simd::kLanes> faces;
   for (std::size_t i = 0; i < set.x.size(); i += simd::kLanes) {
     const floatv lx = simd::load(&set.x[i]), ly = simd::load(&set.y[i]), lz = simd::load(&set.z[i]);
     const floatv dx = frame.t.x * lx + frame.b.x * ly + frame.n.x * lz;
@@ -97,20 +135,14 @@ glm::vec3 sample_sum(const Cubemap& source, const SampleSet& set, glm::vec3 R) {
     where(x_major, tc) = -dy;
     const floatv inv = 1.0f / ma;  // |l| = 1, so ma >= 1 / sqrt(3)
     const floatv s1 = sc * inv + 1.0f, t1 = tc * inv + 1.0f;
-    // Texel coordinates on both levels (cube_lookup.h's bilinear: centres at i + 0.5).
-    const floatv max0 = simd::load(&set.max0[i]), half0 = simd::load(&set.half0[i]);
-    const floatv max1 = simd::load(&set.max1[i]), half1 = simd::load(&set.half1[i]);
-    clamp(s1 * half0 - 0.5f, floatv(0.0f), max0).copy_to(u0.data(), simd::stdx::vector_aligned);
-    clamp(t1 * half0 - 0.5f, floatv(0.0f), max0).copy_to(v0.data(), simd::stdx::vector_aligned);
-    clamp(s1 * half1 - 0.5f, floatv(0.0f), max1).copy_to(u1.data(), simd::stdx::vector_aligned);
-    clamp(t1 * half1 - 0.5f, floatv(0.0f), max1).copy_to(v1.data(), simd::stdx::vector_aligned);
-    face.copy_to(faces.data(), simd::stdx::vector_aligned);
+    simd::stdx::static_simd_cast<intv>(face).copy_to(faces.data(), simd::stdx::vector_aligned);
+    fine.set(s1, t1, simd::load(&set.half0[i]), simd::load(&set.max0[i]), simd::load(&set.w0[i]));
+    coarse.set(s1, t1, simd::load(&set.half1[i]), simd::load(&set.max1[i]), simd::load(&set.w1[i]));
     for (int k = 0; k < simd::kLanes; ++k) {
-      const std::size_t j = i + k;
-      const int f = int(faces[k]), l = set.level[j];
-      const int size = int(set.max0[j]) + 1;
-      acc[k] += bilinear(data[l][f], size, u0[k], v0[k], set.w0[j]);
-      if (set.w1[j] > 0.0f) acc[k] += bilinear(data[l + 1][f], size / 2, u1[k], v1[k], set.w1[j]);
+      const std::size_t j = i + std::size_t(k);
+      const int f = faces[std::size_t(k)], l = set.level[j];
+      acc[std::size_t(k)] += fine.fetch(data[l][f], k);
+      if (set.w1[j] > 0.0f) acc[std::size_t(k)] += coarse.fetch(data[l + 1][f], k);
     }
   }
   Rgba total = 0.0f;
