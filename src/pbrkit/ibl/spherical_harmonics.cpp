@@ -38,18 +38,23 @@ SH9 project_sh_irradiance(const Cubemap& cube, int level) {
   // not depend on how TBB splits the work. Sums in double: 400k terms of mixed magnitude.
   const int rows = 6 * size;
   std::vector<std::array<glm::dvec3, 9>> partial(rows);
-  tbb::parallel_for(0, rows, [&](int r) {
-    const int face = r / size, y = r % size;
-    const Image& img = cube.mips[level][face];
-    std::array<glm::dvec3, 9> acc{};
-    for (int x = 0; x < size; ++x) {
-      const glm::vec3 d =
-          cube_direction(face, {(float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(size)});
-      const glm::dvec3 L = glm::dvec3(img.rgb(x, y)) * double(cube_texel_solid_angle(x, y, size));
-      const std::array<float, 9> Y = sh_basis(d);
-      for (int i = 0; i < 9; ++i) acc[i] += L * double(Y[i]);
+  // One task per row y of all six faces: the texel solid angles (4 atan2 each) are the same
+  // on every face, so they are computed once per row.
+  tbb::parallel_for(0, size, [&](int y) {
+    std::vector<float> omega(static_cast<std::size_t>(size));
+    for (int x = 0; x < size; ++x) omega[std::size_t(x)] = cube_texel_solid_angle(x, y, size);
+    for (int face = 0; face < 6; ++face) {
+      const Image& img = cube.mips[level][face];
+      std::array<glm::dvec3, 9> acc{};
+      for (int x = 0; x < size; ++x) {
+        const glm::vec3 d = cube_direction(
+            face, {(float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(size)});
+        const glm::dvec3 L = glm::dvec3(img.rgb(x, y)) * double(omega[std::size_t(x)]);
+        const std::array<float, 9> Y = sh_basis(d);
+        for (int i = 0; i < 9; ++i) acc[i] += L * double(Y[i]);
+      }
+      partial[std::size_t(face) * size + y] = acc;
     }
-    partial[r] = acc;
   });
   std::array<glm::dvec3, 9> total{};
   for (const auto& p : partial)
