@@ -7,13 +7,14 @@
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
+#include "pbrkit/pt/fast_atan.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {
 
 namespace {
 
-// int(f) for an integral f clamped to [lo, hi]; NaN gives lo (no undefined conversion).
+// int(f) (rounded towards zero) clamped to [lo, hi]; NaN gives lo (no undefined conversion).
 inline int clamp_floor(float f, int lo, int hi) {
   return f >= float(hi) ? hi : f > float(lo) ? int(f) : lo;
 }
@@ -171,7 +172,9 @@ EnvironmentSampler::Sample EnvironmentSampler::sample(glm::vec2 u) const {
   // p(omega) = p(u, v) / (2 pi^2 sin(theta)): the Jacobian of the lat-long map.
   s.pdf = pdf_uv / (2.0f * kPi * kPi * sin_theta);
   s.direction = to_world({sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)});
-  s.radiance = eval(s.direction);
+  // The radiance at the sampled (u, v) itself: the same as eval(direction) up to the
+  // rounding of the round trip through the direction, without its atan2 and acos.
+  s.radiance = eval(Location{{uu, v}, sin_theta});
   return s;
 }
 
@@ -181,29 +184,54 @@ float EnvironmentSampler::pdf(glm::vec3 d) const {
   return p;
 }
 
-glm::vec3 EnvironmentSampler::eval(glm::vec3 d, float* pdf) const {
+EnvironmentSampler::Location EnvironmentSampler::locate(glm::vec3 d) const {
   const glm::vec3 local = to_env(d);
-  const glm::vec2 uv = equirect_uv(local);
-  // Environment::eval's bilinear lookup: texel centres at (i + 0.5) / size; the border
-  // holds the wrapped columns and clamped rows. (The clamps only guard against NaN.)
+  Location at;
+  // sqrt(x^2 + z^2) rather than sqrt(1 - y^2): no cancellation near the poles; and
+  // theta = atan2(sin, cos) rather than acos(y), accurate everywhere.
+  at.sin_theta = std::sqrt(local.x * local.x + local.z * local.z);
+  const float u = 0.5f + fast_atan2(local.x, -local.z) * (0.5f * kInvPi);
+  at.uv = {u - std::floor(u), fast_atan2(at.sin_theta, local.y) * kInvPi};
+  return at;
+}
+
+const glm::vec4* EnvironmentSampler::footprint(glm::vec2 uv, float& fx, float& fy) const {
+  // Texel centres at (i + 0.5) / size (Environment::eval); the border holds the wrapped
+  // columns and repeated rows, so x0, y0 = -1 need no special case. (The clamps only
+  // guard against NaN and u or v at 1.)
   const float x = uv.x * float(width_) - 0.5f;
   const float y = uv.y * float(height_) - 0.5f;
   const float x0f = std::floor(x), y0f = std::floor(y);
-  const float fx = x - x0f, fy = y - y0f;
+  fx = x - x0f;
+  fy = y - y0f;
   const int x0 = clamp_floor(x0f, -1, width_ - 1);
   const int y0 = clamp_floor(y0f, -1, height_ - 1);
-  const std::size_t pw = std::size_t(width_) + 2;
-  const glm::vec4* row0 = texels_.data() + std::size_t(y0 + 1) * pw + std::size_t(x0 + 1);
-  const glm::vec4* row1 = row0 + pw;
+  return texels_.data() + std::size_t(y0 + 1) * (std::size_t(width_) + 2) + std::size_t(x0 + 1);
+}
+
+void EnvironmentSampler::prefetch(const Location& at) const {
+  float fx, fy;
+  const glm::vec4* row0 = footprint(at.uv, fx, fy);
+  const glm::vec4* row1 = row0 + width_ + 2;
+  // Two texels of 16 bytes per row: one or two cache lines each.
+  __builtin_prefetch(row0);
+  __builtin_prefetch(row0 + 1);
+  __builtin_prefetch(row1);
+  __builtin_prefetch(row1 + 1);
+}
+
+glm::vec3 EnvironmentSampler::eval(const Location& at, float* pdf) const {
+  float fx, fy;
+  const glm::vec4* row0 = footprint(at.uv, fx, fy);
+  const glm::vec4* row1 = row0 + width_ + 2;
   if (pdf) {
     // The texel that contains uv (one of the four just read), its p(u, v) converted to
-    // solid angle; sqrt(x^2 + z^2) rather than sqrt(1 - y^2): no cancellation near the
-    // poles.
-    const float sin_theta = std::sqrt(local.x * local.x + local.z * local.z);
-    const int xc = std::clamp(int(uv.x * float(width_)), 0, width_ - 1);
-    const int yc = std::clamp(int(uv.y * float(height_)), 0, height_ - 1);
-    const float pdf_uv = texels_[std::size_t(yc + 1) * pw + std::size_t(xc + 1)].w;
-    *pdf = sin_theta > 0.0f ? pdf_uv / (2.0f * kPi * kPi * sin_theta) : 0.0f;
+    // solid angle.
+    const int xc = clamp_floor(at.uv.x * float(width_), 0, width_ - 1);
+    const int yc = clamp_floor(at.uv.y * float(height_), 0, height_ - 1);
+    const float pdf_uv =
+        texels_[std::size_t(yc + 1) * (std::size_t(width_) + 2) + std::size_t(xc + 1)].w;
+    *pdf = at.sin_theta > 0.0f ? pdf_uv / (2.0f * kPi * kPi * at.sin_theta) : 0.0f;
   }
   const glm::vec3 c = glm::mix(glm::mix(glm::vec3(row0[0]), glm::vec3(row0[1]), fx),
                                glm::mix(glm::vec3(row1[0]), glm::vec3(row1[1]), fx), fy);

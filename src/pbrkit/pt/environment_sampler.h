@@ -62,16 +62,29 @@ class EnvironmentSampler {
   Sample sample(glm::vec2 u) const;
   /// Solid-angle density of sample() at world direction `d` (unit).
   float pdf(glm::vec3 d) const;
-  /// Environment::eval(d) (the same value, without its per-call rotation set-up and
-  /// wrapping), and pdf(d) in `pdf` unless it is null: both from one conversion of the
-  /// direction to map coordinates.
-  glm::vec3 eval(glm::vec3 d, float* pdf = nullptr) const;
+
+  /// Where a direction falls in the map: its (u, v) (core/equirect.h's convention, after
+  /// the rotation) and sin(theta).
+  struct Location {
+    glm::vec2 uv{0.0f};
+    float sin_theta = 0.0f;
+  };
+  /// equirect_uv(world_to_env(d, rotation)), with the rotation's sine and cosine computed
+  /// once and fast_atan2 for libm's atan2 and acos (within 4e-7 rad, a thousandth of a
+  /// texel of the largest map).
+  Location locate(glm::vec3 d) const;
+  /// Environment::eval at `at` (its bilinear lookup, without the wrapping and clamping),
+  /// and, unless `pdf` is null, pdf() there from the same cache lines.
+  glm::vec3 eval(const Location& at, float* pdf = nullptr) const;
+  glm::vec3 eval(glm::vec3 d, float* pdf = nullptr) const { return eval(locate(d), pdf); }
+  /// Starts loading what eval(at) reads (call it before tracing a ray that may escape,
+  /// so the lookup after the miss finds the texels in cache).
+  void prefetch(const Location& at) const;
   /// Average radiance luminance over the sphere (for light selection by power).
   float mean_luminance() const { return mean_luminance_; }
 
  private:
-  /// world_to_env(d, rotation) with the rotation's cosine and sine computed once (the
-  /// same arithmetic, so the same bits).
+  /// world_to_env(d, rotation) with the rotation's cosine and sine computed once.
   glm::vec3 to_env(glm::vec3 d) const {
     return {cos_rot_ * d.x + sin_rot_ * d.z, d.y, -sin_rot_ * d.x + cos_rot_ * d.z};
   }
@@ -83,6 +96,9 @@ class EnvironmentSampler {
   /// Distribution1D::sample computes, on the compact tables): returns u in [0, 1) and the
   /// texel's p(u, v) in `pdf_uv`.
   float sample_column(std::size_t row, float u, float& pdf_uv) const;
+  /// The first of the four texels of the bilinear footprint of `uv` (the next one in the
+  /// row, and the same two one padded row below), and the weights fx, fy.
+  const glm::vec4* footprint(glm::vec2 uv, float& fx, float& fy) const;
 
   const Environment& env_;
   int width_ = 0, height_ = 0;

@@ -162,14 +162,6 @@ float LightSet::environment_pdf(glm::vec3 d) const {
   return select_.probability(std::size_t(env_entry_)) * env_sampler_->pdf(d);
 }
 
-glm::vec3 LightSet::environment_radiance(glm::vec3 d, float* pdf) const {
-  if (!pdf) return env_sampler_->eval(d);
-  float env_pdf = 0.0f;
-  const glm::vec3 Le = env_sampler_->eval(d, &env_pdf);
-  *pdf = env_entry_ < 0 ? 0.0f : select_.probability(std::size_t(env_entry_)) * env_pdf;
-  return Le;
-}
-
 float LightSet::triangle_pdf(const SurfaceHit& hit, glm::vec3 from) const {
   const int first = first_light_[hit.geom];
   if (first < 0) return 0.0f;

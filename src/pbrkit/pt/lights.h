@@ -36,9 +36,13 @@ class LightSet {
   /// Selection x solid-angle pdf with which sample() would have produced direction `d`
   /// towards the environment.
   float environment_pdf(glm::vec3 d) const;
-  /// The environment's radiance towards `d` (Environment::eval) and, unless `pdf` is null,
-  /// environment_pdf(d), sharing one direction-to-map conversion. Needs environment().
-  glm::vec3 environment_radiance(glm::vec3 d, float* pdf) const;
+  /// The environment's lookups (null without an environment) and the probability with
+  /// which sample() picks it: environment_pdf(d) = environment_probability() x
+  /// environment_sampler()->pdf(d).
+  const EnvironmentSampler* environment_sampler() const { return env_sampler_.get(); }
+  float environment_probability() const {
+    return env_entry_ < 0 ? 0.0f : select_.probability(std::size_t(env_entry_));
+  }
   /// Same for a hit on an emissive triangle, seen from `from` (hit.p on the light).
   float triangle_pdf(const SurfaceHit& hit, glm::vec3 from) const;
 

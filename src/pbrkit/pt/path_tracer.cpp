@@ -87,7 +87,8 @@ class Integrator {
     glm::vec3 beta(1.0f);
     float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
     glm::vec3 prev_p(0.0f);
-    const Environment* env = lights_.environment();
+    const EnvironmentSampler* env = lights_.environment_sampler();
+    EnvironmentSampler::Location env_at;  // where `direction` meets the map (depth > 0)
     const LightStrategy strategy = settings_.strategy;
     for (int depth = 0;; ++depth) {
       SurfaceHit hit;
@@ -97,11 +98,12 @@ class Integrator {
         if (env && (depth > 0 || settings_.env_visible)) {
           const bool mis = depth > 0 && strategy == LightStrategy::kMis;
           float env_pdf = 0.0f;
-          const glm::vec3 Le = lights_.environment_radiance(direction, mis ? &env_pdf : nullptr);
+          const glm::vec3 Le =
+              env->eval(depth > 0 ? env_at : env->locate(direction), mis ? &env_pdf : nullptr);
           float w = 1.0f;
           if (depth > 0) {
             if (strategy == LightStrategy::kLightOnly) w = 0.0f;
-            if (mis) w = power_heuristic(prev_pdf, env_pdf);
+            if (mis) w = power_heuristic(prev_pdf, lights_.environment_probability() * env_pdf);
           }
           out.L += beta * Le * w;
         }
@@ -142,6 +144,13 @@ class Integrator {
       const Brdf brdf(in.base_color, in.metallic, in.roughness, settings_.brdf);
       const std::uint32_t block = kFilterBlocks + std::uint32_t(depth) * kBlocksPerBounce;
       const glm::vec4 u_nee = sampler.sample_block(pixel_seed, index, block);
+      const glm::vec4 u_bsdf = sampler.sample_block(pixel_seed, index, block + 1);
+
+      // The work below is ordered for the memory system, not by the estimator: the light
+      // sample first (the environment's tables miss the caches, and the BSDF sampling that
+      // follows does not wait for them), then the BSDF sample that continues the path, so
+      // that the environment texels a miss of the next ray would read are prefetched
+      // while the shadow ray is traced. Every value is what the plain order gives.
 
       // Next-event estimation: one light sample (delta lights always; area lights and the
       // environment unless BSDF sampling alone is asked for).
@@ -149,9 +158,37 @@ class Integrator {
       // (The light choice needs no random number when there is a single light.)
       const float u_light = lights_.size() > 1 ? u_nee.x : 0.5f;
       const glm::vec2 u_point(u_nee.y, u_nee.z);
-      if (lights_.sample(hit.p, u_light, u_point, ls) &&
-          (ls.delta || strategy != LightStrategy::kBsdfOnly) && ls.Li != glm::vec3(0.0f) &&
-          glm::dot(ls.wi, hit.ng) > 0.0f) {
+      const bool light_sampled = lights_.sample(hit.p, u_light, u_point, ls);
+
+      // Continue the path by sampling the BRDF (visible-normal GGX or cosine), then
+      // Russian roulette (pbrt-v4): survive with probability max(beta), at most 1.
+      const float u_lobe = u_nee.w;
+      const glm::vec2 u_dir(u_bsdf.x, u_bsdf.y);
+      const BrdfSample bs = brdf.sample(wo_local, u_lobe, u_dir);
+      bool next = bs.valid;
+      glm::vec3 wi(0.0f), beta_next(0.0f);
+      if (next) {
+        wi = frame.to_world(bs.wi);
+        // Reflection only: a direction below the geometric surface would leak light.
+        next = glm::dot(wi, hit.ng) > 0.0f;
+      }
+      if (next) {
+        beta_next = beta * bs.weight;
+        if (depth + 1 >= settings_.rr_start) {
+          const float q = std::max(beta_next.x, std::max(beta_next.y, beta_next.z));
+          if (!(q > 0.0f) || (q < 1.0f && u_bsdf.z >= q))
+            next = false;
+          else if (q < 1.0f)
+            beta_next /= q;
+        }
+      }
+      if (next && env) {
+        env_at = env->locate(wi);
+        env->prefetch(env_at);
+      }
+
+      if (light_sampled && (ls.delta || strategy != LightStrategy::kBsdfOnly) &&
+          ls.Li != glm::vec3(0.0f) && glm::dot(ls.wi, hit.ng) > 0.0f) {
         const glm::vec3 wi_local = frame.to_local(ls.wi);
         const glm::vec3 f = brdf.eval(wo_local, wi_local) * std::max(wi_local.z, 0.0f);
         if (f != glm::vec3(0.0f)) {
@@ -163,27 +200,10 @@ class Integrator {
         }
       }
 
-      // Continue the path by sampling the BRDF (visible-normal GGX or cosine).
-      const glm::vec4 u_bsdf = sampler.sample_block(pixel_seed, index, block + 1);
-      const float u_lobe = u_nee.w;
-      const glm::vec2 u_dir(u_bsdf.x, u_bsdf.y);
-      const BrdfSample bs = brdf.sample(wo_local, u_lobe, u_dir);
-      if (!bs.valid) break;
-      const glm::vec3 wi = frame.to_world(bs.wi);
-      // Reflection only: a direction below the geometric surface would leak light.
-      if (glm::dot(wi, hit.ng) <= 0.0f) break;
-      beta *= bs.weight;
+      if (!next) break;
+      beta = beta_next;
       prev_pdf = bs.pdf;
       prev_p = hit.p;
-      // Russian roulette (pbrt-v4): survive with probability max(beta), at most 1.
-      if (depth + 1 >= settings_.rr_start) {
-        const float q = std::max(beta.x, std::max(beta.y, beta.z));
-        if (!(q > 0.0f)) break;
-        if (q < 1.0f) {
-          if (u_bsdf.z >= q) break;
-          beta /= q;
-        }
-      }
       origin = offset_ray_origin(hit.p, hit.ng);
       direction = wi;
     }
