@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <string>
+#include <unordered_map>
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
@@ -134,11 +135,52 @@ GLuint upload_cube(const Cubemap* cube) {
   return tex;
 }
 
+// (cos a, sin a) of a = -rotation_deg in radians: equirect.glsl's world_to_env argument,
+// the inverse of the environment's rotation about +Y (core/equirect.h's convention).
+glm::vec2 env_rotation_cs(float rotation_deg) {
+  const float a = -glm::radians(rotation_deg);
+  return {std::cos(a), std::sin(a)};
+}
+
+// Compile-time features of the surface program (pbr_fragment.glsl says why they are not
+// uniforms: on llvmpipe an unused branch still costs its texture fetches). Every
+// combination is its own program, compiled on first use, as real-time engines do with
+// their shader permutations.
+struct SurfaceFeatures {
+  unsigned textures = 0;  ///< bit t: texture t bound (baseColor, MR, normal, occlusion, emissive)
+  int alpha_mode = 0;     ///< 0 opaque, 1 mask, 2 blend
+  bool ibl = false;
+  bool irradiance_sh = true;
+  bool multiscatter = false;
+  int geometry = 0;  ///< GeometryModel for punctual lights
+  int fresnel = 0;   ///< 0 Schlick, 1 spherical Gaussian
+  int light_count = 0;
+
+  std::uint32_t key() const {
+    return textures | unsigned(alpha_mode) << 5 | unsigned(ibl) << 7 |
+           unsigned(irradiance_sh) << 8 | unsigned(multiscatter) << 9 | unsigned(geometry) << 10 |
+           unsigned(fresnel) << 12 | unsigned(light_count) << 13;
+  }
+  std::string defines() const {
+    std::string d;
+    for (int t = 0; t < 5; ++t)
+      d += fmt::format("#define HAS_TEXTURE_{} {}\n", t, (textures >> t) & 1u);
+    d += fmt::format(
+        "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
+        "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
+        "#define LIGHT_COUNT {}\n",
+        alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel,
+        light_count);
+    return d;
+  }
+};
+
 }  // namespace
 
 struct Renderer::State {
-  Program pbr, background;
-  std::array<GLuint, 3> energy{};  // per GeometryModel
+  std::unordered_map<std::uint32_t, Program> surface_programs;  // by SurfaceFeatures::key
+  std::array<Program, 3> background;                            // by background MODE
+  std::array<GLuint, 3> energy{};                               // per GeometryModel
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
   std::vector<Material> materials;
@@ -152,12 +194,23 @@ struct Renderer::State {
   bool has_ibl = false;
   IblMaps ibl_params;  // rotation, intensity and SH (cubes are on the GPU)
   GLuint white_texture = 0;
+  GLuint empty_vao = 0;  // the background's full-screen triangle has no attributes
   // Framebuffers: multisampled (or not) render target, and the resolved one.
   GLuint msaa_fbo = 0, msaa_color = 0, msaa_depth = 0;
   GLuint resolve_fbo = 0, resolve_color = 0;
   int width = 0, height = 0, samples = 0;
   std::array<GLuint, 2> timer{};
   bool timer_pending = false;
+
+  const Program& surface_program(const SurfaceFeatures& f) {
+    auto it = surface_programs.find(f.key());
+    if (it == surface_programs.end())
+      it = surface_programs
+               .emplace(f.key(),
+                        Program::graphics("pbr_vertex.glsl", "pbr_fragment.glsl", f.defines()))
+               .first;
+    return it->second;
+  }
 
   void release_scene() {
     for (GpuMesh& m : meshes) {
@@ -201,8 +254,13 @@ struct Renderer::State {
 
 Renderer::Renderer() : state_(std::make_unique<State>()) {
   State& s = *state_;
-  s.pbr = Program::graphics("pbr_vertex.glsl", "pbr_fragment.glsl");
-  s.background = Program::graphics("background_vertex.glsl", "background_fragment.glsl");
+  // The default surface program is compiled up front, so that a driver without GL 4.5
+  // features fails here with the compile log rather than at the first frame.
+  s.surface_program(SurfaceFeatures{});
+  for (int mode = 0; mode < 3; ++mode)
+    s.background[std::size_t(mode)] =
+        Program::graphics("background_vertex.glsl", "background_fragment.glsl",
+                          fmt::format("#define MODE {}\n", mode));
   for (int g = 0; g < 3; ++g) s.energy[std::size_t(g)] = create_energy_texture(GeometryModel(g));
   glCreateTextures(GL_TEXTURE_2D, 1, &s.white_texture);
   glTextureStorage2D(s.white_texture, 1, GL_RGBA32F, 1, 1);
@@ -211,6 +269,7 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {
   s.specular_cube = upload_cube(nullptr);
   s.irradiance_cube = upload_cube(nullptr);
   glCreateQueries(GL_TIMESTAMP, 2, s.timer.data());
+  glCreateVertexArrays(1, &s.empty_vao);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 }
 
@@ -224,6 +283,7 @@ Renderer::~Renderer() {
   glDeleteTextures(1, &s.irradiance_cube);
   if (s.env_texture) glDeleteTextures(1, &s.env_texture);
   glDeleteQueries(2, s.timer.data());
+  glDeleteVertexArrays(1, &s.empty_vao);
 }
 
 void Renderer::set_scene(const Scene& scene) {
@@ -348,85 +408,64 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   glClearDepth(1.0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
-  // Background: a full-screen triangle, no depth.
-  glDisable(GL_DEPTH_TEST);
   const float rotation_delta = settings.env_rotation_deg - s.ibl_params.rotation_deg;
   const float ibl_scale = settings.env_intensity / std::max(s.ibl_params.intensity, 1e-30f);
-  {
-    const Program& p = s.background;
-    p.use();
-    int mode = 2;
-    glm::vec3 color = settings.background.color;
-    if (settings.background.mode == Background::Mode::kEnvironment && s.has_env) mode = 0;
-    if (settings.background.mode == Background::Mode::kBlurred && s.has_ibl) mode = 1;
-    if (settings.background.mode != Background::Mode::kColor && mode == 2) color = glm::vec3(0.0f);
-    p.set("uMode", mode);
-    p.set("uColor", color);
-    p.set("uInverseProjection", glm::inverse(projection));
-    p.set("uCameraToWorld", glm::mat3(camera.camera_to_world));
-    p.set("uEnvRotation", settings.env_rotation_deg);
-    p.set("uEnvScale", settings.env_intensity / std::max(s.env_intensity, 1e-30f));
-    p.set("uIblRotation", rotation_delta);
-    p.set("uIblScale", ibl_scale);
-    p.set("uBlurLod", settings.background.blur_lod);
-    glBindTextureUnit(0, s.env_texture ? s.env_texture : s.white_texture);
-    glBindTextureUnit(1, s.specular_cube);
-    GLuint empty_vao = 0;
-    glCreateVertexArrays(1, &empty_vao);
-    glBindVertexArray(empty_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDeleteVertexArrays(1, &empty_vao);
-  }
 
-  // Scene.
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  const Program& p = s.pbr;
-  p.use();
-  p.set("uViewProjection", view_projection);
-  p.set("uCameraPosition", camera.position());
+  // The punctual lights of this frame (their number is compiled into the program).
+  constexpr int kMaxLights = 16;
+  std::vector<const Light*> lights;
+  for (std::size_t i = 0; i < s.lights.size() && settings.lights; ++i) {
+    if (i < settings.light_enabled.size() && !settings.light_enabled[i]) continue;
+    if (int(lights.size()) < kMaxLights) lights.push_back(&s.lights[i]);
+  }
+  SurfaceFeatures frame;
   const GeometryModel direct = direct_geometry(settings.brdf.model);
   const GeometryModel ibl = ibl_geometry(settings.brdf.model);
-  p.set("uGeometry", int(direct));
-  p.set("uMultiscatter", settings.brdf.multiscatter ? 1 : 0);
-  p.set("uFresnel", settings.fresnel == FresnelMode::kSchlick ? 0 : 1);
-  p.set("uMetallicOverride", settings.metallic_override);
-  p.set("uRoughnessOverride", settings.roughness_override);
+  frame.ibl = settings.ibl && s.has_ibl;
+  frame.irradiance_sh = settings.irradiance == IrradianceMode::kSH;
+  frame.multiscatter = settings.brdf.multiscatter;
+  frame.geometry = int(direct);
+  frame.fresnel = settings.fresnel == FresnelMode::kSchlick ? 0 : 1;
+  frame.light_count = int(lights.size());
   glBindTextureUnit(5, s.energy[std::size_t(direct)]);
   glBindTextureUnit(6, s.energy[std::size_t(ibl)]);
   glBindTextureUnit(7, s.specular_cube);
   glBindTextureUnit(8, s.irradiance_cube);
-  p.set("uIblEnabled", settings.ibl && s.has_ibl ? 1 : 0);
-  p.set("uIrradianceSH", settings.irradiance == IrradianceMode::kSH ? 1 : 0);
-  glProgramUniform3fv(p.id(), p.location("uSH"), 9, &s.ibl_params.sh[0].x);
-  p.set("uSpecularLevels", s.specular_levels);
-  p.set("uIblRotation", rotation_delta);
-  p.set("uIblScale", ibl_scale);
 
-  // Lights.
-  int count = 0;
-  constexpr int kMaxLights = 16;
-  for (std::size_t i = 0; i < s.lights.size() && settings.lights && count < kMaxLights; ++i) {
-    if (i < settings.light_enabled.size() && !settings.light_enabled[i]) continue;
-    const Light& l = s.lights[i];
-    const int k = count;
-    p.set(indexed("uLightType", k).c_str(), l.type == Light::Type::kPoint  ? 0
-                                            : l.type == Light::Type::kSpot ? 1
-                                                                           : 2);
-    p.set(indexed("uLightPosition", k).c_str(), l.position);
-    p.set(indexed("uLightDirection", k).c_str(), glm::normalize(l.direction));
-    p.set(indexed("uLightRadiance", k).c_str(), l.color * l.intensity);
-    p.set(indexed("uLightRange", k).c_str(), l.range.value_or(0.0f));
-    // KHR_lights_punctual's spot falloff: scale = 1 / max(0.001, cos(inner) - cos(outer)).
-    const float scale =
-        1.0f / std::max(0.001f, std::cos(l.inner_cone_angle) - std::cos(l.outer_cone_angle));
-    p.set(indexed("uLightCone", k).c_str(),
-          glm::vec2(scale, -std::cos(l.outer_cone_angle) * scale));
-    ++count;
-  }
-  p.set("uLightCount", count);
+  // The frame's uniforms, set once per frame on each program the frame uses.
+  std::vector<GLuint> prepared;
+  auto prepare = [&](const Program& p) {
+    if (std::find(prepared.begin(), prepared.end(), p.id()) != prepared.end()) return;
+    prepared.push_back(p.id());
+    p.set("uViewProjection", view_projection);
+    p.set("uCameraPosition", camera.position());
+    p.set("uMetallicOverride", settings.metallic_override);
+    p.set("uRoughnessOverride", settings.roughness_override);
+    glProgramUniform3fv(p.id(), p.location("uSH"), 9, &s.ibl_params.sh[0].x);
+    p.set("uSpecularLevels", s.specular_levels);
+    p.set("uIblRotation", env_rotation_cs(rotation_delta));
+    p.set("uIblScale", ibl_scale);
+    for (int k = 0; k < int(lights.size()); ++k) {
+      const Light& l = *lights[std::size_t(k)];
+      p.set(indexed("uLightType", k).c_str(), l.type == Light::Type::kPoint  ? 0
+                                              : l.type == Light::Type::kSpot ? 1
+                                                                             : 2);
+      p.set(indexed("uLightPosition", k).c_str(), l.position);
+      p.set(indexed("uLightDirection", k).c_str(), glm::normalize(l.direction));
+      p.set(indexed("uLightRadiance", k).c_str(), l.color * l.intensity);
+      p.set(indexed("uLightRange", k).c_str(), l.range.value_or(0.0f));
+      // KHR_lights_punctual's spot falloff: scale = 1 / max(0.001, cos(inner) - cos(outer)).
+      const float scale =
+          1.0f / std::max(0.001f, std::cos(l.inner_cone_angle) - std::cos(l.outer_cone_angle));
+      p.set(indexed("uLightCone", k).c_str(),
+            glm::vec2(scale, -std::cos(l.outer_cone_angle) * scale));
+    }
+  };
 
-  // Opaque and masked first, then blended back to front (sorted by view depth).
+  // Opaque and masked first, then the background where they left the far plane, then
+  // blended surfaces back to front (sorted by view depth).
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
   std::vector<std::pair<float, std::size_t>> blended;
   auto material_of = [&](const GpuMesh& mesh) -> const Material& {
     return mesh.material >= 0 && std::size_t(mesh.material) < s.materials.size()
@@ -437,6 +476,20 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     const Instance& inst = s.instances[index];
     const GpuMesh& mesh = s.meshes[std::size_t(inst.mesh)];
     const Material& m = material_of(mesh);
+    const std::array<const TextureRef*, 5> refs = {&m.base_color_texture,
+                                                   &m.metallic_roughness_texture, &m.normal_texture,
+                                                   &m.occlusion_texture, &m.emissive_texture};
+    SurfaceFeatures features = frame;
+    features.alpha_mode = m.alpha_mode == AlphaMode::kOpaque ? 0
+                          : m.alpha_mode == AlphaMode::kMask ? 1
+                                                             : 2;
+    for (int t = 0; t < 5; ++t) {
+      const TextureRef& ref = *refs[std::size_t(t)];
+      if (ref.valid() && std::size_t(ref.texture) < s.textures.size()) features.textures |= 1u << t;
+    }
+    const Program& p = s.surface_program(features);
+    prepare(p);
+    p.use();
     p.set("uModel", inst.transform);
     p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(inst.transform)));
     p.set("uBaseColorFactor", m.base_color_factor);
@@ -445,18 +498,11 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uEmissive", m.emissive_factor * m.emissive_strength);
     p.set("uNormalScale", m.normal_scale);
     p.set("uOcclusionStrength", m.occlusion_strength);
-    p.set("uAlphaMode", m.alpha_mode == AlphaMode::kOpaque ? 0
-                        : m.alpha_mode == AlphaMode::kMask ? 1
-                                                           : 2);
     p.set("uAlphaCutoff", m.alpha_cutoff);
-    const std::array<const TextureRef*, 5> refs = {&m.base_color_texture,
-                                                   &m.metallic_roughness_texture, &m.normal_texture,
-                                                   &m.occlusion_texture, &m.emissive_texture};
     for (int t = 0; t < 5; ++t) {
       const TextureRef& ref = *refs[std::size_t(t)];
-      const bool valid = ref.valid() && std::size_t(ref.texture) < s.textures.size();
+      const bool valid = (features.textures >> t) & 1u;
       const int k = t;
-      p.set(indexed("uHasTexture", k).c_str(), valid ? 1 : 0);
       p.set(indexed("uTexcoordSet", k).c_str(), ref.texcoord);
       p.set(indexed("uTextureTransform", k).c_str(),
             ref.transform ? ref.transform->matrix() : glm::mat3(1.0f));
@@ -485,6 +531,37 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
       draw(i);
     }
   }
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+
+  // Background: a full-screen triangle at the far plane, shaded only where no opaque
+  // surface is (depth still 1.0), without writing depth.
+  {
+    int mode = 2;
+    glm::vec3 color = settings.background.color;
+    if (settings.background.mode == Background::Mode::kEnvironment && s.has_env) mode = 0;
+    if (settings.background.mode == Background::Mode::kBlurred && s.has_ibl) mode = 1;
+    if (settings.background.mode != Background::Mode::kColor && mode == 2) color = glm::vec3(0.0f);
+    const Program& p = s.background[std::size_t(mode)];
+    p.use();
+    p.set("uColor", color);
+    p.set("uInverseProjection", glm::inverse(projection));
+    p.set("uCameraToWorld", glm::mat3(camera.camera_to_world));
+    p.set("uEnvRotation", env_rotation_cs(settings.env_rotation_deg));
+    p.set("uEnvScale", settings.env_intensity / std::max(s.env_intensity, 1e-30f));
+    p.set("uIblRotation", env_rotation_cs(rotation_delta));
+    p.set("uIblScale", ibl_scale);
+    p.set("uBlurLod", settings.background.blur_lod);
+    glBindTextureUnit(0, s.env_texture ? s.env_texture : s.white_texture);
+    glBindTextureUnit(1, s.specular_cube);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glBindVertexArray(s.empty_vao);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+  }
+
   if (!blended.empty()) {
     std::sort(blended.begin(), blended.end());
     glEnable(GL_BLEND);

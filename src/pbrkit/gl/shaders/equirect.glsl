@@ -9,8 +9,10 @@ vec2 equirect_uv(vec3 d) {
 }
 
 // world_to_env: lookup(d) = map(R(-rotation) d) for a map rotated by `rotation_deg` about +Y.
-vec3 world_to_env(vec3 d, float rotation_deg) {
-  float a = -rotation_deg * (3.14159265358979323846 / 180.0);
-  float c = cos(a), s = sin(a);
+// `rotation` is (cos a, sin a) with a = -rotation_deg * pi / 180, computed once on the CPU
+// (renderer.cpp's env_rotation_cs): a per-pixel cos and sin of a uniform are not free on
+// llvmpipe.
+vec3 world_to_env(vec3 d, vec2 rotation) {
+  float c = rotation.x, s = rotation.y;
   return vec3(c * d.x + s * d.z, d.y, -s * d.x + c * d.z);
 }
