@@ -133,30 +133,52 @@ EnvironmentSampler::EnvironmentSampler(const Environment& env)
                  : 0.0f;
       texels_[std::size_t(y + 1) * pw + std::size_t(x + 1)] = {env.map.rgb(xx, yy), pdf_uv};
     }
-  const std::size_t w = std::size_t(width_);
-  row_cdf_.resize((w + 1) * std::size_t(height_));
-  row_guide_.resize(w * std::size_t(height_));
+  const std::size_t n = std::size_t(width_);
+  lines_per_row_ = (n + 15) / 16;
+  fine_cdf_.resize(lines_per_row_ * std::size_t(height_));
+  coarse_cdf_.resize((lines_per_row_ + 1) * std::size_t(height_));
   for (std::size_t y = 0; y < std::size_t(height_); ++y) {
-    for (std::size_t i = 0; i <= w; ++i) row_cdf_[y * (w + 1) + i] = conditional[y].cdf(i);
-    for (std::size_t k = 0; k < w; ++k)
-      row_guide_[y * w + k] = std::uint16_t(conditional[y].guide(k));
+    auto cdf = [&](std::size_t i) { return i <= n ? conditional[y].cdf(i) : 2.0f; };
+    for (std::size_t j = 0; j < lines_per_row_; ++j)
+      for (std::size_t k = 0; k < 16; ++k)
+        fine_cdf_[y * lines_per_row_ + j].cdf[k] = cdf(16 * j + k);
+    for (std::size_t j = 0; j <= lines_per_row_; ++j)
+      coarse_cdf_[y * (lines_per_row_ + 1) + j] = cdf(16 * j);
   }
 }
 
-float EnvironmentSampler::sample_column(std::size_t row, float u, float& pdf_uv) const {
-  // Distribution1D::sample_discrete and sample, line by line.
-  const std::size_t n = std::size_t(width_);
-  const float* cdf = row_cdf_.data() + row * (n + 1);
-  const glm::vec4* texel = texels_.data() + (row + 1) * (n + 2) + 1;  // texel[i].w: p(u, v)
-  std::size_t i = row_guide_[row * n + std::min(std::size_t(std::max(u, 0.0f) * float(n)), n - 1)];
-  while (i > 0 && cdf[i] > u) --i;  // float rounding of u * n
-  while (i + 1 < n && cdf[i + 1] <= u) ++i;
-  while (i > 0 && texel[i].w == 0.0f) --i;
-  while (i + 1 < n && texel[i].w == 0.0f) ++i;
-  pdf_uv = texel[i].w;
-  const float lo = cdf[i], hi = cdf[i + 1];
+float EnvironmentSampler::sample_column(std::size_t row, int footprint_row, float u,
+                                        float& pdf_uv) const {
+  // The bin i < width with cdf[i] <= u < cdf[i + 1]: the largest i with cdf[i] <= u, as
+  // the CDF is non-decreasing, cdf[0] = 0 <= u and cdf[width] = 1 > u. Its interval is
+  // not empty, so its weight is positive (a zero weight repeats the CDF value exactly).
+  // Line: the largest j with coarse[j] <= u (branch-free binary search).
+  const float* coarse = coarse_cdf_.data() + row * (lines_per_row_ + 1);
+  std::size_t j = 0;
+  for (std::size_t len = lines_per_row_; len > 1;) {
+    const std::size_t half = len / 2;
+    j = coarse[j + half] <= u ? j + half : j;
+    len -= half;
+  }
+  // The bin is one of the line's 16: start loading their texels now, so that their
+  // misses overlap the line's (p(u, v) is read below and the radiance after the bilinear
+  // footprint, rows footprint_row and footprint_row + 1, columns 16 j - 1 to 16 j + 16).
+  const std::size_t pw = std::size_t(width_) + 2;
+  for (std::size_t r = 0; r < 2; ++r) {
+    const char* first = reinterpret_cast<const char*>(
+        texels_.data() + std::size_t(footprint_row + 1 + int(r)) * pw + 16 * j);
+    for (std::size_t b = 0; b < 18 * sizeof(glm::vec4); b += 64) __builtin_prefetch(first + b);
+    __builtin_prefetch(first + 18 * sizeof(glm::vec4) - 1);
+  }
+  // Bin within the line: how many of its values after the first are <= u.
+  const float* line = fine_cdf_[row * lines_per_row_ + j].cdf;
+  std::size_t k = 0;
+  for (std::size_t m = 1; m < 16; ++m) k += line[m] <= u ? 1u : 0u;
+  const std::size_t i = 16 * j + k;
+  const float lo = line[k], hi = k < 15 ? line[k + 1] : coarse[j + 1];
+  pdf_uv = texels_[(row + 1) * pw + i + 1].w;
   const float du = hi > lo ? std::clamp((u - lo) / (hi - lo), 0.0f, 1.0f) : 0.5f;
-  return std::min((float(i) + du) / float(n), kOneMinusEpsilon);
+  return std::min((float(i) + du) / float(width_), kOneMinusEpsilon);
 }
 
 EnvironmentSampler::Sample EnvironmentSampler::sample(glm::vec2 u) const {
@@ -164,7 +186,9 @@ EnvironmentSampler::Sample EnvironmentSampler::sample(glm::vec2 u) const {
   float pdf_v = 0.0f, pdf_uv = 0.0f;
   std::size_t row = 0;
   const float v = marginal_.sample(u.y, pdf_v, row);
-  const float uu = sample_column(row, u.x, pdf_uv);
+  // The first row of the bilinear footprint of v (footprint()'s y0).
+  const int y0 = clamp_floor(std::floor(v * float(height_) - 0.5f), -1, height_ - 1);
+  const float uu = sample_column(row, y0, u.x, pdf_uv);
   // equirect_direction({uu, v}), sharing sin(theta) with the Jacobian.
   const float phi = (uu - 0.5f) * 2.0f * kPi, theta = v * kPi;
   const float sin_theta = std::sin(theta);

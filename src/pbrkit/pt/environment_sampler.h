@@ -30,8 +30,6 @@ class Distribution1D {
   double total() const { return total_; }
   /// The normalised CDF at the start of bin i (i <= size(); cdf(size()) = 1).
   float cdf(std::size_t i) const { return bins_[i].cdf; }
-  /// The guide table's entry k < size(): the bin containing u = k / size().
-  std::uint32_t guide(std::size_t k) const { return guide_[k]; }
 
  private:
   /// Bin i's CDF value (the start of its interval) beside its weight: a sample reads
@@ -92,10 +90,11 @@ class EnvironmentSampler {
   glm::vec3 to_world(glm::vec3 d) const {
     return {cos_inv_ * d.x + sin_inv_ * d.z, d.y, -sin_inv_ * d.x + cos_inv_ * d.z};
   }
-  /// Samples a column of row `row` from p(u | v) by inverting the row's CDF (what
-  /// Distribution1D::sample computes, on the compact tables): returns u in [0, 1) and the
-  /// texel's p(u, v) in `pdf_uv`.
-  float sample_column(std::size_t row, float u, float& pdf_uv) const;
+  /// Samples a column of row `row` from p(u | v) by inverting the row's CDF (as
+  /// Distribution1D::sample does): returns u in [0, 1) and the texel's p(u, v) in
+  /// `pdf_uv`. Prefetches the texels that eval at the sample will read, in rows
+  /// `footprint_row` and `footprint_row` + 1.
+  float sample_column(std::size_t row, int footprint_row, float u, float& pdf_uv) const;
   /// The first of the four texels of the bilinear footprint of `uv` (the next one in the
   /// row, and the same two one padded row below), and the weights fx, fy.
   const glm::vec4* footprint(glm::vec2 uv, float& fx, float& fy) const;
@@ -113,13 +112,19 @@ class EnvironmentSampler {
   /// one of its four bilinear neighbours.
   std::vector<glm::vec4> texels_;
   Distribution1D marginal_;  ///< p(v), over rows (small: stays in cache)
-  /// p(u | v), per row: the CDF, (width + 1) floats per row, 0 first and 1 last, and a
-  /// guide table of width entries per row (Chen & Asau 1974; 16 bits, as width <= 65536).
-  /// The bin weights are not stored: the texels' p(u, v) stands for them (zero exactly
-  /// where they are zero), which halves the per-row tables; they are visited at random
-  /// and do not fit in the caches.
-  std::vector<float> row_cdf_;
-  std::vector<std::uint16_t> row_guide_;
+  /// p(u | v), per row: the row's CDF (cdf[i], i = 0..width, 0 first and 1 last) in two
+  /// levels, so that inverting it costs one cache miss: the fine level holds the CDF in
+  /// 64-byte lines of 16 values (entries past width are 2, above every u), the coarse
+  /// level every 16th value (cdf[16 j], j = 0..lines), small enough to stay in cache
+  /// (256 rows x 33 floats for a 512-wide map). A sample finds its line by a binary
+  /// search of the coarse level and its bin by counting the line's values <= u. The bin
+  /// weights are not stored: the texels' p(u, v) stands for them.
+  struct alignas(64) CdfLine {
+    float cdf[16];
+  };
+  std::size_t lines_per_row_ = 0;
+  std::vector<CdfLine> fine_cdf_;
+  std::vector<float> coarse_cdf_;  ///< lines_per_row_ + 1 per row
   float mean_luminance_ = 0.0f;
 };
 
