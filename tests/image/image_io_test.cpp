@@ -457,6 +457,28 @@ TEST(ImageIo, ExrDeclaringHugeSizesIsRefusedBeforeDecoding) {
   EXPECT_TRUE(contains(msg, "fuzz.exr")) << msg;
 }
 
+// stb_image grows its buffer to an IDAT chunk's declared length before reading it (a
+// 98-byte file made it allocate 1.6 GB; found by fuzz_image): chunks must fit the file.
+TEST(ImageIo, PngChunkLongerThanTheFileIsRefused) {
+  const fs::path dir = test::scratch_dir();
+  write_png(dir / "ok.png", Image(4, 4, 3, 0.5f));
+  const std::string bytes = read_bytes(dir / "ok.png");
+  const std::size_t idat = bytes.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  std::string bad = bytes;
+  const unsigned char huge[4] = {0x60, 0x00, 0x00, 0x00};
+  std::memcpy(bad.data() + idat - 4, huge, 4);
+  const std::string msg = expect_error([&] { decode_image(bad.data(), bad.size(), "bad.png"); });
+  EXPECT_TRUE(contains(msg, "bad.png") && contains(msg, "IDAT") && contains(msg, "past the end"))
+      << msg;
+  // No IEND: truncated.
+  const std::string cut = bytes.substr(0, bytes.find("IEND") - 4);
+  const std::string msg2 = expect_error([&] { decode_image(cut.data(), cut.size(), "cut.png"); });
+  EXPECT_TRUE(contains(msg2, "cut.png") && contains(msg2, "truncated")) << msg2;
+  // The original still decodes.
+  EXPECT_EQ(decode_image(bytes.data(), bytes.size(), "ok.png").width, 4);
+}
+
 TEST(ImageIo, FailedWritesLeaveNothingBehind) {
   const fs::path dir = test::scratch_dir();
   const Image img(4, 4, 3, 0.5f);

@@ -275,10 +275,30 @@ void check_hdr_data(const unsigned char* b, std::size_t size, int width, int hei
 }
 
 // PNG, JPEG and Radiance HDR through stb_image (Debian's libstb holds the implementation).
+// Checks a PNG's chunk structure before stb_image sees it: stb grows its IDAT buffer to a
+// chunk's declared length before reading the chunk, so a 98-byte file declaring a 1.6 GB
+// IDAT made it allocate that much (found by fuzz_image). Every chunk (4-byte big-endian
+// length, type, data, CRC; PNG specification section 5.3) must lie inside the file, up to
+// IEND.
+void check_png_chunks(const unsigned char* b, std::size_t n, const std::string& name) {
+  std::size_t pos = 8;  // after the signature
+  while (true) {
+    if (n - pos < 12) fail("{}: PNG is truncated (no IEND chunk)", name);
+    const std::size_t length = std::size_t(b[pos]) << 24 | std::size_t(b[pos + 1]) << 16 |
+                               std::size_t(b[pos + 2]) << 8 | std::size_t(b[pos + 3]);
+    if (length > n - pos - 12)
+      fail("{}: PNG chunk '{}' declares {} bytes, past the end of the file", name,
+           std::string(reinterpret_cast<const char*>(b + pos + 4), 4), length);
+    if (std::memcmp(b + pos + 4, "IEND", 4) == 0) return;
+    pos += 12 + length;
+  }
+}
+
 Image decode_stb(const unsigned char* bytes, std::size_t size, const std::string& name,
                  Format format, const ImageReadOptions& options, ImageReadReport& report) {
   if (size > static_cast<std::size_t>(INT32_MAX)) fail("{}: file is too large", name);
   const int len = static_cast<int>(size);
+  if (format == Format::kPng) check_png_chunks(bytes, size, name);
   int w = 0, h = 0, comp = 0;
   if (!stbi_info_from_memory(bytes, len, &w, &h, &comp))
     fail("{}: cannot read image header: {}", name, stbi_failure_reason());
