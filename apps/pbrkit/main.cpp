@@ -9,7 +9,7 @@
 int main(int argc, char** argv) {
   CLI::App app{
       "pbrkit " PBRKIT_VERSION
-      ": a physically based rendering toolkit. One material model (../shared/spec/MODEL.md)\n"
+      ": a physically based rendering toolkit. One material model (docs/MODEL.md)\n"
       "for image-based-lighting bakes, a real-time OpenGL renderer and a Monte Carlo path "
       "tracer.\nRun 'pbrkit <command> --help' for each command's options."};
   app.require_subcommand(1);

@@ -1,5 +1,5 @@
 #pragma once
-// The metallic-roughness BRDF of ../shared/spec/MODEL.md: Lambert diffuse plus GGX
+// The metallic-roughness BRDF of docs/MODEL.md: Lambert diffuse plus GGX
 // Cook-Torrance specular, with a selectable G ("reference" or "classic") and optional
 // multiple-scattering energy compensation. One implementation for every renderer:
 // the path tracer calls eval/sample/pdf, the GL shaders mirror eval line by line, and the
