@@ -3,6 +3,10 @@
 #include <array>
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "pbrkit/core/math.h"
 
 namespace pbrkit {
@@ -149,22 +153,97 @@ std::uint32_t OwenSobolSampler::pixel_seed(std::uint32_t pixel_id) const {
   return hash_combine(seed_, pixel_id);
 }
 
-glm::vec4 OwenSobolSampler::sample_block(std::uint32_t pixel_seed, std::uint32_t index,
-                                         std::uint32_t block) const {
-  // Dimensions come in 4D Sobol blocks; each block has its own seed ("padding"), and the
-  // index shuffle is shared inside a block so the 4D stratification is kept (Burley 2020,
-  // section 4). In Burley's terms the value of dimension d is
-  //   nested_uniform_scramble(sobol(nested_uniform_scramble(index, block_seed), d), seed_d);
-  // written out with the reversals cancelled against the tables'.
-  const std::uint32_t block_seed = hash_combine(pixel_seed, block);
+namespace {
+
+// The seeds of one block of one pixel: the block's (index shuffle) and one per dimension.
+inline void block_seeds(std::uint32_t pixel_seed, std::uint32_t block, std::uint32_t& block_seed,
+                        std::uint32_t dims[4]) {
+  block_seed = hash_combine(pixel_seed, block);
+  for (std::uint32_t d = 0; d < 4; ++d) dims[d] = hash_combine(block_seed, d + 1u);
+}
+
+#if defined(__SSE2__)
+// SSE2 (the x86-64 baseline) has no 32-bit lane multiply (pmulld is SSE4.1): two
+// 32 x 32 -> 64-bit products (lanes 0, 2 and 1, 3), low halves merged.
+inline __m128i mullo32(__m128i a, __m128i b) {
+  const __m128i even = _mm_mul_epu32(a, b);
+  const __m128i odd = _mm_mul_epu32(_mm_srli_epi64(a, 32), _mm_srli_epi64(b, 32));
+  return _mm_or_si128(_mm_and_si128(even, _mm_set_epi32(0, -1, 0, -1)), _mm_slli_epi64(odd, 32));
+}
+
+inline __m128i swap_bits(__m128i x, int shift, int mask) {
+  const __m128i m = _mm_set1_epi32(mask);
+  return _mm_or_si128(_mm_and_si128(_mm_srli_epi32(x, shift), m),
+                      _mm_slli_epi32(_mm_and_si128(x, m), shift));
+}
+
+inline __m128i reverse_bits4(__m128i x) {
+  x = swap_bits(x, 1, 0x55555555);
+  x = swap_bits(x, 2, 0x33333333);
+  x = swap_bits(x, 4, 0x0f0f0f0f);
+  x = swap_bits(x, 8, 0x00ff00ff);
+  return _mm_or_si128(_mm_srli_epi32(x, 16), _mm_slli_epi32(x, 16));
+}
+
+inline __m128i laine_karras_permutation4(__m128i x, __m128i seed) {
+  x = _mm_add_epi32(x, seed);
+  for (std::uint32_t c : {0x6c50b47cu, 0xb82f1e52u, 0xc7afe638u, 0x8d22f6e6u})
+    x = _mm_xor_si128(x, mullo32(x, _mm_set1_epi32(int(c))));
+  return x;
+}
+#endif
+
+// Dimensions come in 4D Sobol blocks; each block has its own seed ("padding"), and the
+// index shuffle is shared inside a block so the 4D stratification is kept (Burley 2020,
+// section 4). In Burley's terms the value of dimension d is
+//   nested_uniform_scramble(sobol(nested_uniform_scramble(index, block_seed), d), seed_d);
+// written out with the reversals cancelled against the tables'. The four dimensions are
+// computed side by side in SSE2 lanes where available (the same integer operations).
+inline glm::vec4 scrambled_block(std::uint32_t index, std::uint32_t block_seed,
+                                 const std::uint32_t dims[4]) {
   const std::uint32_t r = laine_karras_permutation(reverse_bits(index), block_seed);
+#if defined(__SSE2__)
+  __m128i x = _mm_load_si128(reinterpret_cast<const __m128i*>(kSobolTables[0][r & 255u].data()));
+  for (int j = 1; j < 4; ++j)
+    x = _mm_xor_si128(x, _mm_load_si128(reinterpret_cast<const __m128i*>(
+                             kSobolTables[j][(r >> (8 * j)) & 255u].data())));
+  x = laine_karras_permutation4(x, _mm_loadu_si128(reinterpret_cast<const __m128i*>(dims)));
+  x = _mm_srli_epi32(reverse_bits4(x), 8);
+  // to_unit_float: 24 bits convert exactly (as signed), and (2^24 - 1) 2^-24 is already
+  // kOneMinusEpsilon.
+  glm::vec4 out;
+  _mm_storeu_ps(&out[0], _mm_mul_ps(_mm_cvtepi32_ps(x), _mm_set1_ps(0x1p-24f)));
+  return out;
+#else
   const std::array<std::uint32_t, 4> x = sobol_reversed(r);
   glm::vec4 out;
-  for (int d = 0; d < 4; ++d) {
-    const std::uint32_t seed = hash_combine(block_seed, std::uint32_t(d) + 1u);
-    out[d] = to_unit_float(reverse_bits(laine_karras_permutation(x[std::size_t(d)], seed)));
-  }
+  for (int d = 0; d < 4; ++d)
+    out[d] = to_unit_float(reverse_bits(laine_karras_permutation(x[std::size_t(d)], dims[d])));
   return out;
+#endif
+}
+
+}  // namespace
+
+glm::vec4 OwenSobolSampler::sample_block(std::uint32_t pixel_seed, std::uint32_t index,
+                                         std::uint32_t block) const {
+  std::uint32_t block_seed, dims[4];
+  block_seeds(pixel_seed, block, block_seed, dims);
+  return scrambled_block(index, block_seed, dims);
+}
+
+OwenSobolPixel::OwenSobolPixel(const OwenSobolSampler& sampler, std::uint32_t pixel_id)
+    : pixel_seed_(sampler.pixel_seed(pixel_id)) {}
+
+glm::vec4 OwenSobolPixel::sample_block(std::uint32_t index, std::uint32_t block) {
+  if (block >= kCachedBlocks) {
+    std::uint32_t block_seed, dims[4];
+    block_seeds(pixel_seed_, block, block_seed, dims);
+    return scrambled_block(index, block_seed, dims);
+  }
+  for (; cached_ <= block; ++cached_)
+    block_seeds(pixel_seed_, cached_, seeds_[cached_].block, seeds_[cached_].dims);
+  return scrambled_block(index, seeds_[block].block, seeds_[block].dims);
 }
 
 float OwenSobolSampler::sample(std::uint32_t pixel_id, std::uint32_t index,

@@ -69,6 +69,28 @@ class OwenSobolSampler {
   std::uint32_t seed_;
 };
 
+/// One pixel's sequence of an OwenSobolSampler, for a renderer's sample loop (one object
+/// per pixel, or per pixel and pass). A block's five hashed seeds (the block's, for the
+/// index shuffle, and one per dimension) depend on the pixel and the block only, so they
+/// are hashed once, on first use, for the first kCachedBlocks blocks, instead of once per
+/// sample. sample_block() returns exactly OwenSobolSampler's values.
+class OwenSobolPixel {
+ public:
+  OwenSobolPixel(const OwenSobolSampler& sampler, std::uint32_t pixel_id);
+  /// Dimensions 4 block .. 4 block + 3 of sample `index`.
+  glm::vec4 sample_block(std::uint32_t index, std::uint32_t block);
+
+ private:
+  static constexpr std::uint32_t kCachedBlocks = 24;
+  struct BlockSeeds {
+    std::uint32_t block;
+    std::uint32_t dims[4];
+  };
+  std::uint32_t pixel_seed_;
+  std::uint32_t cached_ = 0;  ///< blocks [0, cached_) are in seeds_
+  BlockSeeds seeds_[kCachedBlocks];
+};
+
 /// Plain (unscrambled) Sobol point `index` in dimension `dim` (0..3), as a 32-bit integer
 /// fraction. Exposed for tests (the first dimensions are known in closed form).
 std::uint32_t sobol_u32(std::uint32_t index, std::uint32_t dim);

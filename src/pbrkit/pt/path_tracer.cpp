@@ -18,6 +18,7 @@
 
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
+#include "pbrkit/pt/camera_rays.h"
 #include "pbrkit/pt/geometry.h"
 #include "pbrkit/pt/lights.h"
 #include "pbrkit/pt/ray_offset.h"
@@ -79,10 +80,9 @@ class Integrator {
 
   // One path through pixel `pixel` for sample `index` (Veach's path tracer with NEE and
   // MIS, in pbrt-v4's PathIntegrator form). `rays` counts the rays traced.
-  // `pixel_seed` is sampler.pixel_seed(pixel).
-  PathSample trace(glm::vec3 origin, glm::vec3 direction, const OwenSobolSampler& sampler,
-                   std::uint32_t pixel, std::uint32_t pixel_seed, std::uint32_t index,
-                   std::uint64_t& rays) const {
+  // `sampler` is the pixel's sequence.
+  PathSample trace(glm::vec3 origin, glm::vec3 direction, OwenSobolPixel& sampler,
+                   std::uint32_t pixel, std::uint32_t index, std::uint64_t& rays) const {
     PathSample out;
     glm::vec3 beta(1.0f);
     float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
@@ -143,8 +143,8 @@ class Integrator {
       const glm::vec3 wo_local = frame.to_local(wo);
       const Brdf brdf(in.base_color, in.metallic, in.roughness, settings_.brdf);
       const std::uint32_t block = kFilterBlocks + std::uint32_t(depth) * kBlocksPerBounce;
-      const glm::vec4 u_nee = sampler.sample_block(pixel_seed, index, block);
-      const glm::vec4 u_bsdf = sampler.sample_block(pixel_seed, index, block + 1);
+      const glm::vec4 u_nee = sampler.sample_block(index, block);
+      const glm::vec4 u_bsdf = sampler.sample_block(index, block + 1);
 
       // The work below is ordered for the memory system, not by the estimator: the light
       // sample first (the environment's tables miss the caches, and the BSDF sampling that
@@ -339,7 +339,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
 
   const Integrator integrator(scene, *geometry, *lights, settings);
   const OwenSobolSampler sampler(settings.seed);
-  const float aspect = float(settings.width) / float(settings.height);
+  const CameraRays camera_rays(camera, float(settings.width) / float(settings.height));
   const int tiles_x = (settings.width + kTileSize - 1) / kTileSize;
   const int tiles_y = (settings.height + kTileSize - 1) / kTileSize;
 
@@ -414,19 +414,19 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
                     const std::size_t i = std::size_t(y) * settings.width + x;
                     if (film.done[i] > 0.0f) continue;
                     const auto pixel = std::uint32_t(i);
-                    const std::uint32_t pixel_seed = sampler.pixel_seed(pixel);
+                    OwenSobolPixel pixel_sampler(sampler, pixel);
                     for (auto s = std::uint32_t(film.count[i]); s < target; ++s) {
                       const std::uint32_t index = begin + s;
-                      const glm::vec2 uf(sampler.sample_block(pixel_seed, index, 0));
+                      const glm::vec2 uf(pixel_sampler.sample_block(index, 0));
                       const glm::vec2 off = settings.filter == PixelFilter::kTent
                                                 ? glm::vec2(sample_tent(uf.x), sample_tent(uf.y))
                                                 : uf - 0.5f;
                       const glm::vec2 ndc(
                           (float(x) + 0.5f + off.x) / float(settings.width) * 2.0f - 1.0f,
                           1.0f - (float(y) + 0.5f + off.y) / float(settings.height) * 2.0f);
-                      const Ray ray = generate_ray(camera, aspect, ndc);
-                      const PathSample ps = integrator.trace(ray.origin, ray.direction, sampler,
-                                                             pixel, pixel_seed, index, rays);
+                      const Ray ray = camera_rays.generate(ndc);
+                      const PathSample ps = integrator.trace(ray.origin, ray.direction,
+                                                             pixel_sampler, pixel, index, rays);
                       film.sum[i] += ps.L;
                       if ((index & 1u) == 0u) film.sum_even[i] += ps.L;
                       film.albedo[i] += ps.albedo;

@@ -1,0 +1,53 @@
+#pragma once
+// Primary rays for the path tracer's sample loop: scene/camera.h's generate_ray with the
+// per-camera set-up (the aspect ratio and the tangent of half the field of view) done
+// once per render instead of once per sample. The ray itself is computed with the same
+// expressions, so it is bit-identical to generate_ray's (tests/pt/camera_rays_test.cpp).
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+#include "pbrkit/scene/camera.h"
+
+namespace pbrkit {
+
+class CameraRays {
+ public:
+  CameraRays(const Camera& camera, float aspect)
+      : to_world_(camera.camera_to_world),
+        orthographic_(camera.type == Camera::Type::kOrthographic) {
+    // camera.cpp's half_extent.
+    const float a = camera.aspect_ratio.value_or(aspect);
+    if (orthographic_) {
+      half_ = {camera.xmag, camera.ymag};
+    } else {
+      const float t = std::tan(0.5f * camera.yfov);
+      half_ = {a * t, t};
+    }
+    forward_ = glm::normalize(-glm::vec3(to_world_[2]));
+  }
+
+  /// generate_ray(camera, aspect, ndc).
+  Ray generate(glm::vec2 ndc) const {
+    const glm::mat4& m = to_world_;
+    const glm::vec2 h = half_;
+    Ray ray;
+    if (orthographic_) {
+      ray.origin = glm::vec3(m * glm::vec4(ndc.x * h.x, ndc.y * h.y, 0.0f, 1.0f));
+      ray.direction = forward_;
+    } else {
+      ray.origin = glm::vec3(m[3]);
+      ray.direction =
+          glm::normalize(glm::vec3(m * glm::vec4(ndc.x * h.x, ndc.y * h.y, -1.0f, 0.0f)));
+    }
+    return ray;
+  }
+
+ private:
+  glm::mat4 to_world_;
+  bool orthographic_;
+  glm::vec2 half_{1.0f};
+  glm::vec3 forward_{0.0f, 0.0f, -1.0f};  ///< orthographic direction
+};
+
+}  // namespace pbrkit
