@@ -85,7 +85,7 @@ struct PathTracerSettings {
 
 struct PathTracerStats {
   double render_seconds = 0.0;  ///< the sampling loop only (no loading, no BVH build)
-  double build_seconds = 0.0;   ///< Embree BVH build and light setup
+  double build_seconds = 0.0;   ///< Embree BVH build, light setup, BRDF tables (first render)
   std::uint64_t samples = 0;    ///< camera samples taken in this call
   std::uint64_t rays = 0;       ///< rays traced in this call (camera, bounce, shadow)
   bool stopped = false;         ///< stopped early (flag, callback or time limit)
