@@ -7,19 +7,9 @@
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
-#include "pbrkit/pt/fast_atan.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {
-
-namespace {
-
-// int(f) (rounded towards zero) clamped to [lo, hi]; NaN gives lo (no undefined conversion).
-inline int clamp_floor(float f, int lo, int hi) {
-  return f >= float(hi) ? hi : f > float(lo) ? int(f) : lo;
-}
-
-}  // namespace
 
 Distribution1D::Distribution1D(std::vector<float> weights) {
   // The running sum is kept in double; the normalised CDF is stored in float (half the
@@ -77,7 +67,13 @@ float Distribution1D::pdf(std::size_t index) const {
 }
 
 EnvironmentSampler::EnvironmentSampler(const Environment& env)
-    : env_(env), width_(env.map.width), height_(env.map.height) {
+    : env_(env),
+      width_(env.map.width),
+      height_(env.map.height),
+      fw_(float(width_)),
+      fh_(float(height_)),
+      stride_(std::size_t(width_) + 2),
+      intensity_(env.intensity) {
   // The same rotation as world_to_env(d, env.rotation_deg), evaluated once.
   const float a = -env.rotation_deg * (kPi / 180.0f);
   cos_rot_ = std::cos(a);
@@ -186,8 +182,8 @@ EnvironmentSampler::Sample EnvironmentSampler::sample(glm::vec2 u) const {
   float pdf_v = 0.0f, pdf_uv = 0.0f;
   std::size_t row = 0;
   const float v = marginal_.sample(u.y, pdf_v, row);
-  // The first row of the bilinear footprint of v (footprint()'s y0).
-  const int y0 = clamp_floor(std::floor(v * float(height_) - 0.5f), -1, height_ - 1);
+  // The first row of the bilinear footprint of v (at()'s, less its border row).
+  const int y0 = int(v * fh_ + 0.5f) - 1;
   const float uu = sample_column(row, y0, u.x, pdf_uv);
   // equirect_direction({uu, v}), sharing sin(theta) with the Jacobian.
   const float phi = (uu - 0.5f) * 2.0f * kPi, theta = v * kPi;
@@ -198,7 +194,7 @@ EnvironmentSampler::Sample EnvironmentSampler::sample(glm::vec2 u) const {
   s.direction = to_world({sin_theta * std::sin(phi), std::cos(theta), -sin_theta * std::cos(phi)});
   // The radiance at the sampled (u, v) itself: the same as eval(direction) up to the
   // rounding of the round trip through the direction, without its atan2 and acos.
-  s.radiance = eval(Location{{uu, v}, sin_theta});
+  s.radiance = eval(at({uu, v}, sin_theta));
   return s;
 }
 
@@ -206,60 +202,6 @@ float EnvironmentSampler::pdf(glm::vec3 d) const {
   float p = 0.0f;
   eval(d, &p);
   return p;
-}
-
-EnvironmentSampler::Location EnvironmentSampler::locate(glm::vec3 d) const {
-  const glm::vec3 local = to_env(d);
-  Location at;
-  // sqrt(x^2 + z^2) rather than sqrt(1 - y^2): no cancellation near the poles; and
-  // theta = atan2(sin, cos) rather than acos(y), accurate everywhere.
-  at.sin_theta = std::sqrt(local.x * local.x + local.z * local.z);
-  const float u = 0.5f + fast_atan2(local.x, -local.z) * (0.5f * kInvPi);
-  at.uv = {u - std::floor(u), fast_atan2(at.sin_theta, local.y) * kInvPi};
-  return at;
-}
-
-const glm::vec4* EnvironmentSampler::footprint(glm::vec2 uv, float& fx, float& fy) const {
-  // Texel centres at (i + 0.5) / size (Environment::eval); the border holds the wrapped
-  // columns and repeated rows, so x0, y0 = -1 need no special case. (The clamps only
-  // guard against NaN and u or v at 1.)
-  const float x = uv.x * float(width_) - 0.5f;
-  const float y = uv.y * float(height_) - 0.5f;
-  const float x0f = std::floor(x), y0f = std::floor(y);
-  fx = x - x0f;
-  fy = y - y0f;
-  const int x0 = clamp_floor(x0f, -1, width_ - 1);
-  const int y0 = clamp_floor(y0f, -1, height_ - 1);
-  return texels_.data() + std::size_t(y0 + 1) * (std::size_t(width_) + 2) + std::size_t(x0 + 1);
-}
-
-void EnvironmentSampler::prefetch(const Location& at) const {
-  float fx, fy;
-  const glm::vec4* row0 = footprint(at.uv, fx, fy);
-  const glm::vec4* row1 = row0 + width_ + 2;
-  // Two texels of 16 bytes per row: one or two cache lines each.
-  __builtin_prefetch(row0);
-  __builtin_prefetch(row0 + 1);
-  __builtin_prefetch(row1);
-  __builtin_prefetch(row1 + 1);
-}
-
-glm::vec3 EnvironmentSampler::eval(const Location& at, float* pdf) const {
-  float fx, fy;
-  const glm::vec4* row0 = footprint(at.uv, fx, fy);
-  const glm::vec4* row1 = row0 + width_ + 2;
-  if (pdf) {
-    // The texel that contains uv (one of the four just read), its p(u, v) converted to
-    // solid angle.
-    const int xc = clamp_floor(at.uv.x * float(width_), 0, width_ - 1);
-    const int yc = clamp_floor(at.uv.y * float(height_), 0, height_ - 1);
-    const float pdf_uv =
-        texels_[std::size_t(yc + 1) * (std::size_t(width_) + 2) + std::size_t(xc + 1)].w;
-    *pdf = at.sin_theta > 0.0f ? pdf_uv / (2.0f * kPi * kPi * at.sin_theta) : 0.0f;
-  }
-  const glm::vec3 c = glm::mix(glm::mix(glm::vec3(row0[0]), glm::vec3(row0[1]), fx),
-                               glm::mix(glm::vec3(row1[0]), glm::vec3(row1[1]), fx), fy);
-  return c * env_.intensity;
 }
 
 }  // namespace pbrkit

@@ -5,13 +5,17 @@
 // orientation convention (core/equirect.h), including the environment's rotation, so that
 // pdf() is the density of sample() with respect to solid angle and matches what
 // Environment::eval returns for the same direction.
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "pbrkit/core/math.h"
 #include "pbrkit/image/environment.h"
+#include "pbrkit/pt/fast_atan.h"
 
 namespace pbrkit {
 
@@ -61,23 +65,70 @@ class EnvironmentSampler {
   /// Solid-angle density of sample() at world direction `d` (unit).
   float pdf(glm::vec3 d) const;
 
-  /// Where a direction falls in the map: its (u, v) (core/equirect.h's convention, after
-  /// the rotation) and sin(theta).
+  /// Where a direction falls in the map: the bilinear footprint of its (u, v)
+  /// (core/equirect.h's convention, after the rotation), the texel that contains it, and
+  /// sin(theta); everything eval() needs, so that the conversion can be done (and the
+  /// texels prefetched) before a ray is traced and reused after it missed.
   struct Location {
-    glm::vec2 uv{0.0f};
+    const glm::vec4* texel = nullptr;       ///< footprint's first texel; next: +1, +stride
+    const glm::vec4* containing = nullptr;  ///< the texel containing (u, v) (its pdf)
+    float fx = 0.0f, fy = 0.0f;             ///< bilinear weights
     float sin_theta = 0.0f;
   };
+  /// The location of map coordinates `uv` in [0, 1]^2 with the given sin(theta).
+  Location at(glm::vec2 uv, float sin_theta) const {
+    Location l;
+    // Environment::eval's bilinear lookup, texel centres at (i + 0.5) / size: the
+    // footprint starts at texel floor(u w - 0.5), which in the padded table (one border
+    // texel before the first) is column int(u w + 0.5); likewise for rows. The clamps
+    // only guard against NaN (and u or v slightly outside [0, 1]).
+    float xs = uv.x * fw_ + 0.5f, ys = uv.y * fh_ + 0.5f;
+    xs = xs > 0.0f ? std::min(xs, fw_ + 0.5f) : 0.0f;
+    ys = ys > 0.0f ? std::min(ys, fh_ + 0.5f) : 0.0f;
+    const int xi = int(xs), yi = int(ys);
+    l.fx = xs - float(xi);
+    l.fy = ys - float(yi);
+    l.texel = texels_.data() + std::size_t(yi) * stride_ + std::size_t(xi);
+    // The containing texel: column floor(u w), row floor(v h), one of the footprint's.
+    const int xc = std::min(int(xs - 0.5f), width_ - 1), yc = std::min(int(ys - 0.5f), height_ - 1);
+    l.containing = texels_.data() + std::size_t(yc + 1) * stride_ + std::size_t(xc + 1);
+    l.sin_theta = sin_theta;
+    return l;
+  }
   /// equirect_uv(world_to_env(d, rotation)), with the rotation's sine and cosine computed
   /// once and fast_atan2 for libm's atan2 and acos (within 4e-7 rad, a thousandth of a
   /// texel of the largest map).
-  Location locate(glm::vec3 d) const;
-  /// Environment::eval at `at` (its bilinear lookup, without the wrapping and clamping),
-  /// and, unless `pdf` is null, pdf() there from the same cache lines.
-  glm::vec3 eval(const Location& at, float* pdf = nullptr) const;
+  Location locate(glm::vec3 d) const {
+    const glm::vec3 local = to_env(d);
+    // sqrt(x^2 + z^2) rather than sqrt(1 - y^2): no cancellation near the poles; and
+    // theta = atan2(sin, cos) rather than acos(y), accurate everywhere. u = 1 (the seam)
+    // needs no wrapping: the padded table's last column is the first.
+    const float sin_theta = std::sqrt(local.x * local.x + local.z * local.z);
+    const float u = 0.5f + fast_atan2(local.x, -local.z) * (0.5f * kInvPi);
+    return at({u, fast_atan2(sin_theta, local.y) * kInvPi}, sin_theta);
+  }
+  /// Environment::eval at `l` (its bilinear lookup), and, unless `pdf` is null, pdf()
+  /// there, from the same cache lines.
+  glm::vec3 eval(const Location& l, float* pdf = nullptr) const {
+    if (pdf) {
+      // The containing texel's p(u, v) converted to solid angle.
+      *pdf = l.sin_theta > 0.0f ? l.containing->w / (2.0f * kPi * kPi * l.sin_theta) : 0.0f;
+    }
+    const glm::vec4* row1 = l.texel + stride_;
+    const glm::vec3 c = glm::mix(glm::mix(glm::vec3(l.texel[0]), glm::vec3(l.texel[1]), l.fx),
+                                 glm::mix(glm::vec3(row1[0]), glm::vec3(row1[1]), l.fx), l.fy);
+    return c * intensity_;
+  }
   glm::vec3 eval(glm::vec3 d, float* pdf = nullptr) const { return eval(locate(d), pdf); }
-  /// Starts loading what eval(at) reads (call it before tracing a ray that may escape,
+  /// Starts loading what eval(l) reads (call it before tracing a ray that may escape,
   /// so the lookup after the miss finds the texels in cache).
-  void prefetch(const Location& at) const;
+  void prefetch(const Location& l) const {
+    // Two texels of 16 bytes in each of two rows: one or two cache lines per row.
+    __builtin_prefetch(l.texel);
+    __builtin_prefetch(l.texel + 1);
+    __builtin_prefetch(l.texel + stride_);
+    __builtin_prefetch(l.texel + stride_ + 1);
+  }
   /// Average radiance luminance over the sphere (for light selection by power).
   float mean_luminance() const { return mean_luminance_; }
 
@@ -95,12 +146,12 @@ class EnvironmentSampler {
   /// `pdf_uv`. Prefetches the texels that eval at the sample will read, in rows
   /// `footprint_row` and `footprint_row` + 1.
   float sample_column(std::size_t row, int footprint_row, float u, float& pdf_uv) const;
-  /// The first of the four texels of the bilinear footprint of `uv` (the next one in the
-  /// row, and the same two one padded row below), and the weights fx, fy.
-  const glm::vec4* footprint(glm::vec2 uv, float& fx, float& fy) const;
 
   const Environment& env_;
   int width_ = 0, height_ = 0;
+  float fw_ = 0.0f, fh_ = 0.0f;  ///< float(width_), float(height_)
+  std::size_t stride_ = 0;       ///< texels per row of texels_: width + 2
+  float intensity_ = 1.0f;
   /// world_to_env's rotation (cos, sin), computed once.
   float cos_rot_ = 1.0f, sin_rot_ = 0.0f;
   float cos_inv_ = 1.0f, sin_inv_ = 0.0f;  ///< the inverse rotation's
