@@ -223,7 +223,8 @@ int quadrature_source_level(const Cubemap& source, float roughness) {
 
 bool use_quadrature(const Cubemap& source, float roughness, int out_size) {
   const double S = source.size(quadrature_source_level(source, roughness));
-  // At most 2^28 texel pairs per level (~0.3 s on one core), so only the small rough levels.
+  // At most 2^28 texel pairs per level (~0.1 s on one core, the half behind R skipped), so
+  // only the small rough levels.
   return roughness >= 0.25f && 36.0 * double(out_size) * out_size * S * S <= double(1 << 28);
 }
 
