@@ -126,6 +126,35 @@ bool SceneGeometry::intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mas
   return true;
 }
 
+void SceneGeometry::intersect_packet(const glm::vec3* origins, const glm::vec3* directions,
+                                     PacketHit* hits) const {
+  static_assert(kPacketSize == 16);
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  RTCRayHit16 rh;
+  alignas(64) int valid[16];
+  for (int k = 0; k < 16; ++k) {
+    valid[k] = -1;
+    rh.ray.org_x[k] = origins[k].x;
+    rh.ray.org_y[k] = origins[k].y;
+    rh.ray.org_z[k] = origins[k].z;
+    rh.ray.dir_x[k] = directions[k].x;
+    rh.ray.dir_y[k] = directions[k].y;
+    rh.ray.dir_z[k] = directions[k].z;
+    rh.ray.tnear[k] = 0.0f;
+    rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
+    rh.ray.mask[k] = 0xffffffffu;
+    rh.ray.time[k] = 0.0f;
+    rh.ray.flags[k] = 0;
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, rtc_scene_, &context, &rh);
+  for (int k = 0; k < 16; ++k)
+    hits[k] = {rh.hit.geomID[k], rh.hit.primID[k], rh.ray.tfar[k], rh.hit.u[k], rh.hit.v[k]};
+}
+
 bool SceneGeometry::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
