@@ -75,6 +75,16 @@ class SceneGeometry {
                         PacketHit* hits) const;
   /// Any opaque hit in (0, tfar)?
   bool occluded(glm::vec3 o, glm::vec3 d, float tfar) const;
+  /// Starts loading the vertex data resolve(geom, prim, ...) will read (for a batch of
+  /// hits, so that their cache misses overlap).
+  void prefetch(std::uint32_t geom, std::uint32_t prim) const {
+    const WorldMesh& wm = meshes_[geom];
+    const std::uint32_t* idx = wm.mesh->indices.data() + 3 * std::size_t(prim);
+    for (int k = 0; k < 3; ++k) {
+      __builtin_prefetch(wm.positions.data() + idx[k]);
+      if (!wm.normals.empty()) __builtin_prefetch(wm.normals.data() + idx[k]);
+    }
+  }
   /// Shading data of a hit.
   SurfaceHit resolve(std::uint32_t geom, std::uint32_t prim, float t, float u, float v) const;
 

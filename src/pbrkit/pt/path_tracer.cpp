@@ -54,7 +54,11 @@ inline float power_heuristic(float f, float g) {
 // Inverse CDF of the tent filter of radius 1 (pbrt-v3 TriangleFilter sampling):
 // density 1 - |x| on [-1, 1].
 inline float sample_tent(float u) {
-  return u < 0.5f ? -1.0f + std::sqrt(2.0f * u) : 1.0f - std::sqrt(2.0f - 2.0f * u);
+  // -1 + sqrt(2 u) below 1/2, 1 - sqrt(2 - 2 u) above, with one square root and selects
+  // (u is random: a branch here mispredicts half the time).
+  const bool low = u < 0.5f;
+  const float r = std::sqrt(low ? 2.0f * u : 2.0f - 2.0f * u);
+  return low ? r - 1.0f : 1.0f - r;
 }
 
 // A uniform float from a hash of its arguments: decisions that need more random numbers
@@ -459,6 +463,10 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
         directions[k] = ray.direction;
       }
       geometry->intersect_packet(origins, directions, hits);
+      // The paths below are traced one after the other; the cache misses of their first
+      // hits' vertex data are started here together, so that they overlap.
+      for (int k = 0; k < kLanes; ++k)
+        if (hits[k].geom != SceneGeometry::kNoHit) geometry->prefetch(hits[k].geom, hits[k].prim);
       for (int k = 0; k < kLanes; ++k) {
         const std::size_t i = pixel_of[k];
         if (!inside[k] || film.done[i] > 0.0f || s < std::uint32_t(film.count[i])) continue;
