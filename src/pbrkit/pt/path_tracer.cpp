@@ -25,6 +25,7 @@
 #include "pbrkit/pt/lights.h"
 #include "pbrkit/pt/ray_offset.h"
 #include "pbrkit/pt/shading.h"
+#include "pbrkit/pt/vertex_brdf.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {
@@ -153,7 +154,8 @@ class Integrator {
 
       const Frame frame(in.ns);
       const glm::vec3 wo_local = frame.to_local(wo);
-      const Brdf brdf(in.base_color, in.metallic, in.roughness, settings_.brdf);
+      const VertexBrdf brdf(Brdf(in.base_color, in.metallic, in.roughness, settings_.brdf),
+                            wo_local);
       const std::uint32_t block = kFilterBlocks + std::uint32_t(depth) * kBlocksPerBounce;
       const glm::vec4 u_nee = sampler.sample_block(index, block);
       const glm::vec4 u_bsdf = sampler.sample_block(index, block + 1);
@@ -176,7 +178,7 @@ class Integrator {
       // Russian roulette (pbrt-v4): survive with probability max(beta), at most 1.
       const float u_lobe = u_nee.w;
       const glm::vec2 u_dir(u_bsdf.x, u_bsdf.y);
-      const BrdfSample bs = brdf.sample(wo_local, u_lobe, u_dir);
+      const BrdfSample bs = brdf.sample(u_lobe, u_dir);
       bool next = bs.valid;
       glm::vec3 wi(0.0f), beta_next(0.0f);
       if (next) {
@@ -202,11 +204,13 @@ class Integrator {
       if (light_sampled && (ls.delta || strategy != LightStrategy::kBsdfOnly) &&
           ls.Li != glm::vec3(0.0f) && glm::dot(ls.wi, hit.ng) > 0.0f) {
         const glm::vec3 wi_local = frame.to_local(ls.wi);
-        const glm::vec3 f = brdf.eval(wo_local, wi_local) * std::max(wi_local.z, 0.0f);
+        const bool mis = !ls.delta && strategy == LightStrategy::kMis;
+        float bsdf_pdf = 0.0f;
+        const glm::vec3 f =
+            brdf.eval(wi_local, mis ? &bsdf_pdf : nullptr) * std::max(wi_local.z, 0.0f);
         if (f != glm::vec3(0.0f)) {
           float w = 1.0f;
-          if (!ls.delta && strategy == LightStrategy::kMis)
-            w = power_heuristic(ls.pdf, brdf.pdf(wo_local, wi_local));
+          if (mis) w = power_heuristic(ls.pdf, bsdf_pdf);
           const glm::vec3 tr = transmittance(hit, ls, pixel, index, depth, rays);
           out.L += beta * f * ls.Li * tr * (w / ls.pdf);
         }
