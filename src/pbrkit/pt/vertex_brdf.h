@@ -9,6 +9,7 @@
 // Brdf's (tests/pt/vertex_brdf_test.cpp compares all models and options): a change to
 // Brdf (core/material.cpp) must be mirrored here, and that test says so when it is not.
 #include <algorithm>
+#include <cmath>
 
 #include <glm/glm.hpp>
 
@@ -113,7 +114,7 @@ class VertexBrdf {
     BrdfSample s;
     if (wo_.z <= 0.0f) return s;
     if (u_lobe < p_spec_) {
-      s.wi = reflect_about(wo_, sample_ggx_vndf(wo_, u, alpha_).h);
+      s.wi = reflect_about(wo_, vndf_half_vector(u));
     } else {
       s.wi = sample_cosine_hemisphere(u).direction;
     }
@@ -127,6 +128,25 @@ class VertexBrdf {
 
  private:
   float k_schlick() const { return k_direct(roughness_); }
+  // sample_ggx_vndf(wo, u, alpha).h (Heitz 2018, listing 1), without the pdf it also
+  // computes (the sample's pdf comes from eval below).
+  glm::vec3 vndf_half_vector(glm::vec2 u) const {
+    const glm::vec3 wo = wo_;
+    const float alpha = alpha_;
+    const glm::vec3 Vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
+    const float lensq = Vh.x * Vh.x + Vh.y * Vh.y;
+    const glm::vec3 T1 = lensq > 0.0f ? glm::vec3(-Vh.y, Vh.x, 0.0f) / std::sqrt(lensq)
+                                      : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::vec3 T2 = glm::cross(Vh, T1);
+    const float r = std::sqrt(u.x);
+    const float phi = 2.0f * kPi * u.y;
+    const float t1 = r * std::cos(phi);
+    float t2 = r * std::sin(phi);
+    const float s = 0.5f * (1.0f + Vh.z);
+    t2 = (1.0f - s) * safe_sqrt(1.0f - t1 * t1) + s * t2;
+    const glm::vec3 Nh = t1 * T1 + t2 * T2 + safe_sqrt(1.0f - t1 * t1 - t2 * t2) * Vh;
+    return glm::normalize(glm::vec3(alpha * Nh.x, alpha * Nh.y, std::max(Nh.z, 1e-7f)));
+  }
   // Brdf::specular_albedo.
   glm::vec3 specular_albedo(float mu) const {
     const glm::vec2 ab = table_->AB(mu, roughness_);
