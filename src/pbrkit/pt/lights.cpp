@@ -89,12 +89,15 @@ LightSet::LightSet(const Scene& scene, const SceneGeometry& geometry, const Envi
     }
   }
   if (!entries_.empty()) select_ = Distribution1D(std::move(power));
+  // With a single light the choice is always it, with the probability the distribution
+  // gives (computed once; a search per sample otherwise).
+  if (entries_.size() == 1) select_.sample_discrete(0.5f, single_p_select_);
 }
 
 bool LightSet::sample(glm::vec3 p, float u_select, glm::vec2 u, LightSample& out) const {
   if (entries_.empty()) return false;
-  float p_select = 0.0f;
-  const std::size_t i = select_.sample_discrete(u_select, p_select);
+  float p_select = single_p_select_;
+  const std::size_t i = entries_.size() == 1 ? 0 : select_.sample_discrete(u_select, p_select);
   if (!(p_select > 0.0f)) return false;
   const Entry& e = entries_[i];
   out = LightSample{};

@@ -62,6 +62,7 @@ class LightSet {
   std::unique_ptr<EnvironmentSampler> env_sampler_;
   std::vector<Entry> entries_;
   Distribution1D select_;
+  float single_p_select_ = 0.0f;  ///< with one light: its selection probability
   int env_entry_ = -1;
   std::vector<int> first_light_;  ///< per geometry: its first triangle entry, or -1
 };

@@ -65,7 +65,10 @@ inline float sample_tent(float u) {
 // A uniform float from a hash of its arguments: decisions that need more random numbers
 // than the sampler's fixed dimensions (repeated stochastic-transparency tests along one
 // ray). Deterministic, so renders stay reproducible. (PCG hash, Jarzynski & Olano 2020.)
-inline float hash_float(std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+// Not inlined: the compiler would otherwise hoist the rounds that depend on the pixel and
+// sample only out of the path loop and pay for them on every path, with or without alpha.
+[[gnu::noinline]] float hash_float(std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                                   std::uint32_t d) {
   std::uint32_t h = a * 747796405u + 2891336453u;
   for (std::uint32_t x : {b, c, d}) {
     h ^= x + 0x9e3779b9u + (h << 6) + (h >> 2);
