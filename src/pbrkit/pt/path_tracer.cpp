@@ -350,6 +350,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
   arena.execute([&] {
     set_ftz_daz();
     geometry = std::make_unique<SceneGeometry>(scene);
+    result.stats.bvh_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
     lights = std::make_unique<LightSet>(scene, *geometry, env);
     // The BRDF's albedo tables are computed once per process on first use (about 0.15 s);
     // build them here, with the rest of the set-up, rather than inside the sampling loop,

@@ -85,7 +85,8 @@ struct PathTracerSettings {
 
 struct PathTracerStats {
   double render_seconds = 0.0;  ///< the sampling loop only (no loading, no BVH build)
-  double build_seconds = 0.0;   ///< Embree BVH build, light setup, BRDF tables (first render)
+  double build_seconds = 0.0;   ///< set-up: BVH build, lights, BRDF tables (first render)
+  double bvh_seconds = 0.0;     ///< of which the Embree BVH build
   std::uint64_t samples = 0;    ///< camera samples taken in this call
   std::uint64_t rays = 0;       ///< rays traced in this call (camera, bounce, shadow)
   bool stopped = false;         ///< stopped early (flag, callback or time limit)
