@@ -3,6 +3,7 @@
 // its pdf.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -137,6 +138,37 @@ TEST(Sobol, DimensionsZeroAndOneAreAZeroTwoSequence) {
     }
 }
 
+TEST(Sobol, TablesEqualTheGeneratorMatrixProduct) {
+  // sobol_u32 comes from byte tables built at compile time; check it against the plain
+  // product of the generator matrices (Joe & Kuo's direction numbers for the first four
+  // dimensions, built here independently) over all index bits.
+  std::uint32_t v[4][32];
+  for (int k = 0; k < 32; ++k) v[0][k] = 1u << (31 - k);
+  const int degree[3] = {1, 2, 3};
+  const std::uint32_t coeffs[3] = {0, 1, 1};
+  const std::uint32_t m_init[3][3] = {{1, 0, 0}, {1, 3, 0}, {1, 3, 1}};
+  for (int d = 1; d < 4; ++d) {
+    const int s = degree[d - 1];
+    for (int k = 0; k < s; ++k) v[d][k] = m_init[d - 1][k] << (31 - k);
+    for (int k = s; k < 32; ++k) {
+      std::uint32_t x = v[d][k - s] ^ (v[d][k - s] >> s);
+      for (int j = 1; j < s; ++j)
+        if ((coeffs[d - 1] >> (s - 1 - j)) & 1u) x ^= v[d][k - j];
+      v[d][k] = x;
+    }
+  }
+  Pcg32 rng(8);
+  for (int i = 0; i < 20000; ++i) {
+    const std::uint32_t index = i < 4096 ? std::uint32_t(i) : rng.next_u32();
+    for (std::uint32_t d = 0; d < 4; ++d) {
+      std::uint32_t x = 0;
+      for (int k = 0; k < 32; ++k)
+        if ((index >> k) & 1u) x ^= v[d][k];
+      ASSERT_EQ(sobol_u32(index, d), x) << "index " << index << ", dim " << d;
+    }
+  }
+}
+
 TEST(NestedUniformScramble, IsAPermutationPreservingStrata) {
   // An Owen scramble maps each dyadic interval onto a dyadic interval of the same size:
   // the images of the 2^k strata are again the 2^k strata (a bijection of them).
@@ -169,6 +201,61 @@ TEST(OwenSobolSampler, InUnitIntervalAndDeterministic) {
         differ_seed += x != c.sample(pixel, i, d);
       }
   EXPECT_GT(differ_seed, 16 * 64 * 10 * 99 / 100);
+}
+
+TEST(OwenSobolSampler, BlocksAndPixelSequencesEqualSample) {
+  // sample_block (a 4D block at once) and OwenSobolPixel (seeds cached per pixel, for the
+  // first blocks; hashed per call beyond) return exactly sample()'s values, and
+  // sample() is Burley's construction written out.
+  const OwenSobolSampler s(3);
+  Pcg32 rng(4);
+  for (std::uint32_t pixel : {0u, 1u, 777u, 65535u}) {
+    OwenSobolPixel seq(s, pixel);
+    for (int n = 0; n < 400; ++n) {
+      const std::uint32_t index = n < 64 ? std::uint32_t(n) : rng.next_u32() >> (n % 20);
+      const std::uint32_t block = std::uint32_t(n % 31);  // past the 24 cached blocks too
+      const glm::vec4 a = s.sample_block(s.pixel_seed(pixel), index, block);
+      const glm::vec4 b = seq.sample_block(index, block);
+      for (int d = 0; d < 4; ++d) {
+        const float x = s.sample(pixel, index, 4 * block + std::uint32_t(d));
+        EXPECT_EQ(a[d], x);
+        EXPECT_EQ(b[d], x);
+      }
+    }
+  }
+}
+
+TEST(OwenSobolSampler, EqualsThePlainConstruction) {
+  // The sampler written plainly (Burley 2020, with this project's seed hashing: lowbias32
+  // and a boost-style combine): dimension d of sample i in block b of a pixel is
+  //   nested_uniform_scramble(sobol(nested_uniform_scramble(i, seed_b), d), seed_bd),
+  //   seed_b = combine(combine(seed, pixel), b),  seed_bd = combine(seed_b, d + 1).
+  // The table-driven, block-at-a-time implementation must give exactly these values.
+  auto hash32 = [](std::uint32_t x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+  };
+  auto combine = [&](std::uint32_t seed, std::uint32_t v) {
+    return hash32(seed ^ (v + 0x9e3779b9u + (seed << 6) + (seed >> 2)));
+  };
+  const std::uint32_t seed = 21;
+  const OwenSobolSampler s(seed);
+  Pcg32 rng(6);
+  for (int n = 0; n < 3000; ++n) {
+    const std::uint32_t pixel = rng.next_u32() % 100000u;
+    const std::uint32_t index = n % 2 ? rng.next_u32() % 4096u : rng.next_u32();
+    const std::uint32_t dim = rng.next_u32() % 80u;
+    const std::uint32_t block_seed = combine(combine(seed, pixel), dim / 4);
+    const std::uint32_t shuffled = nested_uniform_scramble(index, block_seed);
+    const std::uint32_t x =
+        nested_uniform_scramble(sobol_u32(shuffled, dim % 4), combine(block_seed, dim % 4 + 1));
+    const float expected = std::min(float(x >> 8) * 0x1p-24f, kOneMinusEpsilon);
+    ASSERT_EQ(s.sample(pixel, index, dim), expected) << pixel << " " << index << " " << dim;
+  }
 }
 
 TEST(OwenSobolSampler, DecorrelatedBetweenPixels) {
