@@ -7,7 +7,6 @@
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
-#include "pbrkit/util/error.h"
 
 namespace pbrkit {
 
@@ -81,7 +80,6 @@ EnvironmentSampler::EnvironmentSampler(const Environment& env)
   const float a_inv = -(-env.rotation_deg) * (kPi / 180.0f);  // env_to_world's
   cos_inv_ = std::cos(a_inv);
   sin_inv_ = std::sin(a_inv);
-  if (width_ > 65536) fail("{}: the environment is wider than 65536 texels", env.source);
 
   // Environment::eval interpolates bilinearly, so radiance inside texel (x, y) can come
   // from its 8 neighbours; the weight takes their maximum so that the pdf is positive

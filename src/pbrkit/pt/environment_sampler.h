@@ -37,9 +37,8 @@ class Distribution1D {
 
  private:
   /// Bin i's CDF value (the start of its interval) beside its weight: a sample reads
-  /// cdf[i], cdf[i + 1] and weight[i], which this layout keeps in one cache line (the
-  /// environment's per-row tables are too large for the caches, and separate arrays cost
-  /// a miss each).
+  /// cdf[i], cdf[i + 1] and weight[i], which this layout keeps in one cache line (large
+  /// distributions, such as many emissive triangles, do not fit in the caches).
   struct Bin {
     float cdf;
     float weight;
