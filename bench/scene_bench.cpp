@@ -65,8 +65,8 @@ BENCHMARK(BM_LoadGeneratedGlb)
     ->Unit(benchmark::kMillisecond);
 
 void BM_LoadEngine(benchmark::State& state) {
-  const auto path = std::filesystem::path(PBRKIT_ASSETS_DIR) /
-                    "models/2CylinderEngine/2CylinderEngine.glb";
+  const auto path =
+      std::filesystem::path(PBRKIT_ASSETS_DIR) / "models/2CylinderEngine/2CylinderEngine.glb";
   if (!std::filesystem::exists(path)) {
     state.SkipWithError("shared assets not available");
     return;

@@ -7,11 +7,10 @@
 #include "pbrkit/util/error.h"
 
 int main(int argc, char** argv) {
-  CLI::App app{
-      "pbrkit " PBRKIT_VERSION
-      ": a physically based rendering toolkit. One material model (docs/MODEL.md)\n"
-      "for image-based-lighting bakes, a real-time OpenGL renderer and a Monte Carlo path "
-      "tracer.\nRun 'pbrkit <command> --help' for each command's options."};
+  CLI::App app{"pbrkit " PBRKIT_VERSION
+               ": a physically based rendering toolkit. One material model (docs/MODEL.md)\n"
+               "for image-based-lighting bakes, a real-time OpenGL renderer and a Monte Carlo path "
+               "tracer.\nRun 'pbrkit <command> --help' for each command's options."};
   app.require_subcommand(1);
   app.set_version_flag("--version", "pbrkit " PBRKIT_VERSION);
 

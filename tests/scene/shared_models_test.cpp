@@ -1,5 +1,5 @@
-// Every model in tests/data/assets/models (the shared assets) loads, with key numbers checked against what the
-// assets' README states (and `pbrkit info` reports them).
+// Every model in tests/data/assets/models (the shared assets) loads, with key numbers checked
+// against what the assets' README states (and `pbrkit info` reports them).
 #include <gtest/gtest.h>
 
 #include "pbrkit/scene/load.h"
