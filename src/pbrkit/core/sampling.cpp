@@ -135,7 +135,9 @@ inline std::uint32_t laine_karras_permutation(std::uint32_t x, std::uint32_t see
   return x;
 }
 
-inline float to_unit_float(std::uint32_t x) {
+// The scalar fallback's conversion (scrambled_block uses SSE2 where it can; clang warns
+// about the unused function there).
+[[maybe_unused]] inline float to_unit_float(std::uint32_t x) {
   return std::min(float(x >> 8) * 0x1p-24f, kOneMinusEpsilon);
 }
 
