@@ -66,8 +66,7 @@ float Distribution1D::pdf(std::size_t index) const {
 }
 
 EnvironmentSampler::EnvironmentSampler(const Environment& env)
-    : env_(env),
-      width_(env.map.width),
+    : width_(env.map.width),
       height_(env.map.height),
       fw_(float(width_)),
       fh_(float(height_)),

@@ -146,7 +146,6 @@ class EnvironmentSampler {
   /// `footprint_row` and `footprint_row` + 1.
   float sample_column(std::size_t row, int footprint_row, float u, float& pdf_uv) const;
 
-  const Environment& env_;
   int width_ = 0, height_ = 0;
   float fw_ = 0.0f, fh_ = 0.0f;  ///< float(width_), float(height_)
   std::size_t stride_ = 0;       ///< texels per row of texels_: width + 2
