@@ -3,16 +3,7 @@
 find_package(embree 3 CONFIG REQUIRED)           # target: embree (no namespace)
 find_package(TBB CONFIG REQUIRED)                # TBB::tbb
 find_package(OpenEXR 3 CONFIG REQUIRED)          # OpenEXR::OpenEXR
-find_package(OpenImageIO 2.4 CONFIG REQUIRED)    # OpenImageIO::OpenImageIO
-# Debian 12 packaging bug: the OIIO target lists /usr/include/opencv4, which exists only
-# with libopencv-dev; CMake refuses to generate with a non-existent include path.
-foreach(_prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
-  get_target_property(_dirs OpenImageIO::OpenImageIO ${_prop})
-  if(_dirs)
-    list(FILTER _dirs EXCLUDE REGEX "opencv4")
-    set_target_properties(OpenImageIO::OpenImageIO PROPERTIES ${_prop} "${_dirs}")
-  endif()
-endforeach()
+find_package(PNG REQUIRED)                       # PNG::PNG (libpng: 8- and 16-bit PNG writing)
 find_package(glm CONFIG REQUIRED)                # glm::glm
 find_package(CLI11 2 CONFIG REQUIRED)            # CLI11::CLI11
 find_package(nlohmann_json 3.11 CONFIG REQUIRED) # nlohmann_json::nlohmann_json

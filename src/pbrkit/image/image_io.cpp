@@ -12,11 +12,14 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfRgbaFile.h>
 #include <OpenEXR/openexr.h>
-#include <OpenImageIO/imageio.h>
+#include <png.h>
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <csetjmp>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -537,6 +540,59 @@ std::vector<std::pair<std::string, Image>> read_exr_layers(const std::filesystem
   return result;
 }
 
+namespace {
+
+// libpng's classic API: one 8- or 16-bit image, straight alpha, rows top first. libpng
+// reports errors by longjmp; the messages are collected and turned into a pbrkit::Error
+// after the jump, once no libpng frame is live.
+void write_png_file(const std::filesystem::path& temp, const std::string& name, int width,
+                    int height, int channels, int bits, const void* samples) {
+  struct Sink {
+    std::FILE* file = nullptr;
+    png_structp png = nullptr;
+    png_infop info = nullptr;
+    std::string error;
+    ~Sink() {
+      png_destroy_write_struct(&png, &info);
+      if (file) std::fclose(file);
+    }
+  } sink;
+  auto on_error = [](png_structp png, png_const_charp message) {
+    static_cast<Sink*>(png_get_error_ptr(png))->error = message;
+    png_longjmp(png, 1);
+  };
+  auto on_warning = [](png_structp, png_const_charp) {};
+  sink.file = std::fopen(temp.c_str(), "wb");
+  if (!sink.file) fail("{}: cannot write PNG: {}", name, std::strerror(errno));
+  sink.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &sink, on_error, on_warning);
+  if (sink.png) sink.info = png_create_info_struct(sink.png);
+  if (!sink.png || !sink.info) fail("{}: cannot write PNG: out of memory", name);
+  static constexpr int kColorTypes[4] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
+                                         PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
+  const std::size_t row_bytes = std::size_t(width) * std::size_t(channels) * std::size_t(bits / 8);
+  const auto* bytes = static_cast<const unsigned char*>(samples);
+  if (setjmp(png_jmpbuf(sink.png)) == 0) {
+    png_init_io(sink.png, sink.file);
+    png_set_IHDR(sink.png, sink.info, png_uint_32(width), png_uint_32(height), bits,
+                 kColorTypes[channels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+                 PNG_FILTER_TYPE_DEFAULT);
+    png_set_sRGB_gAMA_and_cHRM(sink.png, sink.info, PNG_sRGB_INTENT_PERCEPTUAL);
+    png_write_info(sink.png, sink.info);
+    // PNG stores 16-bit samples big-endian; ours are in the machine's order.
+    if (bits == 16) {
+      const std::uint16_t probe = 1;
+      if (*reinterpret_cast<const unsigned char*>(&probe) == 1) png_set_swap(sink.png);
+    }
+    for (int y = 0; y < height; ++y) png_write_row(sink.png, bytes + std::size_t(y) * row_bytes);
+    png_write_end(sink.png, nullptr);
+  }
+  if (!sink.error.empty()) fail("{}: cannot write PNG: {}", name, sink.error);
+  const bool flushed = std::fflush(sink.file) == 0 && !std::ferror(sink.file);
+  if (!flushed) fail("{}: cannot write PNG: {}", name, std::strerror(errno));
+}
+
+}  // namespace
+
 void write_png(const std::filesystem::path& path, const Image& display, int bits) {
   const std::string name = path.string();
   if (bits != 8 && bits != 16) fail("{}: PNG bit depth must be 8 or 16, not {}", name, bits);
@@ -562,17 +618,10 @@ void write_png(const std::filesystem::path& path, const Image& display, int bits
       q16[i] = static_cast<unsigned short>(quantise(display.data[i]));
   }
   write_file_atomically(path, [&](const std::filesystem::path& temp) {
-    // OpenImageIO's PNG writer handles both depths (stb_image_write has 8-bit only).
-    auto out = OIIO::ImageOutput::create("png");
-    if (!out) fail("{}: no PNG writer available: {}", name, OIIO::geterror());
-    const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
-    OIIO::ImageSpec spec(display.width, display.height, display.channels, type);
-    // Our alpha is straight (unassociated): stop OIIO from un-premultiplying the colour.
-    spec.attribute("oiio:UnassociatedAlpha", 1);
-    if (!out->open(temp.string(), spec)) fail("{}: cannot write PNG: {}", name, out->geterror());
-    const void* data = bits == 8 ? static_cast<const void*>(q8.data()) : q16.data();
-    if (!out->write_image(type, data) || !out->close())
-      fail("{}: cannot write PNG: {}", name, out->geterror());
+    // libpng (stb_image_write has 8-bit only). The samples are already sRGB-encoded; the
+    // sRGB chunk says so, so that viewers do not apply another transfer curve.
+    write_png_file(temp, name, display.width, display.height, display.channels, bits,
+                   bits == 8 ? static_cast<const void*>(q8.data()) : q16.data());
   });
 }
 
