@@ -10,6 +10,7 @@
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/primitives.h"
 
 namespace pbrkit::gl {
 namespace {
@@ -72,6 +73,82 @@ TEST(GlMaterials, AlphaBlendCompositesOver) {
   EXPECT_NEAR(c.r, expected.r, 1e-4f);
   EXPECT_NEAR(c.g, expected.g, 1e-4f);
   EXPECT_NEAR(c.b, expected.b, 1e-4f);
+}
+
+// A double-sided blended sphere whose far half is red and near half green (COLOR_0), lit
+// from the camera: at the centre the green near layer must be composited over the red far
+// one whatever the order of the triangles (the renderer draws back faces, then front).
+TEST(GlMaterials, BlendedDoubleSidedDrawsTheFarSideFirst) {
+  testing::context();
+  for (bool reversed : {false, true}) {
+    Scene scene = builtin_scene("furnace");
+    Material& m = scene.materials.at(0);
+    m.alpha_mode = AlphaMode::kBlend;
+    m.base_color_factor = glm::vec4(1.0f, 1.0f, 1.0f, 0.5f);
+    m.metallic_factor = 0.0f;
+    m.double_sided = true;
+    Mesh& mesh = scene.meshes.at(0);
+    mesh.colors0.clear();
+    for (const glm::vec3& p : mesh.positions)
+      mesh.colors0.push_back(p.z < 0.0f ? glm::vec4(1, 0, 0, 1) : glm::vec4(0, 1, 0, 1));
+    if (reversed) {
+      std::vector<std::uint32_t> rev;
+      for (std::size_t t = mesh.indices.size() / 3; t-- > 0;)
+        rev.insert(rev.end(), mesh.indices.begin() + 3 * t, mesh.indices.begin() + 3 * t + 3);
+      mesh.indices = rev;
+    }
+    const Camera camera = select_camera(scene, std::nullopt, 1.0f);
+    Light light;
+    light.type = Light::Type::kDirectional;
+    light.direction = camera.forward();
+    light.intensity = 3.0f;
+    scene.lights.push_back(light);
+    RenderSettings settings;
+    settings.msaa = 1;
+    settings.background.mode = Background::Mode::kColor;
+    const glm::vec3 c = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, settings)
+                            .rgb(kSize / 2, kSize / 2);
+    // Over black: green 0.5 g + red 0.25 r, with g and r the lit layers (equal).
+    EXPECT_NEAR(c.g / c.r, 2.0f, 0.1f) << "reversed " << reversed;
+  }
+}
+
+// A BLEND material whose alpha is 1 everywhere (as exporters often write) is drawn as
+// OPAQUE, with depth: one mesh of two quads facing the camera, the near one red and listed
+// first, the far one green. Blended without depth writes, the far quad would be drawn over
+// the near one (the patchy Stanford bunny of the shared models).
+TEST(GlMaterials, BlendWithoutAlphaIsDrawnOpaque) {
+  testing::context();
+  Mesh mesh = make_quad({-1, -1, 0.5f}, {2, 0, 0}, {0, 2, 0});
+  const Mesh far = make_quad({-1, -1, -0.5f}, {2, 0, 0}, {0, 2, 0});
+  mesh.colors0.assign(mesh.positions.size(), glm::vec4(1, 0, 0, 1));
+  const auto base = std::uint32_t(mesh.positions.size());
+  mesh.positions.insert(mesh.positions.end(), far.positions.begin(), far.positions.end());
+  mesh.normals.insert(mesh.normals.end(), far.normals.begin(), far.normals.end());
+  mesh.texcoords0.insert(mesh.texcoords0.end(), far.texcoords0.begin(), far.texcoords0.end());
+  mesh.tangents.insert(mesh.tangents.end(), far.tangents.begin(), far.tangents.end());
+  mesh.colors0.resize(mesh.positions.size(), glm::vec4(0, 1, 0, 1));
+  for (std::uint32_t i : far.indices) mesh.indices.push_back(base + i);
+  Scene scene;
+  Material m;
+  m.alpha_mode = AlphaMode::kBlend;
+  m.metallic_factor = 0.0f;
+  scene.materials.push_back(m);
+  add_mesh_instance(scene, mesh, 0);
+  Light sun;
+  sun.type = Light::Type::kDirectional;
+  sun.direction = glm::vec3(0, 0, -1);
+  sun.intensity = 3.0f;
+  scene.lights.push_back(sun);
+  RenderSettings settings;
+  settings.msaa = 1;
+  settings.background.mode = Background::Mode::kColor;
+  const Camera camera = select_camera(scene, std::nullopt, 1.0f);
+  const glm::vec3 c = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, settings)
+                          .rgb(kSize / 2, kSize / 2);
+  // Red diffuse of the near quad; green only from the white specular (F0 = 0.04).
+  EXPECT_GT(c.r, 0.5f);
+  EXPECT_LT(c.g, 0.05f * c.r);
 }
 
 // Vertex normals that point against the winding are turned to the viewer's side (the rule

@@ -104,6 +104,9 @@ struct GpuMesh {
   GLsizei index_count = 0;
   bool has_colors = false;
   int material = -1;
+  /// The material's alphaMode as drawn: 0 opaque, 1 mask, 2 blend; BLEND without any
+  /// alpha below 1 is drawn opaque (scene.h has_alpha).
+  int alpha_mode = 0;
   glm::vec3 center{0.0f};
 };
 
@@ -311,6 +314,8 @@ void Renderer::set_scene(const Scene& scene) {
     attribute(5, mesh.colors0.data(), mesh.colors0.size(), 4);
     g.has_colors = !mesh.colors0.empty();
     g.material = mesh.material;
+    const AlphaMode mode = scene.material_of(mesh).alpha_mode;
+    g.alpha_mode = !has_alpha(scene, mesh) ? 0 : mode == AlphaMode::kMask ? 1 : 2;
     glNamedBufferStorage(g.buffers[6], GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
                          mesh.indices.empty() ? nullptr : mesh.indices.data(), 0);
     glVertexArrayElementBuffer(g.vao, g.buffers[6]);
@@ -472,7 +477,8 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
                ? s.materials[std::size_t(mesh.material)]
                : Scene::default_material();
   };
-  auto draw = [&](std::size_t index) {
+  // `cull`: the faces to cull (GL_BACK, GL_FRONT), or 0 for the material's choice.
+  auto draw = [&](std::size_t index, GLenum cull = 0) {
     const Instance& inst = s.instances[index];
     const GpuMesh& mesh = s.meshes[std::size_t(inst.mesh)];
     const Material& m = material_of(mesh);
@@ -480,9 +486,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
                                                    &m.metallic_roughness_texture, &m.normal_texture,
                                                    &m.occlusion_texture, &m.emissive_texture};
     SurfaceFeatures features = frame;
-    features.alpha_mode = m.alpha_mode == AlphaMode::kOpaque ? 0
-                          : m.alpha_mode == AlphaMode::kMask ? 1
-                                                             : 2;
+    features.alpha_mode = mesh.alpha_mode;
     for (int t = 0; t < 5; ++t) {
       const TextureRef& ref = *refs[std::size_t(t)];
       if (ref.valid() && std::size_t(ref.texture) < s.textures.size()) features.textures |= 1u << t;
@@ -509,11 +513,11 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
       glBindTextureUnit(GLuint(t), valid ? s.textures[std::size_t(ref.texture)] : s.white_texture);
     }
     // glTF: single-sided materials cull back faces; a mirroring transform flips winding.
-    if (m.double_sided) {
+    if (cull == 0 && m.double_sided) {
       glDisable(GL_CULL_FACE);
     } else {
       glEnable(GL_CULL_FACE);
-      glCullFace(GL_BACK);
+      glCullFace(cull == 0 ? GL_BACK : cull);
     }
     glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
     glBindVertexArray(mesh.vao);
@@ -524,7 +528,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     const Instance& inst = s.instances[i];
     if (inst.mesh < 0 || std::size_t(inst.mesh) >= s.meshes.size()) continue;
     const GpuMesh& mesh = s.meshes[std::size_t(inst.mesh)];
-    if (material_of(mesh).alpha_mode == AlphaMode::kBlend) {
+    if (mesh.alpha_mode == 2) {
       const glm::vec4 c = view * inst.transform * glm::vec4(mesh.center, 1.0f);
       blended.emplace_back(c.z, i);  // view space looks down -Z: most negative is farthest
     } else {
@@ -567,7 +571,18 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glDepthMask(GL_FALSE);
-    for (const auto& b : blended) draw(b.second);
+    // A double-sided blended mesh is drawn back faces first, then front faces: the far
+    // side of a closed (convex) surface is composited before the near one whatever the
+    // triangle order. Layers within one side are drawn in index order (no per-triangle
+    // sorting): concave meshes can still show the wrong layer on top.
+    for (const auto& b : blended) {
+      if (material_of(s.meshes[std::size_t(s.instances[b.second].mesh)]).double_sided) {
+        draw(b.second, GL_FRONT);
+        draw(b.second, GL_BACK);
+      } else {
+        draw(b.second);
+      }
+    }
     glDepthMask(GL_TRUE);
     glDisable(GL_BLEND);
   }

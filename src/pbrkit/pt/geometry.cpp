@@ -15,13 +15,6 @@ void embree_error(void* /*user*/, RTCError code, const char* message) {
   warn("embree: {} (error {})", message ? message : "", int(code));
 }
 
-bool material_has_alpha(const Material& m) {
-  if (m.alpha_mode == AlphaMode::kOpaque) return false;
-  // A constant alpha of 1 without a texture never lets light through; skip the test.
-  return m.base_color_factor.a < 1.0f || m.base_color_texture.valid() ||
-         m.alpha_mode == AlphaMode::kMask;
-}
-
 }  // namespace
 
 SceneGeometry::SceneGeometry(const Scene& scene) {
@@ -36,6 +29,8 @@ SceneGeometry::SceneGeometry(const Scene& scene) {
   rtcSetSceneBuildQuality(rtc_scene_, RTC_BUILD_QUALITY_MEDIUM);
 
   meshes_.resize(scene.instances.size());
+  // has_alpha may scan a texture: once per mesh, however many instances it has.
+  std::vector<std::int8_t> mesh_alpha(scene.meshes.size(), -1);
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& inst = scene.instances[i];
     WorldMesh& wm = meshes_[i];
@@ -45,7 +40,9 @@ SceneGeometry::SceneGeometry(const Scene& scene) {
     const Mesh& mesh = scene.meshes[std::size_t(inst.mesh)];
     wm.mesh = &mesh;
     wm.material = &scene.material_of(mesh);
-    wm.has_alpha = material_has_alpha(*wm.material);
+    std::int8_t& alpha = mesh_alpha[std::size_t(inst.mesh)];
+    if (alpha < 0) alpha = pbrkit::has_alpha(scene, mesh) ? 1 : 0;
+    wm.has_alpha = alpha != 0;
     const glm::vec3 e = wm.material->emissive_factor * wm.material->emissive_strength;
     wm.emissive = e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
     has_alpha_ = has_alpha_ || wm.has_alpha;

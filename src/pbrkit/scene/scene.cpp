@@ -26,6 +26,24 @@ std::size_t Scene::triangle_count() const {
   return count;
 }
 
+bool has_alpha(const Scene& scene, const Mesh& mesh) {
+  const Material& m = scene.material_of(mesh);
+  if (m.alpha_mode == AlphaMode::kOpaque) return false;
+  if (m.alpha_mode == AlphaMode::kMask || m.base_color_factor.a < 1.0f) return true;
+  for (const glm::vec4& c : mesh.colors0)
+    if (c.a < 1.0f) return true;
+  const TextureRef& ref = m.base_color_texture;
+  if (!ref.valid() || std::size_t(ref.texture) >= scene.textures.size()) return false;
+  // Smaller mips average the level above, so level 0 holds every alpha below 1.
+  const Texture& t = scene.textures[std::size_t(ref.texture)];
+  if (t.mips.empty()) return false;
+  const Image& level0 = t.mips[0];
+  if (level0.channels != 4) return false;
+  for (std::size_t i = 3; i < level0.data.size(); i += 4)
+    if (level0.data[i] < 1.0f) return true;
+  return false;
+}
+
 const Material& Scene::default_material() {
   // glTF 2.0 section 3.9.1: a primitive without a material uses the defaults of every
   // property, i.e. a rough (roughness 1), fully metallic, white material.

@@ -172,4 +172,11 @@ struct Scene {
   static const Material& default_material();
 };
 
+/// Whether a primitive's surface can be anything but opaque: its material's alphaMode is
+/// MASK, or BLEND with an alpha below 1 somewhere (the baseColor factor, the baseColor
+/// texture's alpha channel or COLOR_0's alpha). A BLEND material whose alpha is 1
+/// everywhere (exporters often write BLEND for opaque surfaces) renders as OPAQUE in both
+/// renderers: blending it would only cost order artifacts in the real-time renderer.
+bool has_alpha(const Scene& scene, const Mesh& mesh);
+
 }  // namespace pbrkit
