@@ -151,6 +151,7 @@ glm::vec2 env_rotation_cs(float rotation_deg) {
 // their shader permutations.
 struct SurfaceFeatures {
   unsigned textures = 0;  ///< bit t: texture t bound (baseColor, MR, normal, occlusion, emissive)
+  bool colors = false;    ///< the mesh has COLOR_0
   int alpha_mode = 0;     ///< 0 opaque, 1 mask, 2 blend
   bool ibl = false;
   bool irradiance_sh = true;
@@ -162,12 +163,13 @@ struct SurfaceFeatures {
   std::uint32_t key() const {
     return textures | unsigned(alpha_mode) << 5 | unsigned(ibl) << 7 |
            unsigned(irradiance_sh) << 8 | unsigned(multiscatter) << 9 | unsigned(geometry) << 10 |
-           unsigned(fresnel) << 12 | unsigned(light_count) << 13;
+           unsigned(fresnel) << 12 | unsigned(light_count) << 13 | unsigned(colors) << 18;
   }
   std::string defines() const {
     std::string d;
     for (int t = 0; t < 5; ++t)
       d += fmt::format("#define HAS_TEXTURE_{} {}\n", t, (textures >> t) & 1u);
+    d += fmt::format("#define HAS_COLOR_0 {}\n", int(colors));
     d += fmt::format(
         "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
         "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
@@ -487,6 +489,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
                                                    &m.occlusion_texture, &m.emissive_texture};
     SurfaceFeatures features = frame;
     features.alpha_mode = mesh.alpha_mode;
+    features.colors = mesh.has_colors;
     for (int t = 0; t < 5; ++t) {
       const TextureRef& ref = *refs[std::size_t(t)];
       if (ref.valid() && std::size_t(ref.texture) < s.textures.size()) features.textures |= 1u << t;
@@ -521,7 +524,6 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     }
     glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
     glBindVertexArray(mesh.vao);
-    if (!mesh.has_colors) glVertexAttrib4f(5, 1.0f, 1.0f, 1.0f, 1.0f);
     glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
   };
   for (std::size_t i = 0; i < s.instances.size(); ++i) {

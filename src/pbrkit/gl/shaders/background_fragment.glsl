@@ -8,11 +8,9 @@
 #endif
 #include "equirect.glsl"
 
-in vec2 vNdc;
+in vec3 vDirection;  // background_vertex.glsl
 layout(location = 0) out vec4 outColor;
 
-uniform mat4 uInverseProjection;
-uniform mat3 uCameraToWorld;
 uniform vec3 uColor;
 uniform vec2 uEnvRotation;  // equirect.glsl world_to_env
 uniform float uEnvScale;
@@ -26,11 +24,8 @@ void main() {
 #if MODE == 2
   outColor = vec4(uColor, 1.0);
 #else
-  // The view ray through this pixel, from two points of its line (works for the
-  // perspective and the orthographic projections of scene/camera.h).
-  vec4 p0 = uInverseProjection * vec4(vNdc, -1.0, 1.0);
-  vec4 p1 = uInverseProjection * vec4(vNdc, 0.0, 1.0);
-  vec3 d = normalize(uCameraToWorld * normalize(p1.xyz / p1.w - p0.xyz / p0.w));
+  // The view ray through this pixel (background_vertex.glsl).
+  vec3 d = normalize(vDirection);
 #if MODE == 1
   outColor = vec4(uIblScale * textureLod(uSpecularCube, world_to_env(d, uIblRotation), uBlurLod).rgb, 1.0);
 #else

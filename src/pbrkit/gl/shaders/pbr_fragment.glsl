@@ -8,7 +8,8 @@
 // software rasteriser of CI and headless servers, runs both sides of a branch on a
 // uniform with masked lanes, so an unused texture or IBL term would still cost its
 // fetches. HAS_TEXTURE_0..4: baseColor, metallicRoughness, normal, occlusion, emissive
-// bound; ALPHA_MODE 0 opaque, 1 mask, 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1;
+// bound; HAS_COLOR_0: the mesh has COLOR_0 (a varying fewer without: llvmpipe sets
+// up and interpolates every varying of every small triangle); ALPHA_MODE 0 opaque, 1 mask, 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1;
 // GEOMETRY (G for lights) and FRESNEL as in brdf.glsl; LIGHT_COUNT punctual lights.
 #ifndef HAS_TEXTURE_0
 #define HAS_TEXTURE_0 0
@@ -16,6 +17,7 @@
 #define HAS_TEXTURE_2 0
 #define HAS_TEXTURE_3 0
 #define HAS_TEXTURE_4 0
+#define HAS_COLOR_0 1
 #define ALPHA_MODE 0
 #define IBL 1
 #define IRRADIANCE_SH 1
@@ -31,7 +33,9 @@ in vec3 vNormal;
 in vec4 vTangent;
 in vec2 vTexcoord0;
 in vec2 vTexcoord1;
+#if HAS_COLOR_0
 in vec4 vColor;
+#endif
 
 layout(location = 0) out vec4 outColor;
 
@@ -91,7 +95,10 @@ float range_attenuation(float d, float range) {
 }
 
 void main() {
-  vec4 base_color = uBaseColorFactor * vColor;
+  vec4 base_color = uBaseColorFactor;
+#if HAS_COLOR_0
+  base_color *= vColor;
+#endif
 #if HAS_TEXTURE_0
   base_color *= texture(uBaseColorTexture, texcoord(0));
 #endif

@@ -5,7 +5,10 @@ layout(location = 1) in vec3 aNormal;
 layout(location = 2) in vec4 aTangent;  // xyz + handedness (glTF)
 layout(location = 3) in vec2 aTexcoord0;
 layout(location = 4) in vec2 aTexcoord1;
-layout(location = 5) in vec4 aColor;  // COLOR_0; (1,1,1,1) when absent
+#ifndef HAS_COLOR_0
+#define HAS_COLOR_0 1
+#endif
+layout(location = 5) in vec4 aColor;  // COLOR_0 (HAS_COLOR_0)
 
 uniform mat4 uModel;
 uniform mat3 uNormalMatrix;  // inverse transpose of the model's upper 3x3
@@ -16,7 +19,9 @@ out vec3 vNormal;
 out vec4 vTangent;
 out vec2 vTexcoord0;
 out vec2 vTexcoord1;
+#if HAS_COLOR_0
 out vec4 vColor;
+#endif
 
 void main() {
   vec4 world = uModel * vec4(aPosition, 1.0);
@@ -25,6 +30,8 @@ void main() {
   vTangent = vec4(mat3(uModel) * aTangent.xyz, aTangent.w);
   vTexcoord0 = aTexcoord0;
   vTexcoord1 = aTexcoord1;
+#if HAS_COLOR_0
   vColor = aColor;
+#endif
   gl_Position = uViewProjection * world;
 }
