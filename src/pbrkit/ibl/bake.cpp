@@ -211,21 +211,22 @@ glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<Prefilter
 
 int quadrature_source_level(const Cubemap& source, float roughness) {
   // Source texels (pi/2 / S rad across) at most alpha / 8, alpha being the angular scale
-  // of the lobe of l (about 2 alpha wide), and at least 64 px (or the finest level): small
-  // bright sources must not be smeared over a texel that spans a large part of the lobe.
+  // of the lobe of l (about 2 alpha wide), and at least 128 px (or the finest level): small
+  // bright sources must not be smeared over a texel that spans a large part of the lobe
+  // (with 64 px, the studio map's softboxes put one roughness-0.8 texel 1% off).
   const float alpha = sqr(std::max(roughness, kMinRoughness));
   int level = source.levels() - 1;
   while (level > 0 &&
-         (0.5f * kPi / float(source.size(level)) > 0.125f * alpha || source.size(level) < 64))
+         (0.5f * kPi / float(source.size(level)) > 0.125f * alpha || source.size(level) < 128))
     --level;
   return level;
 }
 
-bool use_quadrature(const Cubemap& source, float roughness, int out_size) {
+bool use_quadrature(const Cubemap& source, float roughness, int out_size, double budget) {
   const double S = source.size(quadrature_source_level(source, roughness));
-  // At most 2^28 texel pairs per level (~0.1 s on one core, the half behind R skipped), so
-  // only the small rough levels.
-  return roughness >= 0.25f && 36.0 * double(out_size) * out_size * S * S <= double(1 << 28);
+  // Texel pairs (6 faces each side); the half behind R is skipped, so a level costs about
+  // 0.7 s per 2^32 on one core. Only the small rough levels fit.
+  return roughness >= 0.25f && 36.0 * double(out_size) * out_size * S * S <= budget;
 }
 
 namespace {
@@ -245,8 +246,8 @@ struct LevelPlan {
   const detail::QuadratureSource* texels = nullptr;  // see FlatLevels
 };
 
-// Source levels flattened for the quadratures, each once (levels 3 to 5 of the default bake
-// all read the 64 px level).
+// Source levels flattened for the quadratures, each once (levels 2 to 5 of the default bake
+// all read the 128 px level).
 class FlatLevels {
  public:
   explicit FlatLevels(const Cubemap& source) : source_(source) {}
@@ -268,7 +269,8 @@ LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int leve
   const int size = source.size(0) >> level;
   const float roughness = mip_roughness(level, levels, options.mapping);
   plan.alpha = sqr(std::max(roughness, kMinRoughness));
-  if (options.quadrature_for_rough_levels && use_quadrature(source, roughness, size)) {
+  if (options.quadrature_for_rough_levels &&
+      use_quadrature(source, roughness, size, options.quadrature_budget)) {
     plan.quadrature = true;
     plan.texels = flat.get(quadrature_source_level(source, roughness));
     return plan;
