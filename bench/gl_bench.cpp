@@ -47,13 +47,7 @@ double process_cpu_seconds() {
 }
 
 BakeOptions viewer_bake() {
-  BakeOptions bake;  // what `pbrkit render --renderer gl` uses by default
-  bake.face_size = 128;
-  bake.min_face_size = 8;
-  bake.samples = 256;
-  bake.irradiance_size = 16;
-  bake.lut_size = 32;
-  return bake;
+  return gl::realtime_bake_options();  // what `pbrkit render --renderer gl` uses by default
 }
 
 void BM_GlFrameSpheresIblTwoLights(benchmark::State& state) {

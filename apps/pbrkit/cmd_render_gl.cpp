@@ -99,13 +99,8 @@ RenderRunner add_gl_render_options(CLI::App& render) {
       env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
       if (settings.ibl) {
         const auto t0 = Clock::now();
-        BakeOptions bake;
-        bake.face_size = g->bake_size;
-        bake.min_face_size = std::min(8, g->bake_size);
-        bake.samples = g->bake_samples;
+        BakeOptions bake = gl::realtime_bake_options(g->bake_size, g->bake_samples);
         bake.model = settings.brdf.model;
-        bake.irradiance_size = 16;
-        bake.lut_size = 32;
         ibl = gl::ibl_maps_from_bake(bake_environment(*env, bake), *env);
         bake_ms = ms_since(t0);
       }

@@ -66,6 +66,17 @@ IblMaps ibl_maps_from_bake(BakeResult bake, const Environment& env) {
   return maps;
 }
 
+BakeOptions realtime_bake_options(int face_size, int samples) {
+  BakeOptions bake;
+  bake.face_size = face_size;
+  bake.min_face_size = std::min(8, face_size);
+  bake.samples = samples;
+  bake.irradiance_size = 16;
+  bake.lut_size = 32;
+  bake.quadrature_budget = 0x1p30;
+  return bake;
+}
+
 namespace {
 
 // "name[i]" for a uniform array element.

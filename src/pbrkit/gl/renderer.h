@@ -46,6 +46,12 @@ struct IblMaps {
 };
 /// IblMaps from a bake of `env` (its rotation and intensity are baked in).
 IblMaps ibl_maps_from_bake(BakeResult bake, const Environment& env);
+/// The bake the real-time renderer makes on the fly from an environment (`pbrkit render
+/// --renderer gl`, `pbrkit view`): `face_size` px specular faces down to 8 px, `samples`
+/// GGX samples, a 16 px irradiance cube and a 32 px LUT, and a quadrature budget of 2^30
+/// (the rough levels exact, the roughness-0.25 one sampled) so that it takes well under a
+/// second on two cores.
+BakeOptions realtime_bake_options(int face_size = 128, int samples = 256);
 
 struct RenderSettings {
   BrdfOptions brdf;  ///< model (reference | classic) and multiscatter

@@ -81,12 +81,7 @@ void load_environment(ViewerState& s, Renderer& renderer) {
   s.ibl.reset();
   if (!s.options.no_env) {
     s.env = load_environment_or_default(s.env_choices[std::size_t(s.env_choice)], 0.0f, 1.0f);
-    BakeOptions bake;
-    bake.face_size = s.options.bake_size;
-    bake.min_face_size = std::min(8, bake.face_size);
-    bake.samples = s.options.bake_samples;
-    bake.irradiance_size = 16;
-    bake.lut_size = 32;
+    const BakeOptions bake = realtime_bake_options(s.options.bake_size, s.options.bake_samples);
     s.ibl = ibl_maps_from_bake(bake_environment(*s.env, bake), *s.env);
   }
   renderer.set_environment(s.env ? &*s.env : nullptr);
