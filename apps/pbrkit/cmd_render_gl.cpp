@@ -28,8 +28,8 @@ struct GlOptions {
   int msaa = 4;
   std::string background = "env";
   std::string fresnel = "schlick";
-  int bake_size = 128;
-  int bake_samples = 256;
+  int bake_size = gl::realtime_bake_options().face_size;
+  int bake_samples = gl::realtime_bake_options().samples;
   bool no_ibl = false;
   bool no_lights = false;
 };

@@ -140,7 +140,7 @@ void expect_split_matches_reference(const Environment& env, double max_mean, dou
   options.quadrature_budget = 0x1p28;
   Cubemap source = resample_to_cube(env, options.face_size);
   build_mip_chain(source, 1);
-  ASSERT_FALSE(use_quadrature(source, 0.25f, 64, options.quadrature_budget));
+  ASSERT_FALSE(use_quadrature(source, options, 0.25f, 64));
   const auto errors =
       validate_prefilter(env, prefilter_specular(source, options), options.mapping, 3);
   for (const PrefilterError& e : errors) {

@@ -222,11 +222,14 @@ int quadrature_source_level(const Cubemap& source, float roughness) {
   return level;
 }
 
-bool use_quadrature(const Cubemap& source, float roughness, int out_size, double budget) {
+bool use_quadrature(const Cubemap& source, const BakeOptions& options, float roughness,
+                    int out_size) {
+  if (!options.quadrature_for_rough_levels) return false;
   const double S = source.size(quadrature_source_level(source, roughness));
   // Texel pairs (6 faces each side); the half behind R is skipped, so a level costs about
   // 0.7 s per 2^32 on one core. Only the small rough levels fit.
-  return roughness >= 0.25f && 36.0 * double(out_size) * out_size * S * S <= budget;
+  return roughness >= 0.25f &&
+         36.0 * double(out_size) * out_size * S * S <= options.quadrature_budget;
 }
 
 namespace {
@@ -269,8 +272,7 @@ LevelPlan plan_level(const Cubemap& source, const BakeOptions& options, int leve
   const int size = source.size(0) >> level;
   const float roughness = mip_roughness(level, levels, options.mapping);
   plan.alpha = sqr(std::max(roughness, kMinRoughness));
-  if (options.quadrature_for_rough_levels &&
-      use_quadrature(source, roughness, size, options.quadrature_budget)) {
+  if (use_quadrature(source, options, roughness, size)) {
     plan.quadrature = true;
     plan.texels = flat.get(quadrature_source_level(source, roughness));
     return plan;

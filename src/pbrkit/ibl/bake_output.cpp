@@ -102,8 +102,7 @@ class Staging {
 const char* method_name(const Cubemap& source, const BakeOptions& o, int level, int levels) {
   if (level == 0) return "copy of the source (mirror)";
   const float r = mip_roughness(level, levels, o.mapping);
-  if (o.quadrature_for_rough_levels &&
-      use_quadrature(source, r, source.size(level), o.quadrature_budget))
+  if (use_quadrature(source, o, r, source.size(level)))
     return "direct quadrature over a source level";
   return o.filtered_importance_sampling ? "GGX importance sampling + filtered importance sampling"
                                         : "GGX importance sampling";

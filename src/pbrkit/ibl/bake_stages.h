@@ -70,10 +70,11 @@ glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<Prefilter
 
 /// The source level the direct quadrature reads for `roughness` (texels small against
 /// the lobe), and whether a level of `out_size` px is prefiltered by that quadrature
-/// (rough, small levels: exact and cheap there) rather than by importance sampling;
-/// `budget` is BakeOptions::quadrature_budget.
+/// (rough, small levels: exact and cheap there) rather than by importance sampling, as
+/// options.quadrature_for_rough_levels and options.quadrature_budget allow.
 int quadrature_source_level(const Cubemap& source, float roughness);
-bool use_quadrature(const Cubemap& source, float roughness, int out_size, double budget);
+bool use_quadrature(const Cubemap& source, const BakeOptions& options, float roughness,
+                    int out_size);
 
 /// The specular chain: level 0 a copy of the source's level 0, level m prefiltered for
 /// roughness mip_roughness(m, levels, options.mapping). `source` needs its full chain.

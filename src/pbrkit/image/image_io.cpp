@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cerrno>
 #include <cmath>
 #include <csetjmp>
@@ -579,10 +580,7 @@ void write_png_file(const std::filesystem::path& temp, const std::string& name, 
     png_set_sRGB_gAMA_and_cHRM(sink.png, sink.info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(sink.png, sink.info);
     // PNG stores 16-bit samples big-endian; ours are in the machine's order.
-    if (bits == 16) {
-      const std::uint16_t probe = 1;
-      if (*reinterpret_cast<const unsigned char*>(&probe) == 1) png_set_swap(sink.png);
-    }
+    if (bits == 16 && std::endian::native == std::endian::little) png_set_swap(sink.png);
     for (int y = 0; y < height; ++y) png_write_row(sink.png, bytes + std::size_t(y) * row_bytes);
     png_write_end(sink.png, nullptr);
   }

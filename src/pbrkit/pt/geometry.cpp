@@ -30,7 +30,9 @@ SceneGeometry::SceneGeometry(const Scene& scene) {
 
   meshes_.resize(scene.instances.size());
   // has_alpha may scan a texture: once per mesh, however many instances it has.
-  std::vector<std::int8_t> mesh_alpha(scene.meshes.size(), -1);
+  std::vector<bool> mesh_alpha(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    mesh_alpha[m] = pbrkit::has_alpha(scene, scene.meshes[m]);
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& inst = scene.instances[i];
     WorldMesh& wm = meshes_[i];
@@ -40,9 +42,7 @@ SceneGeometry::SceneGeometry(const Scene& scene) {
     const Mesh& mesh = scene.meshes[std::size_t(inst.mesh)];
     wm.mesh = &mesh;
     wm.material = &scene.material_of(mesh);
-    std::int8_t& alpha = mesh_alpha[std::size_t(inst.mesh)];
-    if (alpha < 0) alpha = pbrkit::has_alpha(scene, mesh) ? 1 : 0;
-    wm.has_alpha = alpha != 0;
+    wm.has_alpha = mesh_alpha[std::size_t(inst.mesh)];
     const glm::vec3 e = wm.material->emissive_factor * wm.material->emissive_strength;
     wm.emissive = e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
     has_alpha_ = has_alpha_ || wm.has_alpha;

@@ -8,9 +8,10 @@
 // software rasteriser of CI and headless servers, runs both sides of a branch on a
 // uniform with masked lanes, so an unused texture or IBL term would still cost its
 // fetches. HAS_TEXTURE_0..4: baseColor, metallicRoughness, normal, occlusion, emissive
-// bound; HAS_COLOR_0: the mesh has COLOR_0 (a varying fewer without: llvmpipe sets
-// up and interpolates every varying of every small triangle); ALPHA_MODE 0 opaque, 1 mask, 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1;
-// GEOMETRY (G for lights) and FRESNEL as in brdf.glsl; LIGHT_COUNT punctual lights.
+// bound; HAS_COLOR_0: the mesh has COLOR_0 (a varying fewer without: llvmpipe sets up
+// and interpolates every varying of every small triangle); ALPHA_MODE 0 opaque, 1 mask,
+// 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1; GEOMETRY (G for lights) and FRESNEL as
+// in brdf.glsl; LIGHT_COUNT punctual lights.
 #ifndef HAS_TEXTURE_0
 #define HAS_TEXTURE_0 0
 #define HAS_TEXTURE_1 0
