@@ -3,9 +3,11 @@
 // checkpoint (also through the accumulation EXR on disk).
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstring>
 
 #include "pbrkit/pt/film.h"
+#include "pbrkit/pt/geometry.h"
 #include "pt/pt_test_util.h"
 #include "support/test_paths.h"
 
@@ -92,6 +94,30 @@ TEST(PathTracerDeterminism, OneThreadEqualsTwoThreads) {
   double total = 0.0;
   for (float v : a.color.data) total += v;
   EXPECT_GT(total, 0.1 * double(a.color.data.size()));
+}
+
+// bench/path_bench.cpp measures Embree's raw rate for the renderer's rays by recording
+// them through a RayObserver: the observer must see every ray the render counts, and
+// watching must not change the render.
+TEST(PathTracerDeterminism, RayObserverSeesEveryRayAndChangesNothing) {
+  struct Counter final : RayObserver {
+    std::atomic<std::uint64_t> packets{0}, closest_hits{0}, shadow{0};
+    void packet(const glm::vec3*, const glm::vec3*) override { ++packets; }
+    void closest(glm::vec3, glm::vec3, float, unsigned) override { ++closest_hits; }
+    void occluded(glm::vec3, glm::vec3, float) override { ++shadow; }
+  } counter;
+  const Scene scene = test_scene();
+  const Environment env = test_env();
+  PathTracerSettings s = settings(2);
+  s.height = 32;  // whole 4x4 packets: every lane is a pixel, so every lane counts as a ray
+  const PathTracerResult plain = render_path(scene, &env, test_camera(), s);
+  s.ray_observer = &counter;
+  const PathTracerResult watched = render_path(scene, &env, test_camera(), s);
+  expect_identical(plain.film, watched.film);
+  EXPECT_EQ(counter.packets.load(), std::uint64_t(40 * 32 / 16) * s.spp);
+  EXPECT_GT(counter.closest_hits.load(), 0u);
+  EXPECT_GT(counter.shadow.load(), 0u);
+  EXPECT_EQ(16 * counter.packets + counter.closest_hits + counter.shadow, watched.stats.rays);
 }
 
 TEST(PathTracerDeterminism, AdaptiveSamplingIsDeterministicAndStopsPixels) {

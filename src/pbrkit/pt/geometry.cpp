@@ -97,6 +97,7 @@ SceneGeometry::~SceneGeometry() {
 bool SceneGeometry::intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mask,
                               std::uint32_t& geom, std::uint32_t& prim, float& t, float& u,
                               float& v) const {
+  if (observer_) observer_->closest(o, d, tfar, mask);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -126,6 +127,7 @@ bool SceneGeometry::intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mas
 void SceneGeometry::intersect_packet(const glm::vec3* origins, const glm::vec3* directions,
                                      PacketHit* hits) const {
   static_assert(kPacketSize == 16);
+  if (observer_) observer_->packet(origins, directions);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -153,6 +155,7 @@ void SceneGeometry::intersect_packet(const glm::vec3* origins, const glm::vec3* 
 }
 
 bool SceneGeometry::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
+  if (observer_) observer_->occluded(o, d, tfar);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay ray;

@@ -48,6 +48,17 @@ struct SurfaceHit {
   std::uint32_t geom = 0, prim = 0;
 };
 
+/// Sees every ray query a SceneGeometry answers, from the render threads (concurrently).
+/// For benchmarks: bench/path_bench.cpp records a render's rays and replays them through
+/// Embree alone, which measures Embree's raw rate for exactly the renderer's mix of rays.
+class RayObserver {
+ public:
+  virtual ~RayObserver() = default;
+  virtual void packet(const glm::vec3* origins, const glm::vec3* directions) = 0;
+  virtual void closest(glm::vec3 o, glm::vec3 d, float tfar, unsigned mask) = 0;
+  virtual void occluded(glm::vec3 o, glm::vec3 d, float tfar) = 0;
+};
+
 class SceneGeometry {
  public:
   explicit SceneGeometry(const Scene& scene);
@@ -88,6 +99,9 @@ class SceneGeometry {
   /// Shading data of a hit.
   SurfaceHit resolve(std::uint32_t geom, std::uint32_t prim, float t, float u, float v) const;
 
+  /// Reports every later query to `observer` (nullptr: none).
+  void observe(RayObserver* observer) { observer_ = observer; }
+
   const std::vector<WorldMesh>& meshes() const { return meshes_; }
   bool has_alpha() const { return has_alpha_; }
   const Bounds& bounds() const { return bounds_; }
@@ -96,6 +110,7 @@ class SceneGeometry {
   RTCDevice device_ = nullptr;
   RTCScene rtc_scene_ = nullptr;
   std::vector<WorldMesh> meshes_;
+  RayObserver* observer_ = nullptr;
   bool has_alpha_ = false;
   Bounds bounds_;
 };

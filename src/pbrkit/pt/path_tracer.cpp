@@ -350,6 +350,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
   arena.execute([&] {
     set_ftz_daz();
     geometry = std::make_unique<SceneGeometry>(scene);
+    geometry->observe(settings.ray_observer);
     result.stats.bvh_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
     lights = std::make_unique<LightSet>(scene, *geometry, env);
     // The BRDF's albedo tables are computed once per process on first use (about 0.15 s);
