@@ -91,7 +91,8 @@ BENCHMARK(BM_GlFrameSpheresIblTwoLights)
 // time. 0: everything; 1: no IBL; 2: no punctual lights; 3: colour background; 4: the
 // background alone (no spheres); 5: the spheres unlit (no IBL, no lights, colour
 // background: geometry and rasterisation of the 194k triangles); 6: everything, with
-// spheres of 32 x 16 segments instead of 64 x 32 (4x fewer, larger triangles).
+// spheres of 32 x 16 segments instead of 64 x 32 (4x fewer, larger triangles); 7: the
+// 32 x 16 spheres unlit (how the unlit cost scales with the triangle count).
 void BM_GlFrameBreakdown(benchmark::State& state) {
   const int variant = int(state.range(0));
   constexpr int kWidth = 1280, kHeight = 720;
@@ -100,7 +101,7 @@ void BM_GlFrameBreakdown(benchmark::State& state) {
   Scene scene = spheres_with_two_lights();
   const Camera camera = select_camera(scene, std::nullopt, float(kWidth) / float(kHeight));
   if (variant == 4) scene = Scene{};
-  if (variant == 6)
+  if (variant == 6 || variant == 7)
     for (Mesh& mesh : scene.meshes) {
       const int material = mesh.material;
       mesh = make_uv_sphere(0.4f, 32, 16);
@@ -113,22 +114,23 @@ void BM_GlFrameBreakdown(benchmark::State& state) {
   renderer.set_ibl(&maps);
   gl::RenderSettings settings;
   settings.msaa = 1;
-  settings.ibl = variant != 1 && variant != 5;
-  settings.lights = variant != 2 && variant != 5;
-  if (variant == 3 || variant == 5) settings.background.mode = gl::Background::Mode::kColor;
+  const bool unlit = variant == 5 || variant == 7;
+  settings.ibl = variant != 1 && !unlit;
+  settings.lights = variant != 2 && !unlit;
+  if (variant == 3 || unlit) settings.background.mode = gl::Background::Mode::kColor;
   renderer.render(camera, kWidth, kHeight, settings);
   glFinish();
   for (auto _ : state) {
     renderer.render(camera, kWidth, kHeight, settings);
     glFinish();
   }
-  static const char* const kNames[] = {"everything",        "no IBL",          "no lights",
-                                       "colour background", "background only", "unlit spheres",
-                                       "32x16 spheres"};
+  static const char* const kNames[] = {
+      "everything",      "no IBL",        "no lights",     "colour background",
+      "background only", "unlit spheres", "32x16 spheres", "unlit 32x16 spheres"};
   state.SetLabel(kNames[variant]);
 }
 BENCHMARK(BM_GlFrameBreakdown)
-    ->DenseRange(0, 6)
+    ->DenseRange(0, 7)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(2.0);
