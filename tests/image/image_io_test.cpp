@@ -11,6 +11,7 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -19,6 +20,7 @@
 #include <random>
 
 #include "pbrkit/core/color.h"
+#include "pbrkit/image/environment.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -327,6 +329,20 @@ TEST(ImageIo, ReadsDwabHdriAndClampsItsNegativeSamples) {
   EXPECT_EQ(max_r, 24.765625f);  // oiiotool --stats: max R = 24.765625
   // shared/assets/README.md (measured with OpenImageIO): max luminance 15.49.
   EXPECT_NEAR(max_y, 15.49f, 0.01f);
+}
+
+// The shipped default environment has a few negative DWAB-ringing samples (documented in
+// data/env/LICENSE.md): clamped like any file's, but without a warning on every render
+// that uses the default; a user's file with the same samples still gets the warning.
+TEST(ImageIo, DefaultEnvironmentIsCleanedWithoutAWarning) {
+  WarningCapture capture;
+  const Environment quiet = load_environment_or_default("", 0.0f, 1.0f);
+  EXPECT_TRUE(capture.warnings.empty());
+  const Environment loud = Environment::load(default_environment_path());
+  ASSERT_EQ(capture.warnings.size(), 1u);
+  EXPECT_TRUE(contains(capture.warnings[0], "negative")) << capture.warnings[0];
+  EXPECT_EQ(quiet.map.data, loud.map.data);
+  EXPECT_GE(*std::min_element(quiet.map.data.begin(), quiet.map.data.end()), 0.0f);
 }
 
 TEST(ImageIo, BadInputGivesErrorsNamingTheFile) {

@@ -26,8 +26,9 @@ glm::vec3 Environment::eval(glm::vec3 d) const {
 }
 
 Environment Environment::load(const std::filesystem::path& path, float rotation_deg,
-                              float intensity) {
+                              float intensity, bool warn_cleaned) {
   ImageReadOptions options;
+  options.warn_cleaned = warn_cleaned;
   options.max_pixels = std::size_t(16384) * 8192;
   Environment env;
   env.map = read_image(path, options);
@@ -69,8 +70,9 @@ std::filesystem::path default_environment_path() {
 
 Environment load_environment_or_default(const std::string& path, float rotation_deg,
                                         float intensity) {
-  return Environment::load(path.empty() ? default_environment_path() : std::filesystem::path(path),
-                           rotation_deg, intensity);
+  if (path.empty())
+    return Environment::load(default_environment_path(), rotation_deg, intensity, false);
+  return Environment::load(path, rotation_deg, intensity);
 }
 
 }  // namespace pbrkit

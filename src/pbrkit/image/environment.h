@@ -21,9 +21,10 @@ struct Environment {
   glm::vec3 eval(glm::vec3 d) const;
 
   /// Loads an .exr/.hdr environment: checks 2:1 aspect (Error otherwise), size limits
-  /// (at most 16384 x 8192), and clamps negative/NaN/Inf samples (warning with counts).
+  /// (at most 16384 x 8192), and clamps negative/NaN/Inf samples (warning with counts
+  /// unless `warn_cleaned` is false).
   static Environment load(const std::filesystem::path& path, float rotation_deg = 0.0f,
-                          float intensity = 1.0f);
+                          float intensity = 1.0f, bool warn_cleaned = true);
   /// A uniform environment of radiance `L` (a tiny map), for furnace tests.
   static Environment constant(glm::vec3 L, int width = 8);
 };
@@ -32,7 +33,8 @@ struct Environment {
 /// LICENSE note), used when no --env is given.
 std::filesystem::path default_environment_path();
 
-/// Resolves a user's --env value: a path, or empty for the default environment.
+/// Resolves a user's --env value: a path, or empty for the default environment (whose
+/// 342 negative DWAB-ringing samples are clamped without a warning: data/env/LICENSE.md).
 Environment load_environment_or_default(const std::string& path, float rotation_deg,
                                         float intensity);
 

@@ -418,7 +418,7 @@ Image decode_image(const void* bytes, std::size_t size, const std::string& name,
   if (image.channels < 1 || image.channels > 4)
     fail("{}: unsupported channel count {}", name, image.channels);
   sanitize_image(image, local);
-  warn_if_cleaned(name, local);
+  if (options.warn_cleaned) warn_if_cleaned(name, local);
   if (report) {
     report->negative += local.negative;
     report->nan += local.nan;

@@ -25,6 +25,9 @@ struct ImageReadOptions {
   bool decode_srgb = true;
   /// Refuse images with more pixels than this (width * height); the error says the limit.
   std::size_t max_pixels = std::size_t(1) << 28;  // 268 M pixels (16384 x 16384)
+  /// Warn (naming the file) when samples were cleaned. Off only for pbrkit's own shipped
+  /// files, whose few cleaned samples are known and documented (data/env/LICENSE.md).
+  bool warn_cleaned = true;
 };
 
 /// Reads an image from disk. Throws pbrkit::Error naming the file and the problem
