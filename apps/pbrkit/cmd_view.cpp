@@ -36,9 +36,9 @@ void register_view_command(CLI::App& app) {
   cmd->add_flag("--multiscatter", o->multiscatter, "multiple-scattering compensation");
   cmd->add_option("--background", o->background, "env, blur:<mip> or color:<r>,<g>,<b>")
       ->capture_default_str();
-  cmd->add_option("--msaa", o->msaa, "MSAA samples")
-      ->check(CLI::Range(1, 16))
-      ->capture_default_str();
+  cmd->add_option("--msaa", o->msaa,
+                  "MSAA samples (default: 4 on a GPU, 1 on a software rasteriser such as llvmpipe)")
+      ->check(CLI::Range(1, 16));
   cmd->add_option("--frames", o->frames,
                   "automation: render this many frames, save --screenshot, and quit")
       ->check(CLI::NonNegativeNumber);

@@ -8,6 +8,9 @@
 
 #include <gtest/gtest.h>
 
+#include "pbrkit/gl/context.h"
+#include "pbrkit/gl/renderer.h"
+#include "pbrkit/gl/viewer.h"
 #include "pbrkit/image/image_io.h"
 
 namespace {
@@ -49,6 +52,23 @@ TEST(Viewer, RendersFramesAndScreenshotUnderXvfb) {
   // bottom.
   EXPECT_GT(image.rgb(80, 25).g, image.rgb(80, 95).g);
   std::filesystem::remove_all(dir);
+}
+
+// The viewer's interactive defaults: no MSAA on software rasterisers (4x MSAA costs about
+// 2.5x the frame on llvmpipe), 4x on GPUs; and the IBL bake of `pbrkit render --renderer
+// gl`, so the viewer shows what a headless render writes.
+TEST(Viewer, InteractiveDefaults) {
+  EXPECT_EQ(pbrkit::gl::interactive_msaa("llvmpipe (LLVM 15.0.6, 256 bits)"), 1);
+  EXPECT_EQ(pbrkit::gl::interactive_msaa("softpipe"), 1);
+  EXPECT_EQ(pbrkit::gl::interactive_msaa("Google SwiftShader"), 1);
+  EXPECT_EQ(pbrkit::gl::interactive_msaa("NVIDIA H100 80GB HBM3/PCIe/SSE2"), 4);
+  EXPECT_EQ(pbrkit::gl::interactive_msaa("AMD Radeon RX 7900 XTX (radeonsi, navi31, LLVM 15.0.6)"),
+            4);
+  const pbrkit::gl::ViewerOptions options;
+  EXPECT_EQ(options.msaa, 0);  // 0: chosen from the context
+  const pbrkit::BakeOptions bake = pbrkit::gl::realtime_bake_options();
+  EXPECT_EQ(options.bake_size, bake.face_size);
+  EXPECT_EQ(options.bake_samples, bake.samples);
 }
 
 }  // namespace

@@ -87,6 +87,21 @@ void HeadlessContext::make_current() {
                  static_cast<EGLContext>(context_));
 }
 
+bool is_software_renderer(std::string_view gl_renderer) {
+  for (std::string_view name : {"llvmpipe", "softpipe", "swrast", "SwiftShader"})
+    if (gl_renderer.find(name) != std::string_view::npos) return true;
+  return false;
+}
+
+int interactive_msaa(std::string_view gl_renderer) {
+  return is_software_renderer(gl_renderer) ? 1 : 4;
+}
+
+std::string current_renderer() {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return renderer ? renderer : "";
+}
+
 std::string describe_current_context() {
   const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));

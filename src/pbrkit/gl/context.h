@@ -6,6 +6,7 @@
 // The windowed path (GLFW) lives in viewer.cpp; both drive the same Renderer.
 #include <memory>
 #include <string>
+#include <string_view>
 
 namespace pbrkit::gl {
 
@@ -30,5 +31,14 @@ class HeadlessContext {
 
 /// GL_RENDERER and GL_VERSION of the current context, for logs and benchmark reports.
 std::string describe_current_context();
+
+/// Whether a GL_RENDERER string names a software rasteriser (Mesa's llvmpipe, softpipe or
+/// swrast, Google's SwiftShader), where every MSAA sample is paid for in CPU time.
+bool is_software_renderer(std::string_view gl_renderer);
+/// The MSAA samples an interactive view uses unless told otherwise: 4 on a GPU, 1 on a
+/// software rasteriser (there 4x MSAA makes the frame about 2.5x slower; BENCHMARKS.md).
+int interactive_msaa(std::string_view gl_renderer);
+/// GL_RENDERER of the current context ("" when none is current).
+std::string current_renderer();
 
 }  // namespace pbrkit::gl

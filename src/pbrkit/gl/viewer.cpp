@@ -17,6 +17,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "pbrkit/core/color.h"
+#include "pbrkit/gl/context.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/image/environment.h"
@@ -149,6 +150,9 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   if (ImGui::Combo("model", &model, models, 2))
     s.settings.brdf.model = model == 0 ? BrdfModel::kReference : BrdfModel::kClassic;
   ImGui::Checkbox("multiple scattering", &s.settings.brdf.multiscatter);
+  int msaa = s.settings.msaa >= 8 ? 3 : s.settings.msaa >= 4 ? 2 : s.settings.msaa >= 2 ? 1 : 0;
+  const char* msaa_modes[] = {"off", "2x", "4x", "8x"};
+  if (ImGui::Combo("MSAA", &msaa, msaa_modes, 4)) s.settings.msaa = 1 << msaa;
   ImGui::Checkbox("image-based lighting", &s.settings.ibl);
   int irradiance = int(s.settings.irradiance);
   const char* irradiance_modes[] = {"SH9", "cube"};
@@ -203,6 +207,13 @@ void run_viewer(const ViewerOptions& options) {
     s.settings.brdf = {parse_brdf_model(options.model), options.multiscatter};
     s.settings.background = parse_background(options.background);
     s.settings.msaa = options.msaa;
+    if (s.settings.msaa <= 0) {
+      const std::string gpu = current_renderer();
+      s.settings.msaa = interactive_msaa(gpu);
+      if (s.settings.msaa == 1)
+        note("view: MSAA off on {}, a software rasteriser (--msaa 4 or the panel turns it on)",
+             gpu);
+    }
     s.tone_mapper = parse_tone_mapper(options.tonemap);
     s.exposure = options.exposure;
     s.env_choices.push_back(options.env);

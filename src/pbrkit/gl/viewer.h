@@ -20,9 +20,10 @@ struct ViewerOptions {
   std::string model = "reference";
   bool multiscatter = false;
   std::string background = "env";
-  int msaa = 4;
-  int bake_size = 128;
-  int bake_samples = 128;
+  /// MSAA samples; 0: interactive_msaa (4 on a GPU, 1 on a software rasteriser).
+  int msaa = 0;
+  int bake_size = 128;     ///< as gl::realtime_bake_options
+  int bake_samples = 256;  ///< as gl::realtime_bake_options
   /// Automation (CI): render this many frames, save `screenshot`, quit (0: interactive).
   int frames = 0;
   std::string screenshot;  ///< PNG path (the EXR goes beside it); also the F12 target
