@@ -68,12 +68,13 @@ EnergyTable::EnergyTable(GeometryModel model)
   }
 }
 
-const EnergyTable& EnergyTable::get(GeometryModel model) {
+const EnergyTable& EnergyTable::build(GeometryModel model) {
   static std::array<std::once_flag, 3> once;
-  static std::array<const EnergyTable*, 3> tables{};
-  const int index = int(model);
-  std::call_once(once[index], [&] { tables[index] = new EnergyTable(model); });
-  return *tables[index];
+  const auto index = std::size_t(model);
+  std::call_once(once[index], [&] {
+    built_[index].store(new EnergyTable(model), std::memory_order_release);
+  });
+  return *built_[index].load(std::memory_order_acquire);
 }
 
 glm::vec2 EnergyTable::AB(float mu, float roughness) const {
