@@ -5,7 +5,11 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
@@ -22,6 +26,24 @@ struct InfoOptions {
 
 const char* light_type(Light::Type t) {
   return t == Light::Type::kPoint ? "point" : t == Light::Type::kSpot ? "spot" : "directional";
+}
+
+const char* alpha_mode(AlphaMode m) {
+  return m == AlphaMode::kOpaque ? "opaque" : m == AlphaMode::kMask ? "mask" : "blend";
+}
+
+// The texture slots a material uses, by glTF name.
+std::vector<std::string> material_textures(const Material& m) {
+  std::vector<std::string> out;
+  const std::pair<const char*, const TextureRef*> slots[] = {
+      {"baseColor", &m.base_color_texture},
+      {"metallicRoughness", &m.metallic_roughness_texture},
+      {"normal", &m.normal_texture},
+      {"occlusion", &m.occlusion_texture},
+      {"emissive", &m.emissive_texture}};
+  for (const auto& [name, ref] : slots)
+    if (ref->valid()) out.emplace_back(name);
+  return out;
 }
 
 void run_info(const InfoOptions& opt) {
@@ -46,6 +68,35 @@ void run_info(const InfoOptions& opt) {
   j["triangles"] = scene.triangle_count();
   j["unique_triangles"] = unique_triangles;
   j["materials"] = scene.materials.size();
+  // Per material: its factors, alpha, sides, textures and how many meshes use it (as
+  // glTF-Transform's `inspect` lists them).
+  std::vector<std::size_t> material_uses(scene.materials.size(), 0);
+  std::size_t default_material_uses = 0;
+  for (const Mesh& m : scene.meshes) {
+    if (m.material >= 0 && std::size_t(m.material) < scene.materials.size())
+      ++material_uses[std::size_t(m.material)];
+    else
+      ++default_material_uses;
+  }
+  j["material_list"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& m = scene.materials[i];
+    const glm::vec3 e = m.emissive_factor * m.emissive_strength;
+    nlohmann::json mj = {{"name", m.name},
+                         {"base_color",
+                          {m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b,
+                           m.base_color_factor.a}},
+                         {"metallic", m.metallic_factor},
+                         {"roughness", m.roughness_factor},
+                         {"emissive", {e.r, e.g, e.b}},
+                         {"alpha_mode", alpha_mode(m.alpha_mode)},
+                         {"double_sided", m.double_sided},
+                         {"textures", material_textures(m)},
+                         {"meshes", material_uses[i]}};
+    if (m.alpha_mode == AlphaMode::kMask) mj["alpha_cutoff"] = m.alpha_cutoff;
+    j["material_list"].push_back(mj);
+  }
+  j["default_material_meshes"] = default_material_uses;
   j["textures"] = nlohmann::json::array();
   for (const Texture& t : scene.textures)
     j["textures"].push_back({{"name", t.name},
@@ -85,7 +136,32 @@ void run_info(const InfoOptions& opt) {
   std::printf("  meshes       %zu (%zu vertices, %zu triangles)\n", scene.meshes.size(), vertices,
               unique_triangles);
   std::printf("  triangles    %zu (instanced)\n", scene.triangle_count());
-  std::printf("  materials    %zu\n", scene.materials.size());
+  std::printf(
+      "  materials    %zu%s\n", scene.materials.size(),
+      default_material_uses
+          ? fmt::format(" (+ the glTF default material, {} meshes)", default_material_uses).c_str()
+          : "");
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    const Material& m = scene.materials[i];
+    const glm::vec4 c = m.base_color_factor;
+    const glm::vec3 e = m.emissive_factor * m.emissive_strength;
+    std::string extra;
+    if (m.alpha_mode == AlphaMode::kMask)
+      extra += fmt::format(", mask {:g}", m.alpha_cutoff);
+    else if (m.alpha_mode == AlphaMode::kBlend)
+      extra += ", blend";
+    if (m.double_sided) extra += ", double-sided";
+    if (e != glm::vec3(0.0f)) extra += fmt::format(", emissive ({:g}, {:g}, {:g})", e.r, e.g, e.b);
+    const std::vector<std::string> textures = material_textures(m);
+    if (!textures.empty()) {
+      extra += ", textures:";
+      for (const std::string& t : textures) extra += " " + t;
+    }
+    std::printf("    %-30s base (%g, %g, %g, %g), metallic %g, roughness %g%s; %zu mesh%s\n",
+                m.name.empty() ? fmt::format("#{}", i).c_str() : m.name.c_str(), c.r, c.g, c.b, c.a,
+                m.metallic_factor, m.roughness_factor, extra.c_str(), material_uses[i],
+                material_uses[i] == 1 ? "" : "es");
+  }
   std::printf("  textures     %zu\n", scene.textures.size());
   for (const Texture& t : scene.textures)
     std::printf("    %-30s %5d x %-5d %s, %zu mips\n", t.name.c_str(), t.width(), t.height(),

@@ -2,6 +2,11 @@
 // against what the assets' README states (and `pbrkit info` reports them).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
+
+#include <nlohmann/json.hpp>
+
 #include "pbrkit/scene/load.h"
 #include "pbrkit/util/log.h"
 #include "support/test_paths.h"
@@ -91,6 +96,45 @@ TEST_F(SharedModels, InfoReportsKeyNumbers) {
       test::run_command(test::cli_path().string() + " info '" + model("bunny.glb") + "'", &out);
   ASSERT_EQ(s2, 0) << out;
   EXPECT_NE(out.find("KHR_draco_mesh_compression"), std::string::npos) << out;
+}
+
+// `pbrkit info` lists each material: checked against the .gltf's own JSON (read here with
+// nlohmann::json, not through the loader), and the bunny's BLEND + doubleSided material
+// (the reason the renderers treat BLEND with alpha 1 as opaque).
+TEST_F(SharedModels, InfoListsMaterials) {
+  const std::string gltf_path = model("BoxTextured/BoxTextured.gltf");
+  std::string out;
+  ASSERT_EQ(test::run_command(test::cli_path().string() + " info --json '" + gltf_path + "'", &out),
+            0)
+      << out;
+  const nlohmann::json info = nlohmann::json::parse(out.substr(out.find('{')));
+  std::ifstream in(gltf_path);
+  const nlohmann::json gltf = nlohmann::json::parse(in);
+  ASSERT_EQ(info["material_list"].size(), gltf["materials"].size());
+  for (std::size_t i = 0; i < gltf["materials"].size(); ++i) {
+    const nlohmann::json& g = gltf["materials"][i];
+    const nlohmann::json& pbr = g.value("pbrMetallicRoughness", nlohmann::json::object());
+    const nlohmann::json& m = info["material_list"][i];
+    EXPECT_EQ(m["name"], g.value("name", ""));
+    EXPECT_FLOAT_EQ(m["metallic"].get<float>(), pbr.value("metallicFactor", 1.0f));
+    EXPECT_FLOAT_EQ(m["roughness"].get<float>(), pbr.value("roughnessFactor", 1.0f));
+    const auto& textures = m["textures"];
+    EXPECT_EQ(std::find(textures.begin(), textures.end(), "baseColor") != textures.end(),
+              pbr.contains("baseColorTexture"));
+    EXPECT_EQ(m["alpha_mode"],
+              g.value("alphaMode", std::string("OPAQUE")) == "OPAQUE" ? "opaque" : "other");
+    EXPECT_EQ(m["meshes"], 1);
+  }
+  ASSERT_EQ(test::run_command(
+                test::cli_path().string() + " info --json '" + model("bunny.glb") + "'", &out),
+            0);
+  const nlohmann::json bunny = nlohmann::json::parse(out.substr(out.find('{')));
+  ASSERT_EQ(bunny["material_list"].size(), 1u);
+  EXPECT_EQ(bunny["material_list"][0]["alpha_mode"], "blend");
+  EXPECT_EQ(bunny["material_list"][0]["double_sided"], true);
+  ASSERT_EQ(
+      test::run_command(test::cli_path().string() + " info '" + model("bunny.glb") + "'", &out), 0);
+  EXPECT_NE(out.find("blend, double-sided; 1 mesh"), std::string::npos) << out;
 }
 
 }  // namespace

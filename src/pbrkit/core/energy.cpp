@@ -71,9 +71,8 @@ EnergyTable::EnergyTable(GeometryModel model)
 const EnergyTable& EnergyTable::build(GeometryModel model) {
   static std::array<std::once_flag, 3> once;
   const auto index = std::size_t(model);
-  std::call_once(once[index], [&] {
-    built_[index].store(new EnergyTable(model), std::memory_order_release);
-  });
+  std::call_once(once[index],
+                 [&] { built_[index].store(new EnergyTable(model), std::memory_order_release); });
   return *built_[index].load(std::memory_order_acquire);
 }
 
