@@ -150,9 +150,13 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   if (ImGui::Combo("model", &model, models, 2))
     s.settings.brdf.model = model == 0 ? BrdfModel::kReference : BrdfModel::kClassic;
   ImGui::Checkbox("multiple scattering", &s.settings.brdf.multiscatter);
+  // MSAA choices up to what the context supports (the renderer clamps to it; llvmpipe: 4x).
+  GLint max_samples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
   int msaa = s.settings.msaa >= 8 ? 3 : s.settings.msaa >= 4 ? 2 : s.settings.msaa >= 2 ? 1 : 0;
   const char* msaa_modes[] = {"off", "2x", "4x", "8x"};
-  if (ImGui::Combo("MSAA", &msaa, msaa_modes, 4)) s.settings.msaa = 1 << msaa;
+  const int msaa_choices = max_samples >= 8 ? 4 : max_samples >= 4 ? 3 : max_samples >= 2 ? 2 : 1;
+  if (ImGui::Combo("MSAA", &msaa, msaa_modes, msaa_choices)) s.settings.msaa = 1 << msaa;
   ImGui::Checkbox("image-based lighting", &s.settings.ibl);
   int irradiance = int(s.settings.irradiance);
   const char* irradiance_modes[] = {"SH9", "cube"};
