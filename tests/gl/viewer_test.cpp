@@ -1,7 +1,8 @@
 // `pbrkit view` under a virtual X server (xvfb-run), as CI runs it: start the viewer, render
 // a few frames, take a screenshot, quit; the screenshot must show the lit furnace sphere in
 // the middle (grey-white, shaded) on the chosen solid background colour (red), i.e. the
-// renderer drew into the window's context and the display transform ran.
+// renderer drew into the window's context and the display transform ran. And the
+// viewer's defaults (MSAA by rasteriser, the IBL bake of the headless renderer).
 #include <cstdlib>
 #include <filesystem>
 #include <string>
