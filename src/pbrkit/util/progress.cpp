@@ -27,6 +27,25 @@ static std::string format_seconds(double s) {
   return buf;
 }
 
+void EtaEstimator::add(double t, double fraction) {
+  history_.emplace_back(t, fraction);
+  // Keep one report at or before the window's start (the rate's base) and those after it.
+  const double start = t - std::max(min_window, 0.25 * t);
+  while (history_.size() > 2 && history_[1].first <= start) history_.pop_front();
+}
+
+double EtaEstimator::eta() const {
+  if (history_.empty()) return -1.0;
+  const auto [t, f] = history_.back();
+  if (f >= 1.0) return 0.0;
+  // The first second's rate says little (start-up, first tiles): "?" rather than a guess.
+  if (t < 1.0) return -1.0;
+  const auto [t0, f0] = history_.front();
+  if (t > t0 && f > f0) return (1.0 - f) * (t - t0) / (f - f0);
+  // No progress within the window: the average since the start, if any.
+  return f > 0.0 && t > 0.0 ? t * (1.0 - f) / f : -1.0;
+}
+
 void ProgressBar::update(double fraction, const std::string& detail) {
   std::lock_guard lock(mutex_);
   if (finished_) return;
@@ -34,9 +53,10 @@ void ProgressBar::update(double fraction, const std::string& detail) {
   const auto now = std::chrono::steady_clock::now();
   const double since_last = std::chrono::duration<double>(now - last_).count();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
+  eta_.add(elapsed, fraction);
   if (since_last < (tty_ ? 0.1 : plain_interval) && fraction < 1.0) return;
   last_ = now;
-  const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : -1.0;
+  const double eta = eta_.eta();
   if (tty_) {
     constexpr int kWidth = 30;
     const int filled = int(std::lround(fraction * kWidth));

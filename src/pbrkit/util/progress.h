@@ -4,15 +4,35 @@
 // bar with percent and ETA on a TTY, plain periodic lines otherwise.
 #include <chrono>
 #include <cstdio>
+#include <deque>
 #include <functional>
 #include <mutex>
 #include <string>
+#include <utility>
 
 namespace pbrkit {
 
 /// fraction in [0,1]; `detail` is free text such as "1.9 M samples*px/s, noise 0.012".
 /// Return false to ask the computation to stop early (it then returns what it has).
 using ProgressCallback = std::function<bool(double fraction, const std::string& detail)>;
+
+/// Time left from the recent rate of progress, not the average since the start: work
+/// often gets slower as it goes (an adaptive render's cheap pixels converge first and
+/// stop, leaving the expensive ones), and the average then promises too early an end.
+/// The rate is measured over the last `window` of progress reports: max(min_window, 25%
+/// of the elapsed time).
+class EtaEstimator {
+ public:
+  double min_window = 3.0;  ///< seconds
+  /// Records progress `fraction` (in [0, 1]) at time `t` (seconds since the start).
+  void add(double t, double fraction);
+  /// Seconds left after the last add(); negative when unknown (no progress yet, or less
+  /// than a second of it).
+  double eta() const;
+
+ private:
+  std::deque<std::pair<double, double>> history_;  ///< (t, fraction), oldest first
+};
 
 class ProgressBar {
  public:
@@ -34,6 +54,7 @@ class ProgressBar {
   bool tty_;
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, last_;
+  EtaEstimator eta_;
   bool finished_ = false;
 };
 
