@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include "pbrkit/gl/compute_eval.h"
 #include "pbrkit/gl/energy_texture.h"
 #include "pbrkit/gl/program.h"
 
@@ -20,29 +21,15 @@ std::vector<glm::vec3> eval_brdf_glsl(const std::vector<BrdfCase>& cases,
     input.emplace_back(c.base_color, c.metallic);
     input.emplace_back(c.roughness, 0.0f, 0.0f, 0.0f);
   }
-  GLuint buffers[2];
-  glCreateBuffers(2, buffers);
-  glNamedBufferStorage(buffers[0], GLsizeiptr(input.size() * sizeof(glm::vec4)), input.data(), 0);
-  glNamedBufferStorage(buffers[1], GLsizeiptr(cases.size() * sizeof(glm::vec4)), nullptr,
-                       GL_MAP_READ_BIT);
   const GeometryModel geometry = direct_geometry(options.model);
   const GLuint energy = create_energy_texture(geometry);
-
   program.use();
   program.set("uCount", int(cases.size()));
   program.set("uGeometry", int(geometry));
   program.set("uMultiscatter", options.multiscatter ? 1 : 0);
   program.set("uFresnel", fresnel == FresnelMode::kSchlick ? 0 : 1);
   glBindTextureUnit(0, energy);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, buffers[0]);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, buffers[1]);
-  glDispatchCompute(GLuint((cases.size() + 63) / 64), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-
-  std::vector<glm::vec4> output(cases.size());
-  glGetNamedBufferSubData(buffers[1], 0, GLsizeiptr(output.size() * sizeof(glm::vec4)),
-                          output.data());
-  glDeleteBuffers(2, buffers);
+  const std::vector<glm::vec4> output = detail::dispatch_cases(input, cases.size());
   glDeleteTextures(1, &energy);
   std::vector<glm::vec3> result;
   result.reserve(output.size());
