@@ -196,7 +196,8 @@ struct SurfaceFeatures {
 struct Renderer::State {
   std::unordered_map<std::uint32_t, Program> surface_programs;  // by SurfaceFeatures::key
   std::array<Program, 3> background;                            // by background MODE
-  std::array<GLuint, 3> energy{};                               // per GeometryModel
+  std::array<Program, 4> display;  // by ToneMapper, compiled on first use
+  std::array<GLuint, 3> energy{};  // per GeometryModel
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
   std::vector<Material> materials;
@@ -627,6 +628,26 @@ Image Renderer::read_back() const {
 
 unsigned Renderer::framebuffer() const {
   return state_->resolve_fbo;
+}
+
+void Renderer::display(float exposure_ev, ToneMapper mapper) {
+  State& s = *state_;
+  if (!s.resolve_color) fail("OpenGL: display() before any render()");
+  Program& p = s.display[std::size_t(mapper)];
+  if (!p.id())
+    p = Program::graphics("display_vertex.glsl", "display_fragment.glsl",
+                          fmt::format("#define TONE_MAPPER {}\n", int(mapper)));
+  glViewport(0, 0, s.width, s.height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_FRAMEBUFFER_SRGB);  // display.glsl encodes sRGB itself
+  p.use();
+  p.set("uExposureScale", exposure_scale(exposure_ev));
+  glBindTextureUnit(0, s.resolve_color);
+  glBindVertexArray(s.empty_vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
 }
 
 double Renderer::gpu_time_ms() const {

@@ -12,6 +12,7 @@
 
 #include <glm/glm.hpp>
 
+#include "pbrkit/core/color.h"
 #include "pbrkit/core/material.h"
 #include "pbrkit/gl/brdf_eval.h"
 #include "pbrkit/ibl/bake.h"
@@ -89,6 +90,11 @@ class Renderer {
   Image read_back() const;
   /// The resolved single-sample framebuffer of the last frame (for blitting in a window).
   unsigned framebuffer() const;
+  /// Draws the last frame into the bound draw framebuffer (the window's, in the viewer),
+  /// through the display transform of the PNG outputs (exposure, tone mapper, exact sRGB
+  /// encoding; shaders/display.glsl) on the GPU: no read-back. The target must be 8-bit
+  /// and not sRGB-encoding (GL_FRAMEBUFFER_SRGB is turned off), at least the frame's size.
+  void display(float exposure_ev, ToneMapper mapper);
   /// GPU time of the last render() in milliseconds (two GL_TIMESTAMP queries); waits for it.
   double gpu_time_ms() const;
 

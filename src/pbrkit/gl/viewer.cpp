@@ -13,7 +13,6 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-#include <tbb/parallel_for.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "pbrkit/core/color.h"
@@ -231,9 +230,6 @@ void run_viewer(const ViewerOptions& options) {
     load_scene_into(s, renderer, true);
     load_environment(s, renderer);
 
-    GLuint display_texture = 0, display_fbo = 0;
-    int display_w = 0, display_h = 0;
-    std::vector<unsigned char> pixels;
     double cpu_ms = 0.0, gpu_ms = 0.0;
     Image frame;
     for (int frame_index = 0; !glfwWindowShouldClose(window); ++frame_index) {
@@ -259,6 +255,7 @@ void run_viewer(const ViewerOptions& options) {
         if (io.MouseWheel != 0.0f) s.orbit.distance *= std::pow(0.9f, io.MouseWheel);
       }
       bool screenshot = false;
+      const bool last_frame = options.frames > 0 && frame_index + 1 >= options.frames;
       if (!io.WantCaptureKeyboard) {
         if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window, GLFW_TRUE);
         if (ImGui::IsKeyPressed(GLFW_KEY_F12) || ImGui::IsKeyPressed(GLFW_KEY_P)) screenshot = true;
@@ -279,33 +276,13 @@ void run_viewer(const ViewerOptions& options) {
       if (fb_w > 0 && fb_h > 0) {
         Camera camera = s.orbit.camera();
         renderer.render(camera, fb_w, fb_h, s.settings);
-        frame = renderer.read_back();
         gpu_ms = renderer.gpu_time_ms();
-        // The display transform on the CPU: the exact code of the PNG outputs.
-        pixels.resize(std::size_t(fb_w) * fb_h * 4);
-        tbb::parallel_for(0, fb_h, [&](int y) {
-          for (int x = 0; x < fb_w; ++x) {
-            const glm::vec3 c = display_transform(frame.rgb(x, y), s.exposure, s.tone_mapper);
-            unsigned char* p = pixels.data() + (std::size_t(y) * fb_w + x) * 4;
-            for (int k = 0; k < 3; ++k) p[k] = (unsigned char)(std::lround(c[k] * 255.0f));
-            p[3] = 255;
-          }
-        });
-        if (fb_w != display_w || fb_h != display_h) {
-          if (display_texture) glDeleteTextures(1, &display_texture);
-          if (display_fbo) glDeleteFramebuffers(1, &display_fbo);
-          glCreateTextures(GL_TEXTURE_2D, 1, &display_texture);
-          glTextureStorage2D(display_texture, 1, GL_RGBA8, fb_w, fb_h);
-          glCreateFramebuffers(1, &display_fbo);
-          glNamedFramebufferTexture(display_fbo, GL_COLOR_ATTACHMENT0, display_texture, 0);
-          display_w = fb_w, display_h = fb_h;
-        }
-        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        glTextureSubImage2D(display_texture, 0, 0, 0, fb_w, fb_h, GL_RGBA, GL_UNSIGNED_BYTE,
-                            pixels.data());
-        // Texture row 0 is the image's top row: flip while blitting to the window.
-        glBlitNamedFramebuffer(display_fbo, 0, 0, 0, fb_w, fb_h, 0, fb_h, fb_w, 0,
-                               GL_COLOR_BUFFER_BIT, GL_NEAREST);
+        // The display transform on the GPU, straight into the window (display.glsl, the
+        // PNG outputs' code, held to it by tests/gl/display_glsl_test.cpp); the float
+        // frame is read back only for a screenshot.
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        renderer.display(s.exposure, s.tone_mapper);
+        if (screenshot || last_frame) frame = renderer.read_back();
       }
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
       glViewport(0, 0, fb_w, fb_h);
@@ -320,14 +297,12 @@ void run_viewer(const ViewerOptions& options) {
       }
       glfwSwapBuffers(window);
       cpu_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-      if (options.frames > 0 && frame_index + 1 >= options.frames) {
+      if (last_frame) {
         if (!options.screenshot.empty() && !frame.empty())
           save_screenshot(options.screenshot, frame, s);
         break;
       }
     }
-    if (display_texture) glDeleteTextures(1, &display_texture);
-    if (display_fbo) glDeleteFramebuffers(1, &display_fbo);
   }  // the renderer's GL objects go before the context
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
