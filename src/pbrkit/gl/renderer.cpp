@@ -216,8 +216,12 @@ struct Renderer::State {
   GLuint msaa_fbo = 0, msaa_color = 0, msaa_depth = 0;
   GLuint resolve_fbo = 0, resolve_color = 0;
   int width = 0, height = 0, samples = 0;
-  std::array<GLuint, 2> timer{};
-  bool timer_pending = false;
+  // GL_TIMESTAMP pairs (begin, end) for two frames in turn, so that a viewer can read the
+  // previous frame's time without waiting for the current one.
+  std::array<GLuint, 4> timer{};
+  std::array<bool, 2> timer_pending{};
+  int timer_pair = 0;  // the pair of the last render()
+  double latest_gpu_ms = 0.0;
 
   const Program& surface_program(const SurfaceFeatures& f) {
     auto it = surface_programs.find(f.key());
@@ -285,7 +289,7 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {
   glTextureSubImage2D(s.white_texture, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, white);
   s.specular_cube = upload_cube(nullptr);
   s.irradiance_cube = upload_cube(nullptr);
-  glCreateQueries(GL_TIMESTAMP, 2, s.timer.data());
+  glCreateQueries(GL_TIMESTAMP, 4, s.timer.data());
   glCreateVertexArrays(1, &s.empty_vao);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 }
@@ -299,7 +303,7 @@ Renderer::~Renderer() {
   glDeleteTextures(1, &s.specular_cube);
   glDeleteTextures(1, &s.irradiance_cube);
   if (s.env_texture) glDeleteTextures(1, &s.env_texture);
-  glDeleteQueries(2, s.timer.data());
+  glDeleteQueries(4, s.timer.data());
   glDeleteVertexArrays(1, &s.empty_vao);
 }
 
@@ -417,7 +421,8 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   const glm::mat4 view_projection = projection * view;
 
   // GPU time between two timestamps (llvmpipe's GL_TIME_ELAPSED reports nonsense).
-  glQueryCounter(s.timer[0], GL_TIMESTAMP);
+  s.timer_pair = 1 - s.timer_pair;
+  glQueryCounter(s.timer[std::size_t(2 * s.timer_pair)], GL_TIMESTAMP);
   glBindFramebuffer(GL_FRAMEBUFFER, s.msaa_fbo);
   glViewport(0, 0, width, height);
   glDisable(GL_BLEND);
@@ -607,8 +612,8 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   // Resolve the samples into the single-sample float target.
   glBlitNamedFramebuffer(s.msaa_fbo, s.resolve_fbo, 0, 0, width, height, 0, 0, width, height,
                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
-  glQueryCounter(s.timer[1], GL_TIMESTAMP);
-  s.timer_pending = true;
+  glQueryCounter(s.timer[std::size_t(2 * s.timer_pair + 1)], GL_TIMESTAMP);
+  s.timer_pending[std::size_t(s.timer_pair)] = true;
 }
 
 Image Renderer::read_back() const {
@@ -650,12 +655,37 @@ void Renderer::display(float exposure_ev, ToneMapper mapper) {
   glBindVertexArray(0);
 }
 
-double Renderer::gpu_time_ms() const {
-  if (!state_->timer_pending) return 0.0;
+namespace {
+
+double timer_pair_ms(const std::array<GLuint, 4>& timer, int pair) {
   GLuint64 begin = 0, end = 0;
-  glGetQueryObjectui64v(state_->timer[0], GL_QUERY_RESULT, &begin);
-  glGetQueryObjectui64v(state_->timer[1], GL_QUERY_RESULT, &end);
+  glGetQueryObjectui64v(timer[std::size_t(2 * pair)], GL_QUERY_RESULT, &begin);
+  glGetQueryObjectui64v(timer[std::size_t(2 * pair + 1)], GL_QUERY_RESULT, &end);
   return end > begin ? double(end - begin) * 1e-6 : 0.0;
+}
+
+}  // namespace
+
+double Renderer::gpu_time_ms() const {
+  const State& s = *state_;
+  if (!s.timer_pending[std::size_t(s.timer_pair)]) return 0.0;
+  return timer_pair_ms(s.timer, s.timer_pair);
+}
+
+double Renderer::latest_gpu_time_ms() {
+  State& s = *state_;
+  // The last frame's pair if it is done, else the frame before's (done long ago on any
+  // GPU; reading it may wait only when it is not).
+  for (int pair : {s.timer_pair, 1 - s.timer_pair}) {
+    if (!s.timer_pending[std::size_t(pair)]) continue;
+    GLint available = 0;
+    glGetQueryObjectiv(s.timer[std::size_t(2 * pair + 1)], GL_QUERY_RESULT_AVAILABLE, &available);
+    if (available || pair != s.timer_pair) {
+      s.latest_gpu_ms = timer_pair_ms(s.timer, pair);
+      break;
+    }
+  }
+  return s.latest_gpu_ms;
 }
 
 Image render_headless(const Scene& scene, const Camera& camera, int width, int height,

@@ -97,6 +97,10 @@ class Renderer {
   void display(float exposure_ev, ToneMapper mapper);
   /// GPU time of the last render() in milliseconds (two GL_TIMESTAMP queries); waits for it.
   double gpu_time_ms() const;
+  /// The GPU time of the newest finished frame: the last render()'s if it is done, else
+  /// the one before. For a per-frame display (the viewer), where waiting for the frame
+  /// just submitted would make the CPU wait for the GPU every frame.
+  double latest_gpu_time_ms();
 
  private:
   struct State;

@@ -276,7 +276,7 @@ void run_viewer(const ViewerOptions& options) {
       if (fb_w > 0 && fb_h > 0) {
         Camera camera = s.orbit.camera();
         renderer.render(camera, fb_w, fb_h, s.settings);
-        gpu_ms = renderer.gpu_time_ms();
+        gpu_ms = renderer.latest_gpu_time_ms();
         // The display transform on the GPU, straight into the window (display.glsl, the
         // PNG outputs' code, held to it by tests/gl/display_glsl_test.cpp); the float
         // frame is read back only for a screenshot.
