@@ -6,7 +6,6 @@
 #include <map>
 #include <memory>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -35,14 +34,8 @@ const char* alpha_mode(AlphaMode m) {
 // The texture slots a material uses, by glTF name.
 std::vector<std::string> material_textures(const Material& m) {
   std::vector<std::string> out;
-  const std::pair<const char*, const TextureRef*> slots[] = {
-      {"baseColor", &m.base_color_texture},
-      {"metallicRoughness", &m.metallic_roughness_texture},
-      {"normal", &m.normal_texture},
-      {"occlusion", &m.occlusion_texture},
-      {"emissive", &m.emissive_texture}};
-  for (const auto& [name, ref] : slots)
-    if (ref->valid()) out.emplace_back(name);
+  for (std::size_t t = 0; t < kTextureSlotNames.size(); ++t)
+    if (m.textures()[t]->valid()) out.emplace_back(kTextureSlotNames[t]);
   return out;
 }
 

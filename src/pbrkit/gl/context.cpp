@@ -103,9 +103,9 @@ std::string current_renderer() {
 }
 
 std::string describe_current_context() {
-  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string renderer = current_renderer();
   const auto* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
-  return fmt::format("{} / {}", renderer ? renderer : "?", version ? version : "?");
+  return fmt::format("{} / {}", renderer.empty() ? "?" : renderer, version ? version : "?");
 }
 
 }  // namespace pbrkit::gl

@@ -501,9 +501,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     const Instance& inst = s.instances[index];
     const GpuMesh& mesh = s.meshes[std::size_t(inst.mesh)];
     const Material& m = material_of(mesh);
-    const std::array<const TextureRef*, 5> refs = {&m.base_color_texture,
-                                                   &m.metallic_roughness_texture, &m.normal_texture,
-                                                   &m.occlusion_texture, &m.emissive_texture};
+    const std::array<const TextureRef*, 5> refs = m.textures();
     SurfaceFeatures features = frame;
     features.alpha_mode = mesh.alpha_mode;
     features.colors = mesh.has_colors;
@@ -629,10 +627,6 @@ Image Renderer::read_back() const {
     std::copy_n(flipped.data.data() + std::size_t(s.height - 1 - y) * row, row,
                 out.data.data() + std::size_t(y) * row);
   return out;
-}
-
-unsigned Renderer::framebuffer() const {
-  return state_->resolve_fbo;
 }
 
 void Renderer::display(float exposure_ev, ToneMapper mapper) {

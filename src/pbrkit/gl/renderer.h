@@ -88,8 +88,6 @@ class Renderer {
   void render(const Camera& camera, int width, int height, const RenderSettings& settings);
   /// The last frame, linear RGBA float, row 0 at the top (as Image everywhere).
   Image read_back() const;
-  /// The resolved single-sample framebuffer of the last frame (for blitting in a window).
-  unsigned framebuffer() const;
   /// Draws the last frame into the bound draw framebuffer (the window's, in the viewer),
   /// through the display transform of the PNG outputs (exposure, tone mapper, exact sRGB
   /// encoding; shaders/display.glsl) on the GPU: no read-back. The target must be 8-bit

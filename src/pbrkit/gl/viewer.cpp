@@ -69,6 +69,7 @@ struct ViewerState {
   std::vector<std::string> env_choices;  // "" = the built-in default
   int env_choice = 0;
   RenderSettings settings;
+  GLint max_samples = 1;  // GL_MAX_SAMPLES of the window's context
   ToneMapper tone_mapper = ToneMapper::kPbrNeutral;
   float exposure = 0.0f;
   bool override_metallic = false, override_roughness = false;
@@ -149,12 +150,11 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   if (ImGui::Combo("model", &model, models, 2))
     s.settings.brdf.model = model == 0 ? BrdfModel::kReference : BrdfModel::kClassic;
   ImGui::Checkbox("multiple scattering", &s.settings.brdf.multiscatter);
-  // MSAA choices up to what the context supports (the renderer clamps to it; llvmpipe: 4x).
-  GLint max_samples = 1;
-  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-  int msaa = s.settings.msaa >= 8 ? 3 : s.settings.msaa >= 4 ? 2 : s.settings.msaa >= 2 ? 1 : 0;
+  // Choice k is 2^k samples, up to what the context supports (the renderer clamps to it).
   const char* msaa_modes[] = {"off", "2x", "4x", "8x"};
-  const int msaa_choices = max_samples >= 8 ? 4 : max_samples >= 4 ? 3 : max_samples >= 2 ? 2 : 1;
+  int msaa = 0, msaa_choices = 1;
+  while (msaa < 3 && (2 << msaa) <= s.settings.msaa) ++msaa;
+  while (msaa_choices < 4 && (1 << msaa_choices) <= s.max_samples) ++msaa_choices;
   if (ImGui::Combo("MSAA", &msaa, msaa_modes, msaa_choices)) s.settings.msaa = 1 << msaa;
   ImGui::Checkbox("image-based lighting", &s.settings.ibl);
   int irradiance = int(s.settings.irradiance);
@@ -210,6 +210,7 @@ void run_viewer(const ViewerOptions& options) {
     s.settings.brdf = {parse_brdf_model(options.model), options.multiscatter};
     s.settings.background = parse_background(options.background);
     s.settings.msaa = options.msaa;
+    glGetIntegerv(GL_MAX_SAMPLES, &s.max_samples);
     if (s.settings.msaa <= 0) {
       const std::string gpu = current_renderer();
       s.settings.msaa = interactive_msaa(gpu);

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string>
 
+#include "pbrkit/gl/renderer.h"
+
 namespace pbrkit::gl {
 
 struct ViewerOptions {
@@ -22,8 +24,8 @@ struct ViewerOptions {
   std::string background = "env";
   /// MSAA samples; 0: interactive_msaa (4 on a GPU, 1 on a software rasteriser).
   int msaa = 0;
-  int bake_size = 128;     ///< as gl::realtime_bake_options
-  int bake_samples = 256;  ///< as gl::realtime_bake_options
+  int bake_size = realtime_bake_options().face_size;
+  int bake_samples = realtime_bake_options().samples;
   /// Automation (CI): render this many frames, save `screenshot`, quit (0: interactive).
   int frames = 0;
   std::string screenshot;  ///< PNG path (the EXR goes beside it); also the F12 target

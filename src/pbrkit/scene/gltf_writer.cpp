@@ -289,8 +289,7 @@ tinygltf::Model Writer::build() {
                   [](const Material& m) { return m.emissive_strength != 1.0f; }))
     uses("KHR_materials_emissive_strength");
   auto has_transform = [](const Material& m) {
-    for (const TextureRef* r : {&m.base_color_texture, &m.metallic_roughness_texture,
-                                &m.normal_texture, &m.occlusion_texture, &m.emissive_texture})
+    for (const TextureRef* r : m.textures())
       if (r->valid() && r->transform) return true;
     return false;
   };

@@ -82,7 +82,17 @@ struct Material {
   TextureRef normal_texture;              ///< linear, tangent space
   TextureRef occlusion_texture;           ///< linear, R channel
   TextureRef emissive_texture;            ///< sRGB
+
+  /// The five texture slots in glTF order, named by kTextureSlotNames.
+  std::array<const TextureRef*, 5> textures() const {
+    return {&base_color_texture, &metallic_roughness_texture, &normal_texture, &occlusion_texture,
+            &emissive_texture};
+  }
 };
+
+/// glTF's names of Material::textures()'s slots.
+inline constexpr std::array<const char*, 5> kTextureSlotNames = {"baseColor", "metallicRoughness",
+                                                                 "normal", "occlusion", "emissive"};
 
 /// One glTF primitive as an indexed triangle list (strips and fans converted), with
 /// attributes in object space. Optional attributes are empty when absent.
