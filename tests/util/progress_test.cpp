@@ -36,6 +36,15 @@ TEST(EtaEstimator, FollowsTheRecentRateWhenWorkSlowsDown) {
   EXPECT_NEAR(e.eta(), 5.0, 1e-6);
 }
 
+TEST(EtaEstimator, ManyReportsKeepTheRateAndABoundedHistory) {
+  // A million reports over 100 s at a steady 0.1% per second: the rate, and so the time
+  // left, are exact whatever the thinning of the history.
+  EtaEstimator e;
+  for (int k = 1; k <= 1000000; ++k) e.add(1e-4 * k, 1e-7 * k);
+  EXPECT_NEAR(e.eta(), 900.0, 1e-3);
+  EXPECT_LE(e.history_size(), 100u);  // not a million
+}
+
 TEST(EtaEstimator, FallsBackToTheAverageWhenTheWindowSawNoProgress) {
   EtaEstimator e;
   e.add(1.0, 0.5);

@@ -28,10 +28,16 @@ static std::string format_seconds(double s) {
 }
 
 void EtaEstimator::add(double t, double fraction) {
-  history_.emplace_back(t, fraction);
+  const double window = std::max(min_window, 0.25 * t);
+  // At most ~64 reports per window, however often the work reports: a report closer than
+  // window / 64 to the one before the last replaces the last.
+  const std::size_t n = history_.size();
+  if (n >= 2 && t - history_[n - 2].first < window / 64.0)
+    history_.back() = {t, fraction};
+  else
+    history_.emplace_back(t, fraction);
   // Keep one report at or before the window's start (the rate's base) and those after it.
-  const double start = t - std::max(min_window, 0.25 * t);
-  while (history_.size() > 2 && history_[1].first <= start) history_.pop_front();
+  while (history_.size() > 2 && history_[1].first <= t - window) history_.pop_front();
 }
 
 double EtaEstimator::eta() const {

@@ -29,6 +29,8 @@ class EtaEstimator {
   /// Seconds left after the last add(); negative when unknown (no progress yet, or less
   /// than a second of it).
   double eta() const;
+  /// Reports kept (at most about 64 per window, for tests).
+  std::size_t history_size() const { return history_.size(); }
 
  private:
   std::deque<std::pair<double, double>> history_;  ///< (t, fraction), oldest first
