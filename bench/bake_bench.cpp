@@ -13,12 +13,13 @@
 
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/image/environment.h"
+#include "pbrkit/util/data_dir.h"
 
 namespace {
 
 const pbrkit::Environment& studio() {
   static const pbrkit::Environment env =
-      pbrkit::Environment::load(std::string(PBRKIT_DATA_DIR) + "/env/studio.exr");
+      pbrkit::Environment::load(pbrkit::data_dir() / "env" / "studio.exr");
   return env;
 }
 

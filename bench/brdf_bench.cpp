@@ -1,11 +1,11 @@
-// Cost of one call of Brdf::eval / sample / pdf (core/material.h) for both G models, with
+// Cost of one call of Brdf::eval / sample / pdf (core/brdf.h) for both G models, with
 // and without multiple-scattering compensation. Directions, random numbers and materials
 // are generated before timing, so the figures are of the BRDF, not of the RNG.
 #include <benchmark/benchmark.h>
 
 #include <vector>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/sampling.h"
 
 namespace pbrkit {

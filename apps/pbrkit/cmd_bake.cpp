@@ -51,8 +51,7 @@ void run_bake(const BakeCommandOptions& o) {
   out.float32 = o.float32;
   out.exr = !o.no_exr;
   out.previews = !o.no_previews;
-  out.preview_exposure = o.exposure;
-  out.preview_tonemap = parse_tone_mapper(o.tonemap);
+  out.preview = {o.exposure, parse_tone_mapper(o.tonemap)};
   // Fail on an unusable output directory before spending the bake's time.
   check_output_directory(o.output);
 
@@ -151,7 +150,7 @@ void register_bake_command(CLI::App& app) {
                 "importance-sample every level (no direct quadrature for small rough levels)");
   cmd->add_option("--exposure", o->exposure, "preview exposure in EV")->capture_default_str();
   cmd->add_option("--tonemap", o->tonemap, "preview tone mapper")
-      ->check(CLI::IsMember({"none", "pbr-neutral", "aces", "agx"}))
+      ->check(CLI::IsMember(tone_mapper_names()))
       ->capture_default_str();
   cmd->add_flag("--validate", o->validate,
                 "compare prefiltered texels with a brute-force quadrature and print the error "

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/image/display.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/pt/film.h"
 #include "pbrkit/util/error.h"
@@ -46,7 +47,7 @@ void register_merge_command(CLI::App& app) {
       ->check(CLI::IsMember({"albedo", "normal", "depth", "samples", "noise"}));
   cmd->add_option("--exposure", o->exposure, "exposure in EV for the PNG")->capture_default_str();
   cmd->add_option("--tonemap", o->tonemap, "tone mapper for the PNG")
-      ->check(CLI::IsMember({"none", "pbr-neutral", "aces", "agx"}))
+      ->check(CLI::IsMember(tone_mapper_names()))
       ->capture_default_str();
   cmd->add_flag("--float", o->full_float, "write the EXR as 32-bit floats (default half)");
   cmd->add_option("--accumulation", o->accumulation,
@@ -66,13 +67,7 @@ void register_merge_command(CLI::App& app) {
     if (!o->accumulation.empty()) write_film(o->accumulation, film);
     write_render_exr(exr, film, o->aovs,
                      o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf);
-    const Image color = film.color();
-    const ToneMapper tm = parse_tone_mapper(o->tonemap);
-    Image display(color.width, color.height, 3);
-    for (int y = 0; y < color.height; ++y)
-      for (int x = 0; x < color.width; ++x)
-        display.set_rgb(x, y, display_transform(color.rgb(x, y), o->exposure, tm));
-    write_png(o->output, display);
+    write_display_png(o->output, film.color(), {o->exposure, parse_tone_mapper(o->tonemap)});
     note("merged {} parts into {} and {}", o->parts.size(), o->output, exr);
   });
 }

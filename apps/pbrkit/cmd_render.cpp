@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "commands.h"
+#include "pbrkit/core/color.h"
 #include "render_options.h"
 
 namespace pbrkit::cli {
@@ -48,7 +49,7 @@ void register_render_command(CLI::App& app) {
   cmd->add_option("--exposure", options->exposure, "exposure in EV for the PNG")
       ->capture_default_str();
   cmd->add_option("--tonemap", options->tonemap, "tone mapper for the PNG")
-      ->check(CLI::IsMember({"none", "pbr-neutral", "aces", "agx"}))
+      ->check(CLI::IsMember(tone_mapper_names()))
       ->capture_default_str();
   cmd->add_option("--model", options->model,
                   "BRDF model: reference (height-correlated Smith) or classic (the seeds' "

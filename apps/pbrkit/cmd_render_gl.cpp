@@ -11,6 +11,7 @@
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/ibl/bake.h"
+#include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/scene/camera.h"
@@ -119,16 +120,9 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     const double gpu_ms = renderer.gpu_time_ms();
     const double gl_ms = ms_since(t_gl);
 
-    Image rgb(frame.width, frame.height, 3);
-    Image display(frame.width, frame.height, 3);
-    for (int y = 0; y < frame.height; ++y)
-      for (int x = 0; x < frame.width; ++x) {
-        rgb.set_rgb(x, y, frame.rgb(x, y));
-        display.set_rgb(x, y, display_transform(frame.rgb(x, y), o.exposure, tone_mapper));
-      }
     const std::string exr = replace_extension(o.output, ".exr");
-    write_exr(exr, rgb, ExrPixelType::kFloat);
-    write_png(o.output, display);
+    write_exr(exr, rgb_channels(frame), ExrPixelType::kFloat);
+    write_display_png(o.output, frame, {o.exposure, tone_mapper});
     note(
         "OpenGL ({}, {} context): {} at {}x{}: bake {:.0f} ms, GL {:.0f} ms (frame {:.1f} ms on "
         "the GPU), total {:.0f} ms; wrote {} and {}",

@@ -12,6 +12,7 @@
 
 #include "commands.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/pt/film.h"
@@ -98,15 +99,6 @@ std::pair<std::uint32_t, std::uint32_t> parse_sample_range(const std::string& te
   const std::uint32_t a = parse(text.substr(0, colon)), b = parse(text.substr(colon + 1));
   if (a >= b) fail("--sample-range '{}': the range is empty (A must be below B)", text);
   return {a, b};
-}
-
-void write_png_output(const std::string& path, const Image& color, const RenderCommandOptions& o) {
-  const ToneMapper tm = parse_tone_mapper(o.tonemap);
-  Image display(color.width, color.height, 3);
-  for (int y = 0; y < color.height; ++y)
-    for (int x = 0; x < color.width; ++x)
-      display.set_rgb(x, y, display_transform(color.rgb(x, y), o.exposure, tm));
-  write_png(path, display);
 }
 
 }  // namespace
@@ -248,7 +240,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
     } else {
       write_render_exr(exr, result.film, po.aovs,
                        po.full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf);
-      write_png_output(o.output, result.color, o);
+      write_display_png(o.output, result.color, {o.exposure, parse_tone_mapper(o.tonemap)});
       note("wrote {} and {}", o.output, exr);
     }
     if (g_stop.load()) {

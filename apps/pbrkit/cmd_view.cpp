@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "pbrkit/core/color.h"
 #include "pbrkit/gl/viewer.h"
 
 namespace pbrkit::cli {
@@ -28,7 +29,7 @@ void register_view_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--exposure", o->exposure, "exposure in EV")->capture_default_str();
   cmd->add_option("--tonemap", o->tonemap, "tone mapper")
-      ->check(CLI::IsMember({"none", "pbr-neutral", "aces", "agx"}))
+      ->check(CLI::IsMember(tone_mapper_names()))
       ->capture_default_str();
   cmd->add_option("--model", o->model, "BRDF model: reference or classic")
       ->check(CLI::IsMember({"reference", "classic"}))

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"
 #include "support/chi2.h"

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <numbers>
 
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/energy.h"
-#include "pbrkit/core/material.h"
 #include "support/chi2.h"
 
 namespace pbrkit {

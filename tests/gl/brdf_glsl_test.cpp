@@ -10,8 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "gl_test_context.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/energy.h"
-#include "pbrkit/core/material.h"
 #include "pbrkit/gl/brdf_eval.h"
 
 namespace pbrkit::gl {

@@ -13,6 +13,7 @@
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/gl/viewer.h"
 #include "pbrkit/image/image_io.h"
+#include "support/test_paths.h"
 
 namespace {
 
@@ -27,7 +28,7 @@ TEST(Viewer, RendersFramesAndScreenshotUnderXvfb) {
   std::filesystem::create_directories(dir);
   const std::filesystem::path png = dir / "shot.png";
   const std::string command = std::string("xvfb-run -a -s '-screen 0 1280x720x24' ") +
-                              PBRKIT_CLI_PATH +
+                              pbrkit::test::cli_path().string() +
                               " view furnace --width 160 --height 120 --frames 3 --msaa 1"
                               " --background color:1,0,0 --tonemap none --screenshot " +
                               png.string() + " > " + (dir / "log.txt").string() + " 2>&1";

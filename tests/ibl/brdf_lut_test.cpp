@@ -4,8 +4,8 @@
 
 #include <cmath>
 
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/energy.h"
-#include "pbrkit/core/material.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/ibl/bake.h"
 

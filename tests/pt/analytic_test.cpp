@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 #include "pt/pt_test_util.h"
 
 namespace pbrkit::test {

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/scene/primitives.h"

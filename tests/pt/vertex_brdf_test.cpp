@@ -2,7 +2,7 @@
 // Brdf: the same bits for eval, pdf and sample, for both geometry models, with and
 // without multiple-scattering compensation, over random materials and directions
 // (including directions below the horizon and out-of-range material inputs). If this
-// fails after a change to core/material.cpp, mirror the change in pt/vertex_brdf.h.
+// fails after a change to core/brdf.cpp, mirror the change in pt/vertex_brdf.h.
 #include <gtest/gtest.h>
 
 #include <cstring>

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/core/energy.h"
-#include "pbrkit/core/material.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"
 

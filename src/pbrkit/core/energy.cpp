@@ -7,7 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
 

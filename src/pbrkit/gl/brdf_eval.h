@@ -6,7 +6,7 @@
 
 #include <glm/glm.hpp>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 
 namespace pbrkit::gl {
 

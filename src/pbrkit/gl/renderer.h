@@ -12,8 +12,8 @@
 
 #include <glm/glm.hpp>
 
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
-#include "pbrkit/core/material.h"
 #include "pbrkit/gl/brdf_eval.h"
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/image/environment.h"

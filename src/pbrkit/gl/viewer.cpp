@@ -19,10 +19,12 @@
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/ibl/bake.h"
+#include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/util/data_dir.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 
@@ -101,17 +103,11 @@ void load_scene_into(ViewerState& s, Renderer& renderer, bool reset_camera) {
 }
 
 void save_screenshot(const std::string& png, const Image& frame, const ViewerState& s) {
-  Image rgb(frame.width, frame.height, 3), display(frame.width, frame.height, 3);
-  for (int y = 0; y < frame.height; ++y)
-    for (int x = 0; x < frame.width; ++x) {
-      rgb.set_rgb(x, y, frame.rgb(x, y));
-      display.set_rgb(x, y, display_transform(frame.rgb(x, y), s.exposure, s.tone_mapper));
-    }
   const std::filesystem::path parent = std::filesystem::path(png).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
   const std::string exr = std::filesystem::path(png).replace_extension(".exr").string();
-  write_exr(exr, rgb, ExrPixelType::kFloat);
-  write_png(png, display);
+  write_exr(exr, rgb_channels(frame), ExrPixelType::kFloat);
+  write_display_png(png, frame, {s.exposure, s.tone_mapper});
   note("wrote {} and {}", png, exr);
 }
 
@@ -143,8 +139,14 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   ImGui::SliderFloat("intensity", &s.settings.env_intensity, 0.0f, 4.0f);
   ImGui::SliderFloat("exposure", &s.exposure, -6.0f, 6.0f, "%.1f EV");
   int tm = int(s.tone_mapper);
-  const char* tone_mappers[] = {"none", "pbr-neutral", "aces", "agx"};
-  if (ImGui::Combo("tone mapper", &tm, tone_mappers, 4)) s.tone_mapper = ToneMapper(tm);
+  static const std::vector<std::string> names = tone_mapper_names();
+  const auto getter = [](void* data, int i, const char** out) {
+    *out = static_cast<const std::vector<std::string>*>(data)->at(std::size_t(i)).c_str();
+    return true;
+  };
+  if (ImGui::Combo("tone mapper", &tm, getter, const_cast<std::vector<std::string>*>(&names),
+                   int(names.size())))
+    s.tone_mapper = ToneMapper(tm);
   int model = s.settings.brdf.model == BrdfModel::kReference ? 0 : 1;
   const char* models[] = {"reference", "classic"};
   if (ImGui::Combo("model", &model, models, 2))
@@ -221,12 +223,12 @@ void run_viewer(const ViewerOptions& options) {
     s.tone_mapper = parse_tone_mapper(options.tonemap);
     s.exposure = options.exposure;
     s.env_choices.push_back(options.env);
-    for (const char* name : {"city", "forest", "night", "studio", "sunset", "warehouse"}) {
-      const std::filesystem::path p =
-          std::filesystem::path(PBRKIT_DATA_DIR).parent_path().parent_path() / "shared" / "assets" /
-          "hdri" / (std::string(name) + ".exr");
-      if (std::filesystem::exists(p)) s.env_choices.push_back(p.string());
-    }
+    // The environments pbrkit ships (data/env/), offered in the panel by name order.
+    std::vector<std::string> shipped;
+    for (const auto& entry : std::filesystem::directory_iterator(data_dir() / "env"))
+      if (entry.path().extension() == ".exr") shipped.push_back(entry.path().string());
+    std::sort(shipped.begin(), shipped.end());
+    s.env_choices.insert(s.env_choices.end(), shipped.begin(), shipped.end());
     Renderer renderer;
     load_scene_into(s, renderer, true);
     load_environment(s, renderer);

@@ -9,7 +9,7 @@
 
 #include <glm/glm.hpp>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/ibl/cubemap.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image.h"

@@ -50,21 +50,6 @@ void check_output_directory(const fs::path& dir) {
 
 namespace {
 
-Image display(const Image& linear, const BakeOutputOptions& o) {
-  Image out(linear.width, linear.height, 3);
-  for (int y = 0; y < linear.height; ++y)
-    for (int x = 0; x < linear.width; ++x)
-      out.set_rgb(x, y, display_transform(linear.rgb(x, y), o.preview_exposure, o.preview_tonemap));
-  return out;
-}
-
-Image rgb_of(const Image& img) {
-  Image out(img.width, img.height, 3);
-  for (int y = 0; y < img.height; ++y)
-    for (int x = 0; x < img.width; ++x) out.set_rgb(x, y, img.rgb(x, y));
-  return out;
-}
-
 nlohmann::json vec(glm::vec3 v) {
   return nlohmann::json::array({v.x, v.y, v.z});
 }
@@ -130,26 +115,27 @@ std::vector<std::string> write_bake_outputs(const fs::path& dir, const BakeResul
     ktx(ktx2_from_image(*lut, Ktx2Format::kRgba16Float), "brdf_lut_" + name + ".ktx2");
     ktx(ktx2_from_image(*lut, Ktx2Format::kRgba32Float), "brdf_lut_" + name + "_f32.ktx2");
     write_exr(stage.path("brdf_lut_" + name + ".exr"), *lut, ExrPixelType::kFloat);
-    if (options.previews) write_png(stage.path("preview_brdf_lut_" + name + ".png"), rgb_of(*lut));
+    if (options.previews)
+      write_png(stage.path("preview_brdf_lut_" + name + ".png"), rgb_channels(*lut));
   }
   const int levels = result.specular.levels();
   for (int level = 0; level < levels; ++level) {
-    const Image cross = rgb_of(cube_cross(result.specular.mips[level]));
+    const Image cross = rgb_channels(cube_cross(result.specular.mips[level]));
     if (options.exr)
       write_exr(stage.path(fmt::format("specular_mip{}.exr", level)), cross, ExrPixelType::kHalf);
     if (options.previews)
       write_png(stage.path(fmt::format("preview_specular_mip{}.png", level)),
-                display(cross, options));
+                display_image(cross, options.preview));
   }
   {
-    const Image cross = rgb_of(cube_cross(result.irradiance.mips[0]));
+    const Image cross = rgb_channels(cube_cross(result.irradiance.mips[0]));
     if (options.exr) write_exr(stage.path("irradiance.exr"), cross, ExrPixelType::kHalf);
     // Irradiance / pi is the radiance a white Lambertian surface reflects: comparable in
     // brightness with the specular previews.
     Image radiance = cross;
     for (float& v : radiance.data) v *= kInvPi;
     if (options.previews)
-      write_png(stage.path("preview_irradiance.png"), display(radiance, options));
+      write_png(stage.path("preview_irradiance.png"), display_image(radiance, options.preview));
   }
 
   // manifest.json

@@ -10,6 +10,7 @@
 #include "pbrkit/core/color.h"
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/ibl/validate.h"
+#include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
 
 namespace pbrkit {
@@ -24,11 +25,10 @@ namespace pbrkit {
 Image cube_cross(const std::array<Image, 6>& faces);
 
 struct BakeOutputOptions {
-  bool float32 = false;  ///< cubemaps as RGBA32F KTX2 (default RGBA16F)
-  bool exr = true;       ///< EXR crosses of every specular level and the irradiance
-  bool previews = true;  ///< tone-mapped PNG crosses
-  float preview_exposure = 0.0f;
-  ToneMapper preview_tonemap = ToneMapper::kPbrNeutral;
+  bool float32 = false;     ///< cubemaps as RGBA32F KTX2 (default RGBA16F)
+  bool exr = true;          ///< EXR crosses of every specular level and the irradiance
+  bool previews = true;     ///< tone-mapped PNG crosses
+  DisplaySettings preview;  ///< exposure and tone mapper of the PNG previews
 };
 
 /// Everything the manifest records besides the result itself.

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"

@@ -5,8 +5,8 @@
 
 #include <cmath>
 
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/equirect.h"
-#include "pbrkit/core/material.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/microfacet.h"
 

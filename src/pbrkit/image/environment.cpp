@@ -4,6 +4,7 @@
 
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/image/image_io.h"
+#include "pbrkit/util/data_dir.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {
@@ -65,7 +66,7 @@ Environment Environment::constant(glm::vec3 L, int width) {
 }
 
 std::filesystem::path default_environment_path() {
-  return std::filesystem::path(PBRKIT_DATA_DIR) / "env" / "city.exr";
+  return data_dir() / "env" / "city.exr";
 }
 
 Environment load_environment_or_default(const std::string& path, float rotation_deg,

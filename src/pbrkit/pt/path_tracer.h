@@ -13,7 +13,7 @@
 #include <functional>
 #include <string>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image.h"
 #include "pbrkit/pt/film.h"

@@ -1,5 +1,5 @@
 #pragma once
-// The model's BRDF (core/material.h's Brdf) at one path vertex, where wo is fixed and the
+// The model's BRDF (core/brdf.h's Brdf) at one path vertex, where wo is fixed and the
 // path tracer asks for eval and pdf of the light sample's direction and for a BSDF sample
 // (itself an eval and a pdf of the sampled direction). Brdf's methods each start from
 // scratch; here what depends on wo alone (the lobe-selection probability with its albedo
@@ -7,15 +7,15 @@
 // is computed once per vertex, and eval and pdf of one direction share the half vector, D
 // and F. Every operation is Brdf's, in Brdf's order, so every value is bit-identical to
 // Brdf's (tests/pt/vertex_brdf_test.cpp compares all models and options): a change to
-// Brdf (core/material.cpp) must be mirrored here, and that test says so when it is not.
+// Brdf (core/brdf.cpp) must be mirrored here, and that test says so when it is not.
 #include <algorithm>
 #include <cmath>
 
 #include <glm/glm.hpp>
 
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/core/energy.h"
-#include "pbrkit/core/material.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"

@@ -1,4 +1,4 @@
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 
 #include <algorithm>
 #include <cmath>

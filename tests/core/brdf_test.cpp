@@ -1,4 +1,4 @@
-// The metallic-roughness BRDF (core/material.h): `classic` against the seeds' formulas and
+// The metallic-roughness BRDF (core/brdf.h): `classic` against the seeds' formulas and
 // `reference` against Heitz 2014 written independently here, reciprocity, positivity,
 // energy bounds, and a chi-square fit of Brdf::sample against Brdf::pdf.
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "pbrkit/core/material.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/sampling.h"
 #include "pbrkit/util/error.h"
 #include "support/chi2.h"
