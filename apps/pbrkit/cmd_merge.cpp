@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "output_paths.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image_io.h"
@@ -40,7 +41,8 @@ void register_merge_command(CLI::App& app) {
   cmd->add_option("parts", o->parts, "accumulation EXRs (disjoint sample ranges)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", o->output, "output PNG (the EXR is written beside it)")
+  cmd->add_option("-o,--output", o->output,
+                  "output .png or .exr; both are written, the other beside it")
       ->required();
   cmd->add_option("--aov", o->aovs, "extra EXR layers: albedo, normal, depth, samples, noise")
       ->delimiter(',')
@@ -53,6 +55,7 @@ void register_merge_command(CLI::App& app) {
   cmd->add_option("--accumulation", o->accumulation,
                   "also write the merged accumulation EXR here (to merge again later)");
   cmd->callback([o] {
+    const ImageOutputs outputs = image_outputs(o->output);
     Film film = read_film(o->parts.front());
     for (std::size_t i = 1; i < o->parts.size(); ++i) {
       const Film part = read_film(o->parts[i]);
@@ -61,14 +64,13 @@ void register_merge_command(CLI::App& app) {
              part.width, part.height, o->parts.front(), film.width, film.height);
       film.merge(part);
     }
-    const std::filesystem::path out(o->output);
-    if (!out.parent_path().empty()) std::filesystem::create_directories(out.parent_path());
-    const std::string exr = std::filesystem::path(o->output).replace_extension(".exr").string();
+    create_output_directory(outputs);
+    const std::string& exr = outputs.exr;
     if (!o->accumulation.empty()) write_film(o->accumulation, film);
     write_render_exr(exr, film, o->aovs,
                      o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf);
-    write_display_png(o->output, film.color(), {o->exposure, parse_tone_mapper(o->tonemap)});
-    note("merged {} parts into {} and {}", o->parts.size(), o->output, exr);
+    write_display_png(outputs.png, film.color(), {o->exposure, parse_tone_mapper(o->tonemap)});
+    note("merged {} parts into {} and {}", o->parts.size(), outputs.png, exr);
   });
 }
 

@@ -1,15 +1,25 @@
 // pbrkit render: one command, two renderers (--renderer path|gl) over one scene, camera,
 // environment and display transform.
+#include <cmath>
 #include <filesystem>
 
 #include "commands.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/util/log.h"
 #include "render_options.h"
 
 namespace pbrkit::cli {
 
-std::string replace_extension(const std::string& path, const std::string& extension) {
-  return std::filesystem::path(path).replace_extension(extension).string();
+RenderView select_render_view(const Scene& scene, const RenderCommandOptions& o) {
+  const RenderView view = select_view(scene, o.camera, o.width, o.height);
+  const std::optional<float> authored = authored_aspect(view.camera);
+  if (authored && std::abs(*authored / view.size.aspect() - 1.0f) > 1e-3f)
+    note(
+        "camera '{}' was made for an aspect ratio of {:.3f}; the {}x{} image keeps its "
+        "vertical field of view and shows more or less at the sides (as three.js and Blender "
+        "do)",
+        view.camera.name, *authored, view.size.width, view.size.height);
+  return view;
 }
 
 void register_render_command(CLI::App& app) {
@@ -26,16 +36,19 @@ void register_render_command(CLI::App& app) {
       ->check(CLI::IsMember({"path", "gl"}))
       ->capture_default_str();
   cmd->add_option("-o,--output", options->output,
-                  "output PNG path (default out/<scene>_<renderer>.png); the EXR goes beside it");
+                  "output .png or .exr (default out/<scene>_<renderer>.png); both are written, "
+                  "the other beside it with the same name");
   cmd->add_option("--camera", options->camera,
                   "glTF camera index (default: the first camera, "
                   "or automatic framing when the file has none)");
-  cmd->add_option("--width", options->width, "image width in pixels")
-      ->check(CLI::Range(1, 16384))
-      ->capture_default_str();
-  cmd->add_option("--height", options->height, "image height in pixels")
-      ->check(CLI::Range(1, 16384))
-      ->capture_default_str();
+  cmd->add_option("--width", options->width,
+                  "image width in pixels (default: 512 along the longer side at the camera's "
+                  "aspect ratio; with only --height, from the aspect ratio)")
+      ->check(CLI::Range(1, 16384));
+  cmd->add_option("--height", options->height,
+                  "image height in pixels (default: from the camera's aspect ratio); the "
+                  "vertical field of view is kept at any size")
+      ->check(CLI::Range(1, 16384));
   cmd->add_option("--env", options->env,
                   "environment map (.exr/.hdr, equirectangular 2:1); default: the built-in "
                   "city.exr");
@@ -67,9 +80,8 @@ void register_render_command(CLI::App& app) {
       std::string stem = std::filesystem::path(o.scene).stem().string();
       o.output = "out/" + stem + "_" + *renderer + ".png";
     }
-    std::filesystem::create_directories(std::filesystem::path(o.output).parent_path().empty()
-                                            ? std::filesystem::path(".")
-                                            : std::filesystem::path(o.output).parent_path());
+    o.outputs = image_outputs(o.output);
+    create_output_directory(o.outputs);
     (*renderer == "path" ? path : gl)(o);
   });
 }

@@ -106,8 +106,8 @@ RenderRunner add_gl_render_options(CLI::App& render) {
         bake_ms = ms_since(t0);
       }
     }
-    const float aspect = float(o.width) / float(o.height);
-    const Camera camera = select_camera(scene, o.camera, aspect);
+    const RenderView view = select_render_view(scene, o);
+    const int width = view.size.width, height = view.size.height;
 
     const auto t_gl = Clock::now();
     gl::HeadlessContext context;
@@ -115,19 +115,18 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     renderer.set_scene(scene);
     renderer.set_environment(env ? &*env : nullptr);
     renderer.set_ibl(ibl ? &*ibl : nullptr);
-    renderer.render(camera, o.width, o.height, settings);
+    renderer.render(view.camera, width, height, settings);
     const Image frame = renderer.read_back();
     const double gpu_ms = renderer.gpu_time_ms();
     const double gl_ms = ms_since(t_gl);
 
-    const std::string exr = replace_extension(o.output, ".exr");
-    write_exr(exr, rgb_channels(frame), ExrPixelType::kFloat);
-    write_display_png(o.output, frame, {o.exposure, tone_mapper});
+    write_exr(o.outputs.exr, rgb_channels(frame), ExrPixelType::kFloat);
+    write_display_png(o.outputs.png, frame, {o.exposure, tone_mapper});
     note(
         "OpenGL ({}, {} context): {} at {}x{}: bake {:.0f} ms, GL {:.0f} ms (frame {:.1f} ms on "
         "the GPU), total {:.0f} ms; wrote {} and {}",
-        gl::describe_current_context(), context.platform(), scene.source, o.width, o.height,
-        bake_ms, gl_ms, gpu_ms, ms_since(t_start), o.output, exr);
+        gl::describe_current_context(), context.platform(), scene.source, width, height, bake_ms,
+        gl_ms, gpu_ms, ms_since(t_start), o.outputs.png, o.outputs.exr);
   };
 }
 

@@ -183,12 +183,12 @@ RenderRunner add_path_render_options(CLI::App& render) {
     const Scene scene = load_scene(o.scene);
     std::optional<Environment> env;
     if (!o.no_env) env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
-    const float aspect = float(o.width) / float(o.height);
-    const Camera camera = select_camera(scene, o.camera, aspect);
+    const RenderView view = select_render_view(scene, o);
+    const Camera& camera = view.camera;
 
     PathTracerSettings s;
-    s.width = o.width;
-    s.height = o.height;
+    s.width = view.size.width;
+    s.height = view.size.height;
     s.spp = po.spp;
     s.time_limit = po.time;
     s.noise_threshold = po.noise_threshold;
@@ -220,7 +220,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
 
     ProgressBar bar("render");
     note("path tracing {} ({} triangles) at {}x{}, up to {} spp{}, {} bounces", scene.source,
-         scene.triangle_count(), o.width, o.height, partial ? s.sample_end - s.sample_begin : s.spp,
+         scene.triangle_count(), s.width, s.height, partial ? s.sample_end - s.sample_begin : s.spp,
          s.noise_threshold > 0.0f ? fmt::format(", noise threshold {}", s.noise_threshold) : "",
          s.max_bounces);
     const PathTracerResult result =
@@ -231,7 +231,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
         st.render_seconds > 0 ? st.samples / st.render_seconds * 1e-6 : 0.0,
         st.render_seconds > 0 ? st.rays / st.render_seconds * 1e-6 : 0.0, st.build_seconds));
 
-    const std::string exr = replace_extension(o.output, ".exr");
+    const std::string& exr = o.outputs.exr;
     if (!po.checkpoint.empty() && !st.complete) write_film(po.checkpoint, result.film);
     if (partial) {
       write_film(exr, result.film);
@@ -240,8 +240,8 @@ RenderRunner add_path_render_options(CLI::App& render) {
     } else {
       write_render_exr(exr, result.film, po.aovs,
                        po.full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf);
-      write_display_png(o.output, result.color, {o.exposure, parse_tone_mapper(o.tonemap)});
-      note("wrote {} and {}", o.output, exr);
+      write_display_png(o.outputs.png, result.color, {o.exposure, parse_tone_mapper(o.tonemap)});
+      note("wrote {} and {}", o.outputs.png, exr);
     }
     if (g_stop.load()) {
       const int sig = g_signal.load();

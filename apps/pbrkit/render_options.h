@@ -8,13 +8,16 @@
 
 #include <CLI/CLI.hpp>
 
+#include "output_paths.h"
+#include "pbrkit/scene/camera.h"
+
 namespace pbrkit::cli {
 
 struct RenderCommandOptions {
   std::string scene = "spheres";  ///< .gltf/.glb path or a built-in scene name
   std::optional<int> camera;      ///< glTF camera index
-  int width = 512;
-  int height = 512;
+  std::optional<int> width;       ///< from the camera's aspect ratio when absent
+  std::optional<int> height;
   std::string env;            ///< environment .exr/.hdr; empty = built-in default
   bool no_env = false;        ///< no environment light (black background)
   float env_rotation = 0.0f;  ///< degrees about +Y
@@ -23,7 +26,8 @@ struct RenderCommandOptions {
   std::string tonemap = "pbr-neutral";
   std::string model = "reference";
   bool multiscatter = false;
-  std::string output;  ///< PNG path; the linear EXR is written beside it (.exr)
+  std::string output;    ///< -o: a .png or .exr path (or empty: out/<scene>_<renderer>.png)
+  ImageOutputs outputs;  ///< resolved from `output` before rendering
 };
 
 /// Called once the command line is parsed; renders and writes the outputs.
@@ -34,7 +38,8 @@ using RenderRunner = std::function<void(const RenderCommandOptions&)>;
 RenderRunner add_path_render_options(CLI::App& render);
 RenderRunner add_gl_render_options(CLI::App& render);
 
-/// "out/x.png" -> "out/x.exr" (and vice versa for the PNG).
-std::string replace_extension(const std::string& path, const std::string& extension);
+/// The camera and image size of a render (scene/camera.h select_view), with a note when
+/// the image's aspect differs from the one the glTF camera was authored for.
+RenderView select_render_view(const Scene& scene, const RenderCommandOptions& o);
 
 }  // namespace pbrkit::cli

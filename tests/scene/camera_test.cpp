@@ -46,8 +46,26 @@ void expect_ray_matches_projection(const Camera& camera, float aspect) {
 TEST(Camera, GenerateRayAgreesWithPerspectiveProjection) {
   expect_ray_matches_projection(perspective(100.0f, std::nullopt), 1.5f);
   expect_ray_matches_projection(perspective(std::nullopt, std::nullopt), 0.75f);
-  // The camera's own aspect ratio wins over the image's.
+  // A camera authored for 2:1 rendered square: the projection still agrees.
   expect_ray_matches_projection(perspective(50.0f, 2.0f), 1.0f);
+}
+
+// The image's aspect wins over the camera's aspectRatio and yfov is kept (as in three.js
+// and Blender): the ray through the right edge's midpoint of a square image leaves at the
+// same angle, yfov / 2, as the ray through the top edge's, whatever aspectRatio says.
+TEST(Camera, ImageAspectWinsAndTheVerticalFieldOfViewIsKept) {
+  for (std::optional<float> authored : {std::optional<float>(), std::optional<float>(2.0f)}) {
+    const Camera c = perspective(std::nullopt, authored);
+    const glm::vec3 forward = c.forward();
+    const float right = std::acos(glm::dot(generate_ray(c, 1.0f, {1.0f, 0.0f}).direction, forward));
+    const float top = std::acos(glm::dot(generate_ray(c, 1.0f, {0.0f, 1.0f}).direction, forward));
+    EXPECT_NEAR(top, 0.45f, 1e-5f);
+    EXPECT_NEAR(right, 0.45f, 1e-5f);
+    // At 16:9 the horizontal half angle is atan(16/9 tan(yfov / 2)).
+    const float wide =
+        std::acos(glm::dot(generate_ray(c, 16.0f / 9.0f, {1.0f, 0.0f}).direction, forward));
+    EXPECT_NEAR(wide, std::atan(16.0f / 9.0f * std::tan(0.45f)), 1e-5f);
+  }
 }
 
 TEST(Camera, GenerateRayAgreesWithOrthographicProjection) {
@@ -60,11 +78,16 @@ TEST(Camera, GenerateRayAgreesWithOrthographicProjection) {
   c.camera_to_world =
       glm::inverse(glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0)));
   expect_ray_matches_projection(c, 1.0f);
-  // Orthographic rays are parallel, along the camera's -Z, from a plane through the eye.
-  const Ray r = generate_ray(c, 1.0f, {1.0f, -1.0f});
+  expect_ray_matches_projection(c, 1.5f);
+  // Orthographic rays are parallel, along the camera's -Z, from a plane through the eye;
+  // the plane is 2 ymag tall and as wide as the image's aspect makes it (xmag = 3 is what
+  // the camera was authored for: a 3:2 image).
+  const Ray r = generate_ray(c, 1.5f, {1.0f, -1.0f});
   EXPECT_NEAR(r.origin.x, 3.0f, 1e-5f);
   EXPECT_NEAR(r.origin.y, -2.0f, 1e-5f);
   EXPECT_NEAR(r.direction.z, -1.0f, 1e-6f);
+  EXPECT_NEAR(generate_ray(c, 1.0f, {1.0f, -1.0f}).origin.x, 2.0f, 1e-5f);
+  EXPECT_FLOAT_EQ(*authored_aspect(c), 1.5f);
 }
 
 TEST(Camera, PerspectiveMatrixIsTheSpecFormula) {

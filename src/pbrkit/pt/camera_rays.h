@@ -16,14 +16,7 @@ class CameraRays {
   CameraRays(const Camera& camera, float aspect)
       : to_world_(camera.camera_to_world),
         orthographic_(camera.type == Camera::Type::kOrthographic) {
-    // camera.cpp's half_extent.
-    const float a = camera.aspect_ratio.value_or(aspect);
-    if (orthographic_) {
-      half_ = {camera.xmag, camera.ymag};
-    } else {
-      const float t = std::tan(0.5f * camera.yfov);
-      half_ = {a * t, t};
-    }
+    half_ = image_plane_half_extent(camera, aspect);
     forward_ = glm::normalize(-glm::vec3(to_world_[2]));
   }
 

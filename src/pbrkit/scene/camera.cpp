@@ -15,15 +15,45 @@ namespace {
 constexpr float kAutoYfov = 0.7853981633974483f;  // 45 degrees
 constexpr float kAutoElevation = 20.0f * kPi / 180.0f;
 
-// Image-plane half extents at unit distance in front of the camera (x right, y up).
-glm::vec2 half_extent(const Camera& camera, float aspect) {
-  const float a = camera.aspect_ratio.value_or(aspect);
-  if (camera.type == Camera::Type::kOrthographic) return {camera.xmag, camera.ymag};
+}  // namespace
+
+glm::vec2 image_plane_half_extent(const Camera& camera, float aspect) {
+  // The vertical extent is the camera's; the horizontal one follows the image, as three.js
+  // and Blender do, so a render at any size shows round spheres round.
+  if (camera.type == Camera::Type::kOrthographic) return {aspect * camera.ymag, camera.ymag};
   const float t = std::tan(0.5f * camera.yfov);
-  return {a * t, t};
+  return {aspect * t, t};
 }
 
-}  // namespace
+std::optional<float> authored_aspect(const Camera& camera) {
+  if (camera.type == Camera::Type::kOrthographic) return camera.xmag / camera.ymag;
+  return camera.aspect_ratio;
+}
+
+ImageSize image_size(const Camera& camera, std::optional<int> width, std::optional<int> height,
+                     int longer_side) {
+  const auto clamp_size = [](double v) { return int(std::clamp(std::lround(v), 1L, 16384L)); };
+  const double a = authored_aspect(camera).value_or(1.0f);
+  if (width && height) return {*width, *height};
+  if (width) return {*width, clamp_size(*width / a)};
+  if (height) return {clamp_size(*height * a), *height};
+  if (a >= 1.0) return {longer_side, clamp_size(longer_side / a)};
+  return {clamp_size(longer_side * a), longer_side};
+}
+
+RenderView select_view(const Scene& scene, std::optional<int> camera_index,
+                       std::optional<int> width, std::optional<int> height) {
+  RenderView view;
+  if (camera_index || !scene.cameras.empty()) {
+    view.camera = select_camera(scene, camera_index, 1.0f);
+    view.size = image_size(view.camera, width, height);
+  } else {
+    // The automatic camera is made for the image, so the size comes first.
+    view.size = image_size(Camera{}, width, height);
+    view.camera = auto_camera(scene.world_bounds(), view.size.aspect());
+  }
+  return view;
+}
 
 Camera auto_camera(const Bounds& bounds_in, float aspect) {
   Bounds bounds = bounds_in;
@@ -74,17 +104,17 @@ glm::mat4 projection_matrix(const Camera& camera, float aspect) {
   const float n = camera.znear;
   if (camera.type == Camera::Type::kOrthographic) {
     const float f = camera.zfar.value_or(n + 1e6f);
-    m[0][0] = 1.0f / camera.xmag;
-    m[1][1] = 1.0f / camera.ymag;
+    const glm::vec2 h = image_plane_half_extent(camera, aspect);
+    m[0][0] = 1.0f / h.x;
+    m[1][1] = 1.0f / h.y;
     m[2][2] = 2.0f / (n - f);
     m[3][2] = (f + n) / (n - f);
     m[3][3] = 1.0f;
     return m;
   }
-  const float a = camera.aspect_ratio.value_or(aspect);
-  const float t = std::tan(0.5f * camera.yfov);
-  m[0][0] = 1.0f / (a * t);
-  m[1][1] = 1.0f / t;
+  const glm::vec2 h = image_plane_half_extent(camera, aspect);
+  m[0][0] = 1.0f / h.x;
+  m[1][1] = 1.0f / h.y;
   m[2][3] = -1.0f;
   if (camera.zfar) {
     const float f = *camera.zfar;
@@ -98,7 +128,7 @@ glm::mat4 projection_matrix(const Camera& camera, float aspect) {
 }
 
 Ray generate_ray(const Camera& camera, float aspect, glm::vec2 ndc) {
-  const glm::vec2 h = half_extent(camera, aspect);
+  const glm::vec2 h = image_plane_half_extent(camera, aspect);
   const glm::mat4& m = camera.camera_to_world;
   Ray ray;
   if (camera.type == Camera::Type::kOrthographic) {

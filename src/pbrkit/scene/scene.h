@@ -122,7 +122,8 @@ struct Camera {
   std::string name;
   Type type = Type::kPerspective;
   float yfov = 0.8f;                  ///< radians (perspective)
-  std::optional<float> aspect_ratio;  ///< width / height; from the image size when absent
+  std::optional<float> aspect_ratio;  ///< width / height the camera was authored for; renders
+                                      ///< keep yfov and use the image's aspect (camera.h)
   float xmag = 1.0f, ymag = 1.0f;     ///< half extents (orthographic)
   float znear = 0.01f;
   std::optional<float> zfar;        ///< infinite when absent

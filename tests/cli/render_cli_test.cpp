@@ -1,0 +1,160 @@
+// `pbrkit render` end to end: what -o writes (the files' magic bytes, not our reader's
+// opinion) and the image's aspect (a sphere at the centre of a wide image is round).
+#include <gtest/gtest.h>
+
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "pbrkit/image/image_io.h"
+#include "support/test_paths.h"
+
+namespace pbrkit {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string render(const std::string& args, int* code) {
+  std::string output;
+  *code = test::run_command(test::cli_path().string() + " render " + args, &output);
+  return output;
+}
+
+// The first bytes of a file: OpenEXR's magic number is 76 2f 31 01 (OpenEXR file layout,
+// "Magic Number"); PNG's signature is 89 50 4e 47 0d 0a 1a 0a (PNG spec, section 5.2).
+std::string magic(const fs::path& path, std::size_t n) {
+  std::ifstream in(path, std::ios::binary);
+  std::string bytes(n, '\0');
+  in.read(bytes.data(), std::streamsize(n));
+  return in.gcount() == std::streamsize(n) ? bytes : std::string();
+}
+const std::string kExrMagic("\x76\x2f\x31\x01", 4);
+const std::string kPngMagic("\x89PNG\r\n\x1a\n", 8);
+
+class RenderOutput : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RenderOutput, EitherExtensionWritesBothFilesWithTheRightFormat) {
+  const fs::path dir = test::scratch_dir();
+  const std::string renderer = GetParam();
+  const std::string fast = renderer == "path" ? " --spp 1" : " --msaa 1 --bake-size 16";
+  for (const char* name : {"a.exr", "b.png", "c.EXR"}) {
+    int code = 0;
+    const fs::path out = dir / "sub" / name;
+    const std::string log = render(
+        "furnace --renderer " + renderer + fast + " --width 16 --height 16 -o " + out.string(),
+        &code);
+    ASSERT_EQ(code, 0) << log;
+    const fs::path stem = out.parent_path() / out.stem();
+    const fs::path exr = out.extension() == ".EXR" ? out : fs::path(stem.string() + ".exr");
+    const fs::path png = out.extension() == ".png" ? out : fs::path(stem.string() + ".png");
+    EXPECT_EQ(magic(exr, 4), kExrMagic) << exr;
+    EXPECT_EQ(magic(png, 8), kPngMagic) << png;
+  }
+}
+
+TEST_P(RenderOutput, OtherExtensionsAreAClearErrorAndWriteNothing) {
+  const fs::path dir = test::scratch_dir();
+  for (const char* name : {"x.jpg", "x", "x.png.tmp"}) {
+    int code = 0;
+    const std::string log = render(
+        std::string("furnace --renderer ") + GetParam() + " -o " + (dir / name).string(), &code);
+    EXPECT_EQ(code, 1) << log;
+    EXPECT_NE(log.find(".png or .exr"), std::string::npos) << log;
+    EXPECT_NE(log.find((dir / name).string()), std::string::npos) << log;
+  }
+  EXPECT_TRUE(fs::is_empty(dir));
+}
+
+INSTANTIATE_TEST_SUITE_P(Renderers, RenderOutput, ::testing::Values("path", "gl"));
+
+// Width and height in pixels of the connected region of pixels for which `inside` holds
+// that contains the image's centre (4-connected flood fill).
+glm::ivec2 centre_extent(int w, int h, const std::function<bool(int, int)>& inside) {
+  std::vector<char> seen(std::size_t(w) * h, 0);
+  std::vector<glm::ivec2> stack{{w / 2, h / 2}};
+  glm::ivec2 lo(w, h), hi(-1, -1);
+  while (!stack.empty()) {
+    const glm::ivec2 p = stack.back();
+    stack.pop_back();
+    if (p.x < 0 || p.y < 0 || p.x >= w || p.y >= h) continue;
+    char& s = seen[std::size_t(p.y) * w + p.x];
+    if (s || !inside(p.x, p.y)) continue;
+    s = 1;
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+    for (const glm::ivec2 d :
+         {glm::ivec2(1, 0), glm::ivec2(-1, 0), glm::ivec2(0, 1), glm::ivec2(0, -1)})
+      stack.push_back(p + d);
+  }
+  return glm::max(hi - lo + 1, glm::ivec2(0));
+}
+
+// The built-in spheres' camera was authored for a square image (aspectRatio 1). Rendered
+// 2:1, the centre sphere must stay round: a stretched projection makes it twice as wide as
+// tall. The sphere is told from the background by the depth AOV (path tracer: 0 where no
+// sample hit; 16 samples a pixel widen it by at most a pixel on every side alike) and by
+// a background colour no lit pixel has (GL, one sample at each pixel centre).
+TEST(RenderAspect, CentreSphereOfAWideImageIsRoundInBothRenderers) {
+  const fs::path dir = test::scratch_dir();
+  const int w = 480, h = 240;
+  const std::string size = " --width " + std::to_string(w) + " --height " + std::to_string(h);
+  int code = 0;
+  std::string log = render(
+      "spheres --renderer path --spp 16 --noise-threshold 0 --filter box "
+      "--max-bounces 1 --aov depth" +
+          size + " -o " + (dir / "path.exr").string(),
+      &code);
+  ASSERT_EQ(code, 0) << log;
+  Image depth;
+  for (auto& [name, image] : read_exr_layers(dir / "path.exr"))
+    if (name.find("depth") != std::string::npos) depth = image;
+  ASSERT_EQ(depth.width, w);
+  const glm::ivec2 path =
+      centre_extent(w, h, [&](int x, int y) { return depth.pixel(x, y)[0] > 0.0f; });
+  EXPECT_GT(path.y, 20);
+  EXPECT_LE(std::abs(path.x - path.y), 1) << "width " << path.x << " height " << path.y;
+
+  log = render("spheres --renderer gl --msaa 1 --no-ibl --background color:1,0,0" + size + " -o " +
+                   (dir / "gl.exr").string(),
+               &code);
+  ASSERT_EQ(code, 0) << log;
+  const Image gl = read_image(dir / "gl.exr");
+  ASSERT_EQ(gl.width, w);
+  const glm::ivec2 raster =
+      centre_extent(w, h, [&](int x, int y) { return gl.rgb(x, y) != glm::vec3(1, 0, 0); });
+  EXPECT_GT(raster.y, 20);
+  EXPECT_LE(std::abs(raster.x - raster.y), 1) << "width " << raster.x << " height " << raster.y;
+  // Both renderers see the same sphere.
+  EXPECT_LE(std::abs(raster.y - path.y), 2);
+}
+
+// Without --width/--height the image takes the camera's authored aspect (512 along the
+// longer side); with one of them, the other follows the aspect.
+TEST(RenderAspect, SizeFollowsTheCamerasAspectRatio) {
+  const fs::path dir = test::scratch_dir();
+  const std::string scene = test::test_data("gltf/valid/cameras_lights.gltf").string();
+  struct Case {
+    std::string args;
+    int width, height;
+  };
+  // Camera 0: perspective, aspectRatio 1.5. Camera 1: orthographic, xmag 2, ymag 1.
+  const std::array<Case, 4> cases{{{"--camera 0", 512, 341},
+                                   {"--camera 0 --width 300", 300, 200},
+                                   {"--camera 1 --height 100", 200, 100},
+                                   {"--camera 1 --width 64 --height 64", 64, 64}}};
+  for (const Case& c : cases) {
+    int code = 0;
+    const std::string log = render(
+        scene + " --spp 1 --max-bounces 1 " + c.args + " -o " + (dir / "x.png").string(), &code);
+    ASSERT_EQ(code, 0) << log;
+    const Image png = read_image(dir / "x.png");
+    EXPECT_EQ(png.width, c.width) << c.args;
+    EXPECT_EQ(png.height, c.height) << c.args;
+  }
+}
+
+}  // namespace
+}  // namespace pbrkit
