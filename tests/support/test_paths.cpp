@@ -44,4 +44,17 @@ int run_command(const std::string& command, std::string* output) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+std::string validate_gltf(const std::filesystem::path& path) {
+  const std::filesystem::path tool =
+      std::filesystem::path(PBRKIT_TEST_DATA_DIR).parent_path().parent_path() / "tools" /
+      "gltf-validator";
+  if (!std::filesystem::exists(tool / "node_modules" / "gltf-validator"))
+    return "the Khronos glTF-Validator is not installed in " + tool.string() +
+           " (scripts/setup installs it with npm)";
+  std::string out;
+  const int code =
+      run_command("node '" + (tool / "validate.js").string() + "' '" + path.string() + "'", &out);
+  return code == 0 ? std::string() : out;
+}
+
 }  // namespace pbrkit::test

@@ -19,4 +19,9 @@ std::filesystem::path scratch_dir();
 /// Runs a shell command; returns its exit status and puts stdout+stderr into `output`.
 int run_command(const std::string& command, std::string* output = nullptr);
 
+/// Runs the Khronos glTF-Validator (tools/gltf-validator, installed by scripts/setup) over
+/// a .glb/.gltf file. Returns "" when it reports no error and no warning, otherwise its
+/// report (or why it could not run), so a test writes EXPECT_EQ(validate_gltf(p), "").
+std::string validate_gltf(const std::filesystem::path& path);
+
 }  // namespace pbrkit::test
