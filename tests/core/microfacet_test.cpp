@@ -20,6 +20,34 @@ glm::vec3 spherical(double theta, double phi) {
                    float(std::cos(theta)));
 }
 
+// ---- Closed forms written out from the papers in double (not through microfacet.h) ----
+// GGX NDF in Walter et al. 2007's tangent form (eq. 33):
+//   D(h) = alpha^2 / (pi cos^4(theta_h) (alpha^2 + tan^2(theta_h))^2).
+double walter_D(glm::dvec3 h, double alpha) {
+  h = glm::normalize(h);
+  if (h.z <= 0.0) return 0.0;
+  const double cos2 = h.z * h.z, tan2 = (h.x * h.x + h.y * h.y) / cos2, a2 = alpha * alpha;
+  return a2 / (kPiD * cos2 * cos2 * (a2 + tan2) * (a2 + tan2));
+}
+// Smith's masking for GGX in Walter et al. 2007's form (eq. 34):
+//   G1(v) = 2 / (1 + sqrt(1 + alpha^2 tan^2(theta_v))).
+double walter_G1(glm::dvec3 v, double alpha) {
+  v = glm::normalize(v);
+  if (v.z <= 0.0) return 0.0;
+  const double tan2 = (v.x * v.x + v.y * v.y) / (v.z * v.z);
+  return 2.0 / (1.0 + std::sqrt(1.0 + alpha * alpha * tan2));
+}
+// The density of half vectors drawn from D(h)(n.h) (Walter 2007, eq. 38: p_m = D |m.n|).
+double ndf_pdf_closed_form(glm::dvec3 h, double alpha) {
+  return walter_D(h, alpha) * std::max(glm::normalize(h).z, 0.0);
+}
+// The distribution of visible normals (Heitz 2018, eq. 3): G1(v) max(0, v.h) D(h) / (n.v).
+double vndf_pdf_closed_form(glm::dvec3 v, glm::dvec3 h, double alpha) {
+  v = glm::normalize(v);
+  h = glm::normalize(h);
+  return walter_G1(v, alpha) * std::max(glm::dot(v, h), 0.0) * walter_D(h, alpha) / v.z;
+}
+
 glm::vec3 random_upper_direction(Pcg32& rng) {
   glm::vec3 w = sample_uniform_hemisphere(rng.next_2d()).direction;
   w.z = std::max(w.z, 1e-3f);
@@ -180,7 +208,10 @@ TEST(GgxSampling, NdfChi2) {
     for (int i = 0; i < 1000; ++i) {
       const HalfVectorSample s = sample_ggx_ndf(rng.next_2d(), alpha);
       EXPECT_NEAR(glm::length(s.h), 1.0f, 1e-5f);
-      EXPECT_NEAR(s.pdf, ggx_ndf_pdf(s.h, alpha), 1e-5f * s.pdf);
+      // The returned pdf against Walter 2007's closed form evaluated in double; the
+      // sampler works in float (relative rounding ~1e-6).
+      const double expected = ndf_pdf_closed_form(glm::dvec3(s.h), alpha);
+      EXPECT_NEAR(s.pdf, expected, 1e-5 * expected) << "roughness " << roughness;
     }
     const test::Chi2Result r = test::chi2_sphere_test(
         [&](float, glm::vec2 u) -> std::optional<glm::vec3> { return sample_ggx_ndf(u, alpha).h; },
@@ -204,7 +235,9 @@ TEST(GgxSampling, VisibleNormalChi2) {
         const HalfVectorSample s = sample_ggx_vndf(wo, rng.next_2d(), alpha);
         EXPECT_NEAR(glm::length(s.h), 1.0f, 1e-5f);
         EXPECT_GT(s.h.z, 0.0f);
-        EXPECT_NEAR(s.pdf, ggx_vndf_pdf(wo, s.h, alpha), 1e-5f * s.pdf);
+        // Heitz 2018 eq. 3 with Walter 2007's D and G1, in double.
+        const double expected = vndf_pdf_closed_form(glm::dvec3(wo), glm::dvec3(s.h), alpha);
+        EXPECT_NEAR(s.pdf, expected, 1e-5 * expected) << "mu " << mu << " roughness " << roughness;
       }
       const test::Chi2Result r = test::chi2_sphere_test(
           [&](float, glm::vec2 u) -> std::optional<glm::vec3> {
@@ -214,6 +247,54 @@ TEST(GgxSampling, VisibleNormalChi2) {
       EXPECT_TRUE(r.passed) << "mu " << mu << " roughness " << roughness << "\n" << r.report;
       EXPECT_NEAR(r.pdf_integral, 1.0, 1e-4);
     }
+}
+
+TEST(GgxSampling, ReflectedDirectionsMatchClosedFormPdfChi2) {
+  // The density of the reflected direction l = 2 (v.h) h - v, written out here from the
+  // papers (not through ggx_*_pdf or reflected_pdf): the half-vector density times the
+  // Jacobian |dh/dl| = 1 / (4 v.h) (Walter 2007, eq. 14), i.e.
+  //   NDF sampling:  D(h)(n.h) / (4 v.h)   (Walter 2007, eqs. 17 and 38; MODEL.md)
+  //   VNDF sampling: G1(v) D(h) / (4 n.v)  (Heitz 2018, eq. 17).
+  // NDF samples with v.h <= 0 reflect nothing and are rejected; the chi-square helper
+  // compares their number with the closed form's missing mass.
+  struct Case {
+    bool visible;
+    float mu, roughness;
+  };
+  const Case cases[] = {
+      {false, 0.4f, 0.3f}, {false, 0.9f, 0.8f}, {true, 0.1f, 0.2f}, {true, 0.6f, 0.6f}};
+  test::Chi2Options options;
+  options.runs = int(std::size(cases));
+  for (const Case& c : cases) {
+    const float alpha = c.roughness * c.roughness;
+    const glm::vec3 wo(0.6f * std::sqrt(1 - c.mu * c.mu), 0.8f * std::sqrt(1 - c.mu * c.mu), c.mu);
+    const glm::dvec3 v(wo);
+    const test::Chi2Result r = test::chi2_sphere_test(
+        [&](float, glm::vec2 u) -> std::optional<glm::vec3> {
+          const glm::vec3 h =
+              c.visible ? sample_ggx_vndf(wo, u, alpha).h : sample_ggx_ndf(u, alpha).h;
+          const float VdotH = glm::dot(wo, h);
+          if (VdotH <= 0.0f) return std::nullopt;
+          return 2.0f * VdotH * h - wo;
+        },
+        [&](glm::vec3 l) {
+          const glm::dvec3 sum = v + glm::dvec3(l);
+          if (glm::length(sum) < 1e-9) return 0.0;
+          const glm::dvec3 h = glm::normalize(sum);
+          const double VdotH = glm::dot(v, h);
+          if (h.z <= 0.0 || VdotH <= 0.0) return 0.0;
+          return c.visible ? walter_G1(v, alpha) * walter_D(h, alpha) / (4.0 * v.z)
+                           : ndf_pdf_closed_form(h, alpha) / (4.0 * VdotH);
+        },
+        options);
+    EXPECT_TRUE(r.passed) << (c.visible ? "VNDF" : "NDF") << " mu " << c.mu << " roughness "
+                          << c.roughness << "\n"
+                          << r.report;
+    // VNDF sampling never rejects (Heitz 2018 samples only v.h > 0).
+    if (c.visible) {
+      EXPECT_NEAR(r.pdf_integral, 1.0, 1e-4);
+    }
+  }
 }
 
 }  // namespace

@@ -331,9 +331,10 @@ test::Chi2Options warp_options() {
   return o;
 }
 
+// `pdf` is the warp's density written out in the test (not the library's *_pdf function):
+// the returned pdf must equal it at every sample, and the histogram must follow it.
 template <typename Sampler, typename Pdf>
 void expect_warp_matches_pdf(Sampler sampler, Pdf pdf, double mass = 1.0) {
-  // The returned pdf agrees with the pdf function at the sample.
   Pcg32 rng(99);
   for (int i = 0; i < 1000; ++i) {
     const DirectionSample s = sampler(rng.next_2d());
@@ -349,19 +350,21 @@ void expect_warp_matches_pdf(Sampler sampler, Pdf pdf, double mass = 1.0) {
 
 TEST(Warps, UniformHemisphereChi2) {
   EXPECT_FLOAT_EQ(uniform_hemisphere_pdf(), float(1.0 / (2.0 * kPiD)));
-  expect_warp_matches_pdf(sample_uniform_hemisphere, [](glm::vec3 w) {
-    return w.z >= 0.0f ? uniform_hemisphere_pdf() : 0.0f;
-  });
+  expect_warp_matches_pdf(sample_uniform_hemisphere,
+                          [](glm::vec3 w) { return w.z >= 0.0f ? 1.0 / (2.0 * kPiD) : 0.0; });
 }
 
 TEST(Warps, CosineHemisphereChi2) {
+  // cos(theta) / pi above the horizon, 0 below.
+  for (float c : {-0.5f, 0.0f, 0.1f, 0.7f, 1.0f})
+    EXPECT_NEAR(cosine_hemisphere_pdf(c), c > 0.0f ? c / kPiD : 0.0, 1e-7) << c;
   expect_warp_matches_pdf(sample_cosine_hemisphere,
-                          [](glm::vec3 w) { return cosine_hemisphere_pdf(w.z); });
+                          [](glm::vec3 w) { return w.z > 0.0f ? double(w.z) / kPiD : 0.0; });
 }
 
 TEST(Warps, UniformSphereChi2) {
   EXPECT_FLOAT_EQ(uniform_sphere_pdf(), float(1.0 / (4.0 * kPiD)));
-  expect_warp_matches_pdf(sample_uniform_sphere, [](glm::vec3) { return uniform_sphere_pdf(); });
+  expect_warp_matches_pdf(sample_uniform_sphere, [](glm::vec3) { return 1.0 / (4.0 * kPiD); });
 }
 
 }  // namespace
