@@ -19,6 +19,7 @@
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"
 #include "pbrkit/ibl/bake_stages.h"
+#include "pbrkit/ibl/brdf_lut.h"
 #include "pbrkit/ibl/cube_lookup.h"
 #include "pbrkit/ibl/prefilter_kernels.h"
 #include "pbrkit/ibl/spherical_harmonics.h"

@@ -4,8 +4,8 @@
 
 #include <glm/glm.hpp>
 
-#include "pbrkit/ibl/bake.h"
 #include "pbrkit/ibl/cubemap.h"
+#include "pbrkit/ibl/roughness_mapping.h"
 #include "pbrkit/image/environment.h"
 
 namespace pbrkit {
