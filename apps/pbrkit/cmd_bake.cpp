@@ -10,7 +10,6 @@
 #include "pbrkit/core/color.h"
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/ibl/bake_output.h"
-#include "pbrkit/ibl/bake_stages.h"
 #include "pbrkit/ibl/brdf_lut.h"
 #include "pbrkit/ibl/roughness_mapping.h"
 #include "pbrkit/ibl/validate.h"

@@ -13,6 +13,9 @@
 
 namespace pbrkit {
 
+/// Largest cube face accepted (8192 px faces are 1.6 GB of RGBA floats per chain).
+inline constexpr int kMaxFaceSize = 4096;
+
 struct BakeOptions {
   int face_size = 256;       ///< specular cube, mip 0
   int min_face_size = 8;     ///< the chain stops at this size (inclusive)
@@ -32,6 +35,9 @@ struct BakeOptions {
   /// reference on the peaky studio.exr, where importance sampling missed by up to 3%.
   double quadrature_budget = 0x1p32;
 };
+
+/// Checks sizes and counts; throws pbrkit::Error naming the offending option.
+void check_bake_options(const BakeOptions& options);
 
 /// Wall-clock seconds of each stage, and the process CPU seconds (all threads, std::clock)
 /// spent during it: on a shared machine the CPU time is the figure that shows what the work

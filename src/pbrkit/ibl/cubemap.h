@@ -21,6 +21,10 @@ struct Cubemap {
   int size(int level = 0) const { return mips.empty() ? 0 : mips[level][0].width; }
 };
 
+/// Six square RGBA faces of `size` px with every channel 1 (alpha 1), for a level whose RGB
+/// the caller then writes.
+std::array<Image, 6> make_rgba_faces(int size);
+
 /// Unit direction through (s, t) of `face` (0..5 = +X, -X, +Y, -Y, +Z, -Z).
 glm::vec3 cube_direction(int face, glm::vec2 st);
 /// The point at (s, t) on `face` of the cube [-1, 1]^3 (cube_direction before normalising):

@@ -9,8 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "pbrkit/ibl/bake_stages.h"
 #include "pbrkit/ibl/cubemap.h"
+#include "pbrkit/ibl/prefilter.h"
 
 namespace pbrkit::detail {
 
