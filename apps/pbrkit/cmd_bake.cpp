@@ -11,8 +11,8 @@
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/ibl/bake_output.h"
 #include "pbrkit/ibl/brdf_lut.h"
+#include "pbrkit/ibl/prefilter_validation.h"
 #include "pbrkit/ibl/roughness_mapping.h"
-#include "pbrkit/ibl/validate.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/util/progress.h"
 

@@ -10,7 +10,7 @@
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/ibl/environment_cube.h"
 #include "pbrkit/ibl/prefilter.h"
-#include "pbrkit/ibl/validate.h"
+#include "pbrkit/ibl/prefilter_validation.h"
 
 namespace pbrkit {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "pbrkit/core/color.h"
 #include "pbrkit/ibl/bake.h"
-#include "pbrkit/ibl/validate.h"
+#include "pbrkit/ibl/prefilter_validation.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
 

@@ -1,5 +1,6 @@
 #pragma once
-// Brute-force references for the prefiltered specular chain (`pbrkit bake --validate`).
+// Brute-force references for the prefiltered specular chain, and the error of a bake
+// against them (what `pbrkit bake --validate` reports and manifest.json records).
 #include <vector>
 
 #include <glm/glm.hpp>
