@@ -3,8 +3,11 @@
 // bake.h.
 #include "pbrkit/ibl/bake.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <ctime>
+#include <optional>
 #include <string>
 
 #include "pbrkit/ibl/brdf_lut.h"
@@ -44,19 +47,32 @@ bool is_power_of_two(int n) {
 
 }  // namespace
 
-void check_bake_options(const BakeOptions& o) {
+std::optional<BakeOptionsProblem> find_bake_options_problem(const BakeOptions& o) {
+  // The messages name neither the field nor a command-line flag: the caller prefixes the
+  // name it knows the field by.
   if (!is_power_of_two(o.face_size) || o.face_size > kMaxFaceSize)
-    fail("--size: the cube face size must be a power of two in 1..{}, got {}", kMaxFaceSize,
-         o.face_size);
+    return BakeOptionsProblem{
+        &BakeOptions::face_size, "face_size",
+        fmt::format("must be a power of two in 1..{}, got {}", kMaxFaceSize, o.face_size)};
   if (!is_power_of_two(o.min_face_size) || o.min_face_size > o.face_size)
-    fail("--min-size: the smallest mip must be a power of two in 1..{} (the face size), got {}",
-         o.face_size, o.min_face_size);
+    return BakeOptionsProblem{&BakeOptions::min_face_size, "min_face_size",
+                              fmt::format("must be a power of two in 1..{} (the face size), got {}",
+                                          o.face_size, o.min_face_size)};
   if (o.samples < 1 || o.samples > (1 << 20))
-    fail("--samples: must be in 1..{}, got {}", 1 << 20, o.samples);
+    return BakeOptionsProblem{&BakeOptions::samples, "samples",
+                              fmt::format("must be in 1..{}, got {}", 1 << 20, o.samples)};
   if (o.irradiance_size < 1 || o.irradiance_size > 1024)
-    fail("--irradiance-size: must be in 1..1024, got {}", o.irradiance_size);
+    return BakeOptionsProblem{&BakeOptions::irradiance_size, "irradiance_size",
+                              fmt::format("must be in 1..1024, got {}", o.irradiance_size)};
   if (o.lut_size < 1 || o.lut_size > 4096)
-    fail("--lut-size: must be in 1..4096, got {}", o.lut_size);
+    return BakeOptionsProblem{&BakeOptions::lut_size, "lut_size",
+                              fmt::format("must be in 1..4096, got {}", o.lut_size)};
+  return std::nullopt;
+}
+
+void check_bake_options(const BakeOptions& options) {
+  if (const auto problem = find_bake_options_problem(options))
+    fail("BakeOptions::{} {}", problem->name, problem->message);
 }
 
 BakeResult bake_environment(const Environment& env, const BakeOptions& options,

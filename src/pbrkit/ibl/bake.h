@@ -3,6 +3,10 @@
 // the split-sum approximation), the library behind `pbrkit bake` (as Filament's
 // libs/ibl sits behind cmgen):
 //   integral f L cos ~= prefiltered(R, roughness) (F0 A + B) + kd baseColor irradiance(n)
+#include <optional>
+#include <string>
+#include <string_view>
+
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/ibl/cubemap.h"
 #include "pbrkit/ibl/roughness_mapping.h"
@@ -13,9 +17,11 @@
 
 namespace pbrkit {
 
-/// Largest cube face accepted (8192 px faces are 1.6 GB of RGBA floats per chain).
+/// Largest BakeOptions::face_size accepted (8192 px faces are 1.6 GB of RGBA floats per
+/// chain).
 inline constexpr int kMaxFaceSize = 4096;
 
+/// What to bake and how; the defaults are the offline bake of `pbrkit bake`.
 struct BakeOptions {
   int face_size = 256;       ///< specular cube, mip 0
   int min_face_size = 8;     ///< the chain stops at this size (inclusive)
@@ -36,7 +42,20 @@ struct BakeOptions {
   double quadrature_budget = 0x1p32;
 };
 
-/// Checks sizes and counts; throws pbrkit::Error naming the offending option.
+/// A field of BakeOptions whose value the bake cannot use.
+struct BakeOptionsProblem {
+  int BakeOptions::*field = nullptr;  ///< the field, e.g. &BakeOptions::face_size
+  std::string_view name;              ///< the field's name, e.g. "face_size"
+  std::string message;  ///< what is required and what it holds, e.g. "must be in 1..1024, got 0"
+};
+
+/// The first field of `options` out of its range (face_size, min_face_size, samples,
+/// irradiance_size, lut_size, in that order), or none. A caller that filled the fields from
+/// elsewhere (command-line flags, a file) can report the problem under its own names.
+std::optional<BakeOptionsProblem> find_bake_options_problem(const BakeOptions& options);
+
+/// Throws pbrkit::Error "BakeOptions::<field> <message>" for the first problem that
+/// find_bake_options_problem() finds; bake_environment() calls it first.
 void check_bake_options(const BakeOptions& options);
 
 /// Wall-clock seconds of each stage, and the process CPU seconds (all threads, std::clock)
@@ -48,6 +67,7 @@ struct BakeTimings {
          total_cpu_s = 0;
 };
 
+/// Everything the bake computes (see bake_environment()).
 struct BakeResult {
   Cubemap environment;  ///< the source resampled to a cube with its full box-filtered mip chain
   Cubemap specular;     ///< prefiltered GGX, level i at roughness mip_roughness(i, levels)
@@ -57,8 +77,9 @@ struct BakeResult {
   BakeTimings timings;
 };
 
-/// Runs every stage. The environment's rotation and intensity are applied. `progress`
-/// may be empty.
+/// Runs every stage on `env` (its rotation and intensity applied) with `options` (checked
+/// first: check_bake_options()) and times each. `progress` receives the fraction done and
+/// the stage's name; it may be empty. Throws pbrkit::Error for bad options or an empty map.
 BakeResult bake_environment(const Environment& env, const BakeOptions& options,
                             const ProgressCallback& progress = {});
 
