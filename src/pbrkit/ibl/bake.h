@@ -28,9 +28,9 @@ struct BakeOptions {
   int samples = 1024;        ///< GGX samples per texel (Hammersley)
   int irradiance_size = 32;  ///< diffuse irradiance cube
   int lut_size = 128;        ///< BRDF LUT, lut_size x lut_size over (n.v, roughness)
-  RoughnessMapping mapping = RoughnessMapping::kLinear;
-  BrdfModel model = BrdfModel::kReference;   ///< the G of BakeResult::lut
-  bool filtered_importance_sampling = true;  ///< Colbert & Krivanek 2007
+  RoughnessMapping mapping = RoughnessMapping::kLinear;  ///< roughness of each specular level
+  BrdfModel model = BrdfModel::kReference;               ///< the G of BakeResult::lut
+  bool filtered_importance_sampling = true;              ///< Colbert & Krivanek 2007
   /// Small levels with roughness >= 0.25 are prefiltered by direct quadrature over a
   /// source level (exact up to the texel-centre rule) where that is cheap; the others by
   /// importance sampling. False: importance sampling everywhere.
