@@ -12,6 +12,7 @@
 #include <map>
 
 #include "pbrkit/ibl/bake.h"
+#include "pbrkit/ibl/brdf_lut.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/util/data_dir.h"
 

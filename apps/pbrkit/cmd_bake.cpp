@@ -10,14 +10,40 @@
 #include "pbrkit/core/color.h"
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/ibl/bake_output.h"
-#include "pbrkit/ibl/bake_stages.h"
-#include "pbrkit/ibl/validate.h"
+#include "pbrkit/ibl/brdf_lut.h"
+#include "pbrkit/ibl/prefilter_validation.h"
+#include "pbrkit/ibl/roughness_mapping.h"
 #include "pbrkit/image/environment.h"
+#include "pbrkit/util/error.h"
 #include "pbrkit/util/progress.h"
 
 namespace pbrkit::cli {
 
 namespace {
+
+// The flags that set the BakeOptions fields the library range-checks, in --help order.
+struct BakeFlag {
+  int BakeOptions::*field;
+  const char* name;
+  const char* help;
+};
+constexpr BakeFlag kBakeFlags[] = {
+    {&BakeOptions::face_size, "--size", "specular cube face size (power of two)"},
+    {&BakeOptions::min_face_size, "--min-size", "smallest specular mip face size (power of two)"},
+    {&BakeOptions::samples, "--samples", "GGX samples per texel (Hammersley)"},
+    {&BakeOptions::irradiance_size, "--irradiance-size", "irradiance cube face size"},
+    {&BakeOptions::lut_size, "--lut-size", "BRDF LUT size (square)"},
+};
+
+// Fails naming the flag whose value the bake cannot use ("--size: must be a power of two
+// ..."); the library's own check (check_bake_options) names the BakeOptions field instead.
+void check_bake_flags(const BakeOptions& options) {
+  const auto problem = find_bake_options_problem(options);
+  if (!problem) return;
+  for (const BakeFlag& flag : kBakeFlags)
+    if (flag.field == problem->field) fail("{}: {}", flag.name, problem->message);
+  check_bake_options(options);  // a field no flag sets
+}
 
 struct BakeCommandOptions {
   std::string input;
@@ -46,7 +72,7 @@ void run_bake(const BakeCommandOptions& o) {
   options.model = parse_brdf_model(o.model);
   options.filtered_importance_sampling = !o.no_fis;
   options.quadrature_for_rough_levels = !o.no_quadrature;
-  check_bake_options(options);
+  check_bake_flags(options);
   BakeOutputOptions out;
   out.float32 = o.float32;
   out.exr = !o.no_exr;
@@ -117,16 +143,8 @@ void register_bake_command(CLI::App& app) {
   cmd->add_option("env", o->input, "environment map (.exr or .hdr, equirectangular 2:1)")
       ->required();
   cmd->add_option("-o,--output", o->output, "output directory (created if needed)")->required();
-  cmd->add_option("--size", o->bake.face_size, "specular cube face size (power of two)")
-      ->capture_default_str();
-  cmd->add_option("--min-size", o->bake.min_face_size,
-                  "smallest specular mip face size (power of two)")
-      ->capture_default_str();
-  cmd->add_option("--samples", o->bake.samples, "GGX samples per texel (Hammersley)")
-      ->capture_default_str();
-  cmd->add_option("--irradiance-size", o->bake.irradiance_size, "irradiance cube face size")
-      ->capture_default_str();
-  cmd->add_option("--lut-size", o->bake.lut_size, "BRDF LUT size (square)")->capture_default_str();
+  for (const BakeFlag& flag : kBakeFlags)
+    cmd->add_option(flag.name, o->bake.*flag.field, flag.help)->capture_default_str();
   cmd->add_option("--roughness-mapping", o->mapping,
                   "mip level -> roughness: linear (roughness = level / (levels - 1), the "
                   "Khronos sample viewer's and UE4's)")

@@ -147,6 +147,34 @@ TEST(BakeCli, BadInputFailsCleanlyNamingTheFile) {
   EXPECT_NE(log.find("power of two"), std::string::npos) << log;
 }
 
+TEST(BakeCli, BadSizesAndCountsNameTheirFlag) {
+  const fs::path dir = test::scratch_dir();
+  const fs::path env = write_env(dir, "ok.exr", 64, 32, glm::vec3(1.0f));
+  struct Case {
+    const char* flags;
+    const char* expected;
+  };
+  for (const Case& c : {
+           Case{"--size 100", "--size: must be a power of two in 1..4096, got 100"},
+           Case{"--size 16 --min-size 32",
+                "--min-size: must be a power of two in 1..16 (the face size), got 32"},
+           Case{"--samples 0", "--samples: must be in 1..1048576, got 0"},
+           Case{"--irradiance-size 2000", "--irradiance-size: must be in 1..1024, got 2000"},
+           Case{"--lut-size 0", "--lut-size: must be in 1..4096, got 0"},
+       }) {
+    std::string log;
+    const int code = test::run_command(test::cli_path().string() + " bake " + env.string() +
+                                           " -o " + (dir / "out").string() + " " + c.flags,
+                                       &log);
+    EXPECT_NE(code, 0) << c.flags;
+    EXPECT_NE(log.find(c.expected), std::string::npos) << c.flags << ": " << log;
+    // The CLI speaks in flags; the library's field names stay out of its messages.
+    EXPECT_EQ(log.find("BakeOptions"), std::string::npos) << log;
+    // Checked before anything is written.
+    EXPECT_FALSE(fs::exists(dir / "out")) << c.flags;
+  }
+}
+
 TEST(BakeCli, NonFinitePixelsAreClampedAndCounted) {
   const fs::path dir = test::scratch_dir();
   Image img(64, 32, 3, 1.0f);

@@ -9,7 +9,7 @@
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/energy.h"
 #include "pbrkit/core/math.h"
-#include "pbrkit/ibl/bake.h"
+#include "pbrkit/ibl/brdf_lut.h"
 
 namespace pbrkit {
 namespace {

@@ -7,8 +7,8 @@
 
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/core/math.h"
-#include "pbrkit/ibl/bake_stages.h"
 #include "pbrkit/ibl/cubemap.h"
+#include "pbrkit/ibl/environment_cube.h"
 
 namespace pbrkit {
 namespace {

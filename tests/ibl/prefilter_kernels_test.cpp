@@ -7,8 +7,9 @@
 #include <vector>
 
 #include "pbrkit/core/math.h"
-#include "pbrkit/ibl/bake_stages.h"
 #include "pbrkit/ibl/cubemap.h"
+#include "pbrkit/ibl/environment_cube.h"
+#include "pbrkit/ibl/prefilter.h"
 #include "pbrkit/ibl/prefilter_kernels.h"
 #include "pbrkit/ibl/simd.h"
 

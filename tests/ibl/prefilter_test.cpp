@@ -8,8 +8,9 @@
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/ibl/bake.h"
-#include "pbrkit/ibl/bake_stages.h"
-#include "pbrkit/ibl/validate.h"
+#include "pbrkit/ibl/environment_cube.h"
+#include "pbrkit/ibl/prefilter.h"
+#include "pbrkit/ibl/prefilter_validation.h"
 
 namespace pbrkit {
 namespace {

@@ -6,8 +6,8 @@
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
-#include "pbrkit/ibl/bake.h"
-#include "pbrkit/ibl/bake_stages.h"
+#include "pbrkit/ibl/environment_cube.h"
+#include "pbrkit/ibl/irradiance_cube.h"
 #include "pbrkit/ibl/spherical_harmonics.h"
 
 namespace pbrkit {

@@ -3,42 +3,34 @@
 // the split-sum approximation), the library behind `pbrkit bake` (as Filament's
 // libs/ibl sits behind cmgen):
 //   integral f L cos ~= prefiltered(R, roughness) (F0 A + B) + kd baseColor irradiance(n)
-#include <array>
+#include <optional>
 #include <string>
 #include <string_view>
 
-#include <glm/glm.hpp>
-
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/ibl/cubemap.h"
+#include "pbrkit/ibl/roughness_mapping.h"
+#include "pbrkit/ibl/spherical_harmonics.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image.h"
 #include "pbrkit/util/progress.h"
 
 namespace pbrkit {
 
-/// How a specular mip level maps to roughness.
-enum class RoughnessMapping {
-  /// roughness = level / (levels - 1): the Khronos glTF sample viewer's and UE4's mapping.
-  kLinear,
-};
-RoughnessMapping parse_roughness_mapping(std::string_view name);  ///< "linear"
-std::string_view roughness_mapping_name(RoughnessMapping mapping);
-/// Roughness of mip `level` of a `levels`-level chain.
-float mip_roughness(int level, int levels, RoughnessMapping mapping = RoughnessMapping::kLinear);
-/// Fractional mip level for `roughness` (the inverse; what shaders compute).
-float roughness_lod(float roughness, int levels,
-                    RoughnessMapping mapping = RoughnessMapping::kLinear);
+/// Largest BakeOptions::face_size accepted (8192 px faces are 1.6 GB of RGBA floats per
+/// chain).
+inline constexpr int kMaxFaceSize = 4096;
 
+/// What to bake and how; the defaults are the offline bake of `pbrkit bake`.
 struct BakeOptions {
   int face_size = 256;       ///< specular cube, mip 0
   int min_face_size = 8;     ///< the chain stops at this size (inclusive)
   int samples = 1024;        ///< GGX samples per texel (Hammersley)
   int irradiance_size = 32;  ///< diffuse irradiance cube
   int lut_size = 128;        ///< BRDF LUT, lut_size x lut_size over (n.v, roughness)
-  RoughnessMapping mapping = RoughnessMapping::kLinear;
-  BrdfModel model = BrdfModel::kReference;   ///< the G of the prefilter weights
-  bool filtered_importance_sampling = true;  ///< Colbert & Krivanek 2007
+  RoughnessMapping mapping = RoughnessMapping::kLinear;  ///< roughness of each specular level
+  BrdfModel model = BrdfModel::kReference;               ///< the G of BakeResult::lut
+  bool filtered_importance_sampling = true;              ///< Colbert & Krivanek 2007
   /// Small levels with roughness >= 0.25 are prefiltered by direct quadrature over a
   /// source level (exact up to the texel-centre rule) where that is cheap; the others by
   /// importance sampling. False: importance sampling everywhere.
@@ -50,15 +42,21 @@ struct BakeOptions {
   double quadrature_budget = 0x1p32;
 };
 
-/// 9 SH coefficients (bands l <= 2) per colour channel. Convention: the coefficients of
-/// the IRRADIANCE E(n) = int L(w) max(0, n.w) dw (Ramamoorthi & Hanrahan 2001, eq. 8:
-/// the cosine-lobe convolution A_l is folded in, 1/pi is NOT), in the real SH basis order
-/// (l,m) = (0,0), (1,-1), (1,0), (1,1), (2,-2), (2,-1), (2,0), (2,1), (2,2), with
-/// Y_1-1 ~ y, Y_10 ~ z, Y_11 ~ x. Lambertian outgoing radiance is baseColor / pi * E(n).
-using SH9 = std::array<glm::vec3, 9>;
+/// A field of BakeOptions whose value the bake cannot use.
+struct BakeOptionsProblem {
+  int BakeOptions::*field = nullptr;  ///< the field, e.g. &BakeOptions::face_size
+  std::string_view name;              ///< the field's name, e.g. "face_size"
+  std::string message;  ///< what is required and what it holds, e.g. "must be in 1..1024, got 0"
+};
 
-/// Evaluates the irradiance E(n) from SH9 coefficients (world directions).
-glm::vec3 eval_sh_irradiance(const SH9& sh, glm::vec3 n);
+/// The first field of `options` out of its range (face_size, min_face_size, samples,
+/// irradiance_size, lut_size, in that order), or none. A caller that filled the fields from
+/// elsewhere (command-line flags, a file) can report the problem under its own names.
+std::optional<BakeOptionsProblem> find_bake_options_problem(const BakeOptions& options);
+
+/// Throws pbrkit::Error "BakeOptions::<field> <message>" for the first problem that
+/// find_bake_options_problem() finds; bake_environment() calls it first.
+void check_bake_options(const BakeOptions& options);
 
 /// Wall-clock seconds of each stage, and the process CPU seconds (all threads, std::clock)
 /// spent during it: on a shared machine the CPU time is the figure that shows what the work
@@ -69,6 +67,7 @@ struct BakeTimings {
          total_cpu_s = 0;
 };
 
+/// Everything the bake computes (see bake_environment()).
 struct BakeResult {
   Cubemap environment;  ///< the source resampled to a cube with its full box-filtered mip chain
   Cubemap specular;     ///< prefiltered GGX, level i at roughness mip_roughness(i, levels)
@@ -78,14 +77,10 @@ struct BakeResult {
   BakeTimings timings;
 };
 
-/// Runs every stage. The environment's rotation and intensity are applied. `progress`
-/// may be empty.
+/// Runs every stage on `env` (its rotation and intensity applied) with `options` (checked
+/// first: check_bake_options()) and times each. `progress` receives the fraction done and
+/// the stage's name; it may be empty. Throws pbrkit::Error for bad options or an empty map.
 BakeResult bake_environment(const Environment& env, const BakeOptions& options,
                             const ProgressCallback& progress = {});
-
-/// The split-sum BRDF LUT for `model` (RGBA, see BakeResult::lut): texel (x, y) at
-/// n.v = (x + 0.5) / size, roughness = (y + 0.5) / size (at least kMinRoughness),
-/// integrated with the IBL G of the model (k = alpha / 2 for classic).
-Image compute_brdf_lut(BrdfModel model, int size);
 
 }  // namespace pbrkit

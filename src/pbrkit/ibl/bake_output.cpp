@@ -6,8 +6,9 @@
 #include <random>
 
 #include "pbrkit/core/math.h"
-#include "pbrkit/ibl/bake_stages.h"
 #include "pbrkit/ibl/ktx2.h"
+#include "pbrkit/ibl/prefilter.h"
+#include "pbrkit/ibl/roughness_mapping.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/util/atomic_file.h"
 #include "pbrkit/util/error.h"

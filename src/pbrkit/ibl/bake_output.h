@@ -9,7 +9,7 @@
 
 #include "pbrkit/core/color.h"
 #include "pbrkit/ibl/bake.h"
-#include "pbrkit/ibl/validate.h"
+#include "pbrkit/ibl/prefilter_validation.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
 
@@ -24,6 +24,7 @@ namespace pbrkit {
 /// inside).
 Image cube_cross(const std::array<Image, 6>& faces);
 
+/// Which files write_bake_outputs() writes, and how.
 struct BakeOutputOptions {
   bool float32 = false;     ///< cubemaps as RGBA32F KTX2 (default RGBA16F)
   bool exr = true;          ///< EXR crosses of every specular level and the irradiance
@@ -33,11 +34,11 @@ struct BakeOutputOptions {
 
 /// Everything the manifest records besides the result itself.
 struct BakeRecord {
-  const Environment* environment = nullptr;
-  BakeOptions options;
-  Image lut_reference, lut_classic;  ///< both models' LUTs
-  double lut_both_s = 0.0;           ///< time for both LUTs
-  std::vector<PrefilterError> validation;
+  const Environment* environment = nullptr;  ///< the baked environment (required)
+  BakeOptions options;                       ///< the options it was baked with
+  Image lut_reference, lut_classic;          ///< both models' LUTs
+  double lut_both_s = 0.0;                   ///< time for both LUTs
+  std::vector<PrefilterError> validation;    ///< validate_prefilter()'s table; empty if not run
 };
 
 /// Checks that `dir` can be created and written; throws pbrkit::Error naming it otherwise.

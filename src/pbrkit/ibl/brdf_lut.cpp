@@ -1,6 +1,8 @@
 // The split-sum BRDF integration LUT (Karis 2013, "Real Shading in Unreal Engine 4",
 // IntegrateBRDF), with a third channel E = A + B and a fourth E_avg for
-// multiple-scattering compensation (Fdez-Aguera 2019; Kulla & Conty 2017).
+// multiple-scattering compensation (Fdez-Aguera 2019; Kulla & Conty 2017). See brdf_lut.h.
+#include "pbrkit/ibl/brdf_lut.h"
+
 #include <tbb/parallel_for.h>
 
 #include <cmath>
@@ -10,7 +12,6 @@
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"
-#include "pbrkit/ibl/bake.h"
 #include "pbrkit/ibl/simd.h"
 #include "pbrkit/util/error.h"
 

@@ -17,6 +17,7 @@ struct FaceHit {
   float sc, tc;
 };
 
+/// The face that direction `d` (any length > 0) hits and where (table 8.19).
 inline FaceHit cube_face_hit(glm::vec3 d) {
   const float ax = std::abs(d.x), ay = std::abs(d.y), az = std::abs(d.z);
   FaceHit h;

@@ -9,6 +9,12 @@
 
 namespace pbrkit {
 
+std::array<Image, 6> make_rgba_faces(int size) {
+  std::array<Image, 6> faces;
+  for (Image& f : faces) f = Image(size, size, 4, 1.0f);
+  return faces;
+}
+
 glm::vec3 cube_face_point(int face, glm::vec2 st) {
   const float sc = 2.0f * st.x - 1.0f;
   const float tc = 2.0f * st.y - 1.0f;

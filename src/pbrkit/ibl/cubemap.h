@@ -13,13 +13,20 @@
 
 namespace pbrkit {
 
+/// A cube texture with a mip chain (level 0 the largest), faces in the order above.
 struct Cubemap {
   /// mips[level][face]; every face of a level is square with the same size and channels.
   std::vector<std::array<Image, 6>> mips;
 
+  /// Number of mip levels (0 for an empty cube).
   int levels() const { return int(mips.size()); }
+  /// Face size of `level` in texels (0 for an empty cube).
   int size(int level = 0) const { return mips.empty() ? 0 : mips[level][0].width; }
 };
+
+/// Six square RGBA faces of `size` px with every channel 1 (alpha 1), for a level whose RGB
+/// the caller then writes.
+std::array<Image, 6> make_rgba_faces(int size);
 
 /// Unit direction through (s, t) of `face` (0..5 = +X, -X, +Y, -Y, +Z, -Z).
 glm::vec3 cube_direction(int face, glm::vec2 st);
@@ -27,6 +34,7 @@ glm::vec3 cube_direction(int face, glm::vec2 st);
 /// affine in s and t.
 glm::vec3 cube_face_point(int face, glm::vec2 st);
 
+/// A point on the cube: `face` (0..5) and (s, t) in [0, 1]^2 on it.
 struct CubeCoord {
   int face;
   glm::vec2 st;

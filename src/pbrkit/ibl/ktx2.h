@@ -22,6 +22,7 @@ enum class Ktx2Format : std::uint32_t {
 /// Bytes per texel: 8 or 16.
 int ktx2_texel_bytes(Ktx2Format format);
 
+/// An uncompressed KTX2 texture in memory: a 2D image or a cubemap, with its mip levels.
 struct Ktx2Texture {
   Ktx2Format format = Ktx2Format::kRgba16Float;
   std::uint32_t width = 0, height = 0;
@@ -40,16 +41,23 @@ std::string encode_ktx2(const Ktx2Texture& texture);
 /// Parses and validates a KTX 2.0 file; throws pbrkit::Error naming `name` and the problem.
 Ktx2Texture decode_ktx2(const std::string& bytes, const std::string& name);
 
-/// Atomic write (util/atomic_file.h) / read of a .ktx2 file.
+/// Writes `texture` to `path` atomically (util/atomic_file.h).
 void write_ktx2(const std::filesystem::path& path, const Ktx2Texture& texture);
+/// Reads and decodes the .ktx2 file at `path` (see decode_ktx2()); throws pbrkit::Error
+/// naming it.
 Ktx2Texture read_ktx2(const std::filesystem::path& path);
 
-/// Converts every level of a cubemap (any channel count; missing channels are 0, alpha 1)
-/// to a 6-face texture, and back (4-channel RGBA images).
+/// Converts every level of a cubemap to a 6-face texture of `format` (channels as in
+/// ktx2_from_image()).
 Ktx2Texture ktx2_from_cubemap(const Cubemap& cube, Ktx2Format format);
+/// The cubemap in a 6-face texture, every level, as 4-channel RGBA float images; throws
+/// pbrkit::Error for a 2D texture.
 Cubemap cubemap_from_ktx2(const Ktx2Texture& texture);
-/// A single-level 2D texture from an image, and back (level `level`, RGBA).
+/// A single-level 2D texture of `format` from an image of any channel count (1 channel: grey;
+/// otherwise missing channels 0, alpha 1).
 Ktx2Texture ktx2_from_image(const Image& image, Ktx2Format format);
+/// Mip `level` of a texture (its first face) as a 4-channel RGBA float image; throws
+/// pbrkit::Error for a level it does not have.
 Image image_from_ktx2(const Ktx2Texture& texture, int level = 0);
 
 }  // namespace pbrkit

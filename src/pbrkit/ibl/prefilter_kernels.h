@@ -4,13 +4,14 @@
 //  - SampleSet / sample_sum: the filtered-importance-sampled core of a lobe (Colbert &
 //    Krivanek 2007): every sample's direction, face and texel coordinates computed for
 //    simd::kLanes samples at once, then a trilinear RGBA fetch per sample.
-//  - QuadratureSource / quadrature_sums: a direct quadrature over the texels of one level.
+//  - QuadratureSource / quadrature_sums: a direct quadrature over the texels of one level;
+//    cosine_sum, the same loop for the irradiance cube (irradiance_cube.cpp).
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "pbrkit/ibl/bake_stages.h"
 #include "pbrkit/ibl/cubemap.h"
+#include "pbrkit/ibl/prefilter.h"
 
 namespace pbrkit::detail {
 
@@ -47,6 +48,7 @@ struct QuadratureSource {
   std::vector<glm::vec3> row_a, row_b;
 };
 
+/// Level `level` of `cube` flattened for quadrature_sums() and cosine_sum().
 QuadratureSource flatten_level(const Cubemap& cube, int level);
 
 /// Sums over the source texels with R.l < cos_max of L w and w, w = max(0, R.l) / d^2 dOmega

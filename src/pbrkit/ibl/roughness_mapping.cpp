@@ -1,7 +1,8 @@
-// Mip level <-> roughness mappings for the prefiltered specular chain.
+// Mip level <-> roughness mappings for the prefiltered specular chain (see
+// roughness_mapping.h).
 #include <algorithm>
 
-#include "pbrkit/ibl/bake.h"
+#include "pbrkit/ibl/roughness_mapping.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {

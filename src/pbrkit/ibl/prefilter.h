@@ -1,33 +1,18 @@
 #pragma once
-// The stages of bake_environment(), exposed for tests, the benchmark and --validate.
+// The prefiltered specular chain (BakeResult::specular; Karis 2013 split sum with n = v = R):
+// each level m >= 1 holds int L(l) D(h) n.l dl / int D(h) n.l dl for the roughness
+// mip_roughness(m, levels), by GGX importance sampling with filtered importance sampling
+// (Colbert & Krivanek 2007) and, for small rough levels, by direct quadrature over a source
+// level. The pieces are exposed for tests, the benchmark and `pbrkit bake --validate`.
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/ibl/cubemap.h"
-#include "pbrkit/image/environment.h"
 #include "pbrkit/util/progress.h"
 
 namespace pbrkit {
-
-/// Largest cube face accepted (8192 px faces are 1.6 GB of RGBA floats per chain).
-inline constexpr int kMaxFaceSize = 4096;
-
-/// Checks sizes and counts; throws pbrkit::Error naming the offending option.
-void check_bake_options(const BakeOptions& options);
-
-/// Supersampling factor per axis used when resampling a `source_width` lat-long map to
-/// faces of `face_size` (at least 2x2, about two samples per source texel, at most 8x8).
-int cube_supersampling(int source_width, int face_size);
-
-/// Resamples the environment (rotation and intensity applied) to a cube with one level,
-/// each texel the box-filtered average over its (s, t) square. RGBA, A = 1.
-Cubemap resample_to_cube(const Environment& env, int face_size);
-
-/// Appends 2x2 box-filtered levels to `cube` until the face size would drop below
-/// `min_size` (face sizes must be powers of two).
-void build_mip_chain(Cubemap& cube, int min_size);
 
 /// Number of specular levels from `face_size` down to `min_face_size` inclusive.
 int specular_levels(int face_size, int min_face_size);
@@ -68,11 +53,12 @@ float ggx_cone_fraction(float alpha, float cos_theta_h);
 glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<PrefilterSample>& samples,
                               glm::vec3 R);
 
-/// The source level the direct quadrature reads for `roughness` (texels small against
-/// the lobe), and whether a level of `out_size` px is prefiltered by that quadrature
+/// The level of `source` the direct quadrature reads for `roughness`: the coarsest whose
+/// texels are small against the lobe (and at least 128 px, or the finest level).
+int quadrature_source_level(const Cubemap& source, float roughness);
+/// Whether a level of `out_size` px at `roughness` is prefiltered by direct quadrature
 /// (rough, small levels: exact and cheap there) rather than by importance sampling, as
 /// options.quadrature_for_rough_levels and options.quadrature_budget allow.
-int quadrature_source_level(const Cubemap& source, float roughness);
 bool use_quadrature(const Cubemap& source, const BakeOptions& options, float roughness,
                     int out_size);
 
@@ -80,9 +66,5 @@ bool use_quadrature(const Cubemap& source, const BakeOptions& options, float rou
 /// roughness mip_roughness(m, levels, options.mapping). `source` needs its full chain.
 Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
                            const ProgressCallback& progress = {});
-
-/// The diffuse irradiance E(n) = int L max(0, n.w) dw (not divided by pi) as a cube of
-/// `size` px, by direct quadrature over a <= 64 px level of `source`.
-Cubemap irradiance_cube(const Cubemap& source, int size);
 
 }  // namespace pbrkit

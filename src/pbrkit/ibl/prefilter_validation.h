@@ -1,11 +1,12 @@
 #pragma once
-// Brute-force references for the prefiltered specular chain (`pbrkit bake --validate`).
+// Brute-force references for the prefiltered specular chain, and the error of a bake
+// against them (what `pbrkit bake --validate` reports and manifest.json records).
 #include <vector>
 
 #include <glm/glm.hpp>
 
-#include "pbrkit/ibl/bake.h"
 #include "pbrkit/ibl/cubemap.h"
+#include "pbrkit/ibl/roughness_mapping.h"
 #include "pbrkit/image/environment.h"
 
 namespace pbrkit {
@@ -28,15 +29,16 @@ class PrefilterReference {
 
 /// Error of one specular level against the reference.
 struct PrefilterError {
-  int level = 0;
-  float roughness = 0.0f;
-  int directions = 0;
+  int level = 0;               ///< specular mip level (>= 1)
+  float roughness = 0.0f;      ///< the roughness it was prefiltered for
+  int directions = 0;          ///< texels compared
   double mean_relative = 0.0;  ///< mean over directions of sum|P - ref| / sum ref (RGB)
-  double max_relative = 0.0;
+  double max_relative = 0.0;   ///< the largest of those
 };
 
-/// Compares `specular` (texel values, no interpolation) with the reference at
-/// `per_face` texel centres on each face of every level >= 1.
+/// Compares `specular` (texel values, no interpolation), baked from `env` with `mapping`,
+/// with the reference at `per_face` texel centres on each face of every level >= 1; one
+/// entry per level.
 std::vector<PrefilterError> validate_prefilter(const Environment& env, const Cubemap& specular,
                                                RoughnessMapping mapping, int per_face = 4);
 

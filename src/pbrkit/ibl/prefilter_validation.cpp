@@ -1,5 +1,5 @@
-// Brute-force prefilter references (see validate.h).
-#include "pbrkit/ibl/validate.h"
+// Brute-force prefilter references (see prefilter_validation.h).
+#include "pbrkit/ibl/prefilter_validation.h"
 
 #include <tbb/parallel_for.h>
 
