@@ -7,7 +7,6 @@
 // orientation, exposure and tone mapping after readback) are the path tracer's.
 #include <memory>
 #include <optional>
-#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -29,11 +28,8 @@ struct Background {
   float blur_lod = 3.0f;  ///< kBlurred: mip of the prefiltered specular cube
   glm::vec3 color{0.0f};  ///< kColor: linear RGB
 };
-/// "env", "blur:<mip>" or "color:<r>,<g>,<b>"; Error naming the option otherwise.
-Background parse_background(std::string_view text);
 
 enum class IrradianceMode { kSH, kCube };
-IrradianceMode parse_irradiance_mode(std::string_view name);  ///< "sh" | "cube"
 
 /// Image-based lighting maps as the baker makes them (ibl/bake.h). The cubes hold the
 /// environment as it was baked, i.e. with `rotation_deg` and `intensity` already applied;

@@ -72,8 +72,7 @@ struct ViewerState {
   int env_choice = 0;
   RenderSettings settings;
   GLint max_samples = 1;  // GL_MAX_SAMPLES of the window's context
-  ToneMapper tone_mapper = ToneMapper::kPbrNeutral;
-  float exposure = 0.0f;
+  DisplaySettings display;
   bool override_metallic = false, override_roughness = false;
   float metallic = 1.0f, roughness = 0.5f;
   Orbit orbit;
@@ -107,7 +106,7 @@ void save_screenshot(const std::string& png, const Image& frame, const ViewerSta
   if (!parent.empty()) std::filesystem::create_directories(parent);
   const std::string exr = std::filesystem::path(png).replace_extension(".exr").string();
   write_exr(exr, rgb_channels(frame), ExrPixelType::kFloat);
-  write_display_png(png, frame, {s.exposure, s.tone_mapper});
+  write_display_png(png, frame, s.display);
   note("wrote {} and {}", png, exr);
 }
 
@@ -137,8 +136,8 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   }
   ImGui::SliderFloat("rotation", &s.settings.env_rotation_deg, -180.0f, 180.0f, "%.0f deg");
   ImGui::SliderFloat("intensity", &s.settings.env_intensity, 0.0f, 4.0f);
-  ImGui::SliderFloat("exposure", &s.exposure, -6.0f, 6.0f, "%.1f EV");
-  int tm = int(s.tone_mapper);
+  ImGui::SliderFloat("exposure", &s.display.exposure_ev, -6.0f, 6.0f, "%.1f EV");
+  int tm = int(s.display.tone_mapper);
   static const std::vector<std::string> names = tone_mapper_names();
   const auto getter = [](void* data, int i, const char** out) {
     *out = static_cast<const std::vector<std::string>*>(data)->at(std::size_t(i)).c_str();
@@ -146,7 +145,7 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   };
   if (ImGui::Combo("tone mapper", &tm, getter, const_cast<std::vector<std::string>*>(&names),
                    int(names.size())))
-    s.tone_mapper = ToneMapper(tm);
+    s.display.tone_mapper = ToneMapper(tm);
   int model = s.settings.brdf.model == BrdfModel::kReference ? 0 : 1;
   const char* models[] = {"reference", "classic"};
   if (ImGui::Combo("model", &model, models, 2))
@@ -209,8 +208,8 @@ void run_viewer(const ViewerOptions& options) {
   {
     ViewerState s;
     s.options = options;
-    s.settings.brdf = {parse_brdf_model(options.model), options.multiscatter};
-    s.settings.background = parse_background(options.background);
+    s.settings.brdf = options.brdf;
+    s.settings.background = options.background;
     s.settings.msaa = options.msaa;
     glGetIntegerv(GL_MAX_SAMPLES, &s.max_samples);
     if (s.settings.msaa <= 0) {
@@ -220,8 +219,7 @@ void run_viewer(const ViewerOptions& options) {
         note("view: MSAA off on {}, a software rasteriser (--msaa 4 or the panel turns it on)",
              gpu);
     }
-    s.tone_mapper = parse_tone_mapper(options.tonemap);
-    s.exposure = options.exposure;
+    s.display = options.display;
     s.env_choices.push_back(options.env);
     // The environments pbrkit ships (data/env/), offered in the panel by name order.
     std::vector<std::string> shipped;
@@ -284,7 +282,7 @@ void run_viewer(const ViewerOptions& options) {
         // PNG outputs' code, held to it by tests/gl/display_glsl_test.cpp); the float
         // frame is read back only for a screenshot.
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        renderer.display(s.exposure, s.tone_mapper);
+        renderer.display(s.display.exposure_ev, s.display.tone_mapper);
         if (screenshot || last_frame) frame = renderer.read_back();
       }
       glBindFramebuffer(GL_FRAMEBUFFER, 0);

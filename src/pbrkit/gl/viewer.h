@@ -7,7 +7,9 @@
 #include <optional>
 #include <string>
 
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/gl/renderer.h"
+#include "pbrkit/image/display.h"
 
 namespace pbrkit::gl {
 
@@ -17,11 +19,9 @@ struct ViewerOptions {
   bool no_env = false;
   std::optional<int> camera;  ///< initial glTF camera
   int width = 1280, height = 720;
-  float exposure = 0.0f;
-  std::string tonemap = "pbr-neutral";
-  std::string model = "reference";
-  bool multiscatter = false;
-  std::string background = "env";
+  DisplaySettings display;  ///< the initial exposure and tone mapper
+  BrdfOptions brdf;         ///< the initial model and multiple-scattering compensation
+  Background background;
   /// MSAA samples; 0: interactive_msaa (4 on a GPU, 1 on a software rasteriser).
   int msaa = 0;
   int bake_size = realtime_bake_options().face_size;
