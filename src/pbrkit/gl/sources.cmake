@@ -19,6 +19,11 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/compute_eval.cpp
   ${_pbrkit_gl_dir}/display_eval.cpp
   ${_pbrkit_gl_dir}/energy_texture.cpp
+  ${_pbrkit_gl_dir}/ibl_maps.cpp
+  ${_pbrkit_gl_dir}/gpu_scene.cpp
+  ${_pbrkit_gl_dir}/shader_permutations.cpp
+  ${_pbrkit_gl_dir}/render_targets.cpp
+  ${_pbrkit_gl_dir}/gpu_timer.cpp
   ${_pbrkit_gl_dir}/renderer.cpp
   ${_pbrkit_gl_dir}/viewer.cpp
   ${_pbrkit_gl_embedded})
