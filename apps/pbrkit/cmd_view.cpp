@@ -1,5 +1,5 @@
 // pbrkit view: the interactive OpenGL viewer (GLFW + Dear ImGui) over the library's
-// gl::run_viewer. --frames/--screenshot automate it for CI (render N frames, save, quit).
+// run_viewer. --frames/--screenshot automate it for CI (render N frames, save, quit).
 #include <memory>
 #include <string>
 
@@ -7,7 +7,7 @@
 #include "gl_options.h"
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
-#include "pbrkit/gl/viewer.h"
+#include "pbrkit/viewer/viewer.h"
 
 namespace pbrkit::cli {
 
@@ -16,15 +16,15 @@ namespace {
 // The options the command line spells as names, parsed into ViewerOptions' typed values
 // once CLI11 has read them. The defaults are the names of ViewerOptions' defaults.
 struct ViewNames {
-  std::string tonemap{tone_mapper_name(gl::ViewerOptions{}.display.tone_mapper)};
-  std::string model{brdf_model_name(gl::ViewerOptions{}.brdf.model)};
+  std::string tonemap{tone_mapper_name(ViewerOptions{}.display.tone_mapper)};
+  std::string model{brdf_model_name(ViewerOptions{}.brdf.model)};
   std::string background = "env";
 };
 
 }  // namespace
 
 void register_view_command(CLI::App& app) {
-  auto o = std::make_shared<gl::ViewerOptions>();
+  auto o = std::make_shared<ViewerOptions>();
   auto names = std::make_shared<ViewNames>();
   auto* cmd = app.add_subcommand(
       "view",
@@ -65,7 +65,7 @@ void register_view_command(CLI::App& app) {
     o->display.tone_mapper = parse_tone_mapper(names->tonemap);
     o->brdf.model = parse_brdf_model(names->model);
     o->background = parse_background(names->background);
-    gl::run_viewer(*o);
+    run_viewer(*o);
   });
 }
 

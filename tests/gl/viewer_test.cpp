@@ -11,8 +11,8 @@
 
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/renderer.h"
-#include "pbrkit/gl/viewer.h"
 #include "pbrkit/image/image_io.h"
+#include "pbrkit/viewer/viewer.h"
 #include "support/test_paths.h"
 
 namespace {
@@ -66,7 +66,7 @@ TEST(Viewer, InteractiveDefaults) {
   EXPECT_EQ(pbrkit::gl::interactive_msaa("NVIDIA H100 80GB HBM3/PCIe/SSE2"), 4);
   EXPECT_EQ(pbrkit::gl::interactive_msaa("AMD Radeon RX 7900 XTX (radeonsi, navi31, LLVM 15.0.6)"),
             4);
-  const pbrkit::gl::ViewerOptions options;
+  const pbrkit::ViewerOptions options;
   EXPECT_EQ(options.msaa, 0);  // 0: chosen from the context
   const pbrkit::BakeOptions bake = pbrkit::gl::realtime_bake_options();
   EXPECT_EQ(options.bake_size, bake.face_size);

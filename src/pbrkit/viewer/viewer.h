@@ -11,7 +11,7 @@
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/image/display.h"
 
-namespace pbrkit::gl {
+namespace pbrkit {
 
 struct ViewerOptions {
   std::string scene = "spheres";  ///< .gltf/.glb or a built-in scene name
@@ -21,11 +21,11 @@ struct ViewerOptions {
   int width = 1280, height = 720;
   DisplaySettings display;  ///< the initial exposure and tone mapper
   BrdfOptions brdf;         ///< the initial model and multiple-scattering compensation
-  Background background;
+  gl::Background background;
   /// MSAA samples; 0: interactive_msaa (4 on a GPU, 1 on a software rasteriser).
   int msaa = 0;
-  int bake_size = realtime_bake_options().face_size;
-  int bake_samples = realtime_bake_options().samples;
+  int bake_size = gl::realtime_bake_options().face_size;
+  int bake_samples = gl::realtime_bake_options().samples;
   /// Automation (CI): render this many frames, save `screenshot`, quit (0: interactive).
   int frames = 0;
   std::string screenshot;  ///< PNG path (the EXR goes beside it); also the F12 target
@@ -35,4 +35,4 @@ struct ViewerOptions {
 /// no window can be opened (e.g. no X display: run under xvfb-run).
 void run_viewer(const ViewerOptions& options);
 
-}  // namespace pbrkit::gl
+}  // namespace pbrkit

@@ -1,4 +1,4 @@
-#include "pbrkit/gl/viewer.h"
+#include "pbrkit/viewer/viewer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,7 +28,7 @@
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 
-namespace pbrkit::gl {
+namespace pbrkit {
 
 namespace {
 
@@ -67,10 +67,10 @@ struct ViewerState {
   ViewerOptions options;
   Scene scene;
   std::optional<Environment> env;
-  std::optional<IblMaps> ibl;
+  std::optional<gl::IblMaps> ibl;
   std::vector<std::string> env_choices;  // "" = the built-in default
   int env_choice = 0;
-  RenderSettings settings;
+  gl::RenderSettings settings;
   GLint max_samples = 1;  // GL_MAX_SAMPLES of the window's context
   DisplaySettings display;
   bool override_metallic = false, override_roughness = false;
@@ -78,19 +78,19 @@ struct ViewerState {
   Orbit orbit;
 };
 
-void load_environment(ViewerState& s, Renderer& renderer) {
+void load_environment(ViewerState& s, gl::Renderer& renderer) {
   s.env.reset();
   s.ibl.reset();
   if (!s.options.no_env) {
     s.env = load_environment_or_default(s.env_choices[std::size_t(s.env_choice)], 0.0f, 1.0f);
-    const BakeOptions bake = realtime_bake_options(s.options.bake_size, s.options.bake_samples);
-    s.ibl = ibl_maps_from_bake(bake_environment(*s.env, bake), *s.env);
+    const BakeOptions bake = gl::realtime_bake_options(s.options.bake_size, s.options.bake_samples);
+    s.ibl = gl::ibl_maps_from_bake(bake_environment(*s.env, bake), *s.env);
   }
   renderer.set_environment(s.env ? &*s.env : nullptr);
   renderer.set_ibl(s.ibl ? &*s.ibl : nullptr);
 }
 
-void load_scene_into(ViewerState& s, Renderer& renderer, bool reset_camera) {
+void load_scene_into(ViewerState& s, gl::Renderer& renderer, bool reset_camera) {
   s.scene = load_scene(s.options.scene);
   renderer.set_scene(s.scene);
   s.settings.light_enabled.assign(s.scene.lights.size(), true);
@@ -110,7 +110,7 @@ void save_screenshot(const std::string& png, const Image& frame, const ViewerSta
   note("wrote {} and {}", png, exr);
 }
 
-void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms) {
+void draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gpu_ms) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("pbrkit view");
@@ -161,7 +161,7 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   int irradiance = int(s.settings.irradiance);
   const char* irradiance_modes[] = {"SH9", "cube"};
   if (ImGui::Combo("irradiance", &irradiance, irradiance_modes, 2))
-    s.settings.irradiance = IrradianceMode(irradiance);
+    s.settings.irradiance = gl::IrradianceMode(irradiance);
   for (std::size_t i = 0; i < s.scene.lights.size() && i < 16; ++i) {
     bool on = s.settings.light_enabled[i];
     const std::string label = "light " + std::to_string(i) + " " + s.scene.lights[i].name;
@@ -213,8 +213,8 @@ void run_viewer(const ViewerOptions& options) {
     s.settings.msaa = options.msaa;
     glGetIntegerv(GL_MAX_SAMPLES, &s.max_samples);
     if (s.settings.msaa <= 0) {
-      const std::string gpu = current_renderer();
-      s.settings.msaa = interactive_msaa(gpu);
+      const std::string gpu = gl::current_renderer();
+      s.settings.msaa = gl::interactive_msaa(gpu);
       if (s.settings.msaa == 1)
         note("view: MSAA off on {}, a software rasteriser (--msaa 4 or the panel turns it on)",
              gpu);
@@ -227,7 +227,7 @@ void run_viewer(const ViewerOptions& options) {
       if (entry.path().extension() == ".exr") shipped.push_back(entry.path().string());
     std::sort(shipped.begin(), shipped.end());
     s.env_choices.insert(s.env_choices.end(), shipped.begin(), shipped.end());
-    Renderer renderer;
+    gl::Renderer renderer;
     load_scene_into(s, renderer, true);
     load_environment(s, renderer);
 
@@ -311,4 +311,4 @@ void run_viewer(const ViewerOptions& options) {
   glfwDestroyWindow(window);
 }
 
-}  // namespace pbrkit::gl
+}  // namespace pbrkit
