@@ -34,7 +34,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Orbit camera around `target`: yaw about +Y, pitch above the horizon, distance.
+// Orbit camera around `target`: yaw about +Y, pitch above the horizon, distance. It keeps
+// a vertical field of view only: each frame's projection takes the aspect of the window's
+// framebuffer at that frame (Renderer::render), so a resized window shows more or less of
+// the scene sideways, never a stretched one.
 struct Orbit {
   glm::vec3 target{0.0f};
   float yaw = 0.0f, pitch = 0.35f, distance = 5.0f;
@@ -53,7 +56,7 @@ struct Orbit {
   Camera camera() const {
     Camera c;
     c.name = "viewer";
-    c.yfov = yfov;
+    c.yfov = yfov;  // no aspect_ratio: the framebuffer's, frame by frame
     c.znear = std::max(1e-3f * distance, 1e-4f);
     const glm::vec3 eye =
         target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
@@ -90,15 +93,27 @@ void load_environment(ViewerState& s, gl::Renderer& renderer) {
   renderer.set_ibl(s.ibl ? &*s.ibl : nullptr);
 }
 
-void load_scene_into(ViewerState& s, gl::Renderer& renderer, bool reset_camera) {
+void load_scene_into(ViewerState& s, gl::Renderer& renderer) {
   s.scene = load_scene(s.options.scene);
   renderer.set_scene(s.scene);
   s.settings.light_enabled.assign(s.scene.lights.size(), true);
-  if (reset_camera) {
-    const float aspect = float(s.options.width) / float(s.options.height);
-    s.orbit = Orbit::from_camera(select_camera(s.scene, s.options.camera, aspect),
-                                 s.scene.world_bounds());
-  }
+}
+
+// The window's framebuffer aspect, width / height: what the frames are rendered at, which
+// need not be the size asked for (a window manager may place the window at another size).
+// The size asked for while the window has no area (minimised).
+float framebuffer_aspect(GLFWwindow* window, const ViewerOptions& options) {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window, &width, &height);
+  if (width <= 0 || height <= 0) return float(options.width) / float(options.height);
+  return float(width) / float(height);
+}
+
+// The initial view: the chosen glTF camera's, or the automatic framing, which fits the
+// scene into the narrower of the two fields of view of a frame of `aspect`.
+void reset_orbit(ViewerState& s, float aspect) {
+  s.orbit =
+      Orbit::from_camera(select_camera(s.scene, s.options.camera, aspect), s.scene.world_bounds());
 }
 
 void save_screenshot(const std::string& png, const Image& frame, const ViewerState& s) {
@@ -228,7 +243,8 @@ void run_viewer(const ViewerOptions& options) {
     std::sort(shipped.begin(), shipped.end());
     s.env_choices.insert(s.env_choices.end(), shipped.begin(), shipped.end());
     gl::Renderer renderer;
-    load_scene_into(s, renderer, true);
+    load_scene_into(s, renderer);
+    reset_orbit(s, framebuffer_aspect(window, options));
     load_environment(s, renderer);
 
     double cpu_ms = 0.0, gpu_ms = 0.0;
@@ -262,7 +278,7 @@ void run_viewer(const ViewerOptions& options) {
         if (ImGui::IsKeyPressed(GLFW_KEY_F12) || ImGui::IsKeyPressed(GLFW_KEY_P)) screenshot = true;
         if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
           try {
-            load_scene_into(s, renderer, false);
+            load_scene_into(s, renderer);
           } catch (const Error& e) {
             warn("reload failed: {}", e.what());
           }
@@ -275,6 +291,8 @@ void run_viewer(const ViewerOptions& options) {
       int fb_w = 0, fb_h = 0;
       glfwGetFramebufferSize(window, &fb_w, &fb_h);
       if (fb_w > 0 && fb_h > 0) {
+        // At the framebuffer's size of this frame, so the projection has the window's
+        // aspect, also right after a resize.
         Camera camera = s.orbit.camera();
         renderer.render(camera, fb_w, fb_h, s.settings);
         gpu_ms = renderer.latest_gpu_time_ms();

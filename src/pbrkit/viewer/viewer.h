@@ -18,6 +18,8 @@ struct ViewerOptions {
   std::string env;                ///< empty: the built-in default environment
   bool no_env = false;
   std::optional<int> camera;  ///< initial glTF camera
+  /// The window asked for; every frame is rendered at the framebuffer's size, and the
+  /// projection and the first view's framing take its aspect.
   int width = 1280, height = 720;
   DisplaySettings display;  ///< the initial exposure and tone mapper
   BrdfOptions brdf;         ///< the initial model and multiple-scattering compensation
