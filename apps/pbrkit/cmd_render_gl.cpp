@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "gl_options.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/renderer.h"
@@ -80,9 +81,9 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     settings.brdf = {parse_brdf_model(o.model), o.multiscatter};
     settings.fresnel =
         g->fresnel == "sg" ? gl::FresnelMode::kSphericalGaussian : gl::FresnelMode::kSchlick;
-    settings.irradiance = gl::parse_irradiance_mode(g->irradiance);
+    settings.irradiance = parse_irradiance_mode(g->irradiance);
     settings.msaa = g->msaa;
-    settings.background = gl::parse_background(g->background);
+    settings.background = parse_background(g->background);
     settings.env_rotation_deg = o.env_rotation;
     settings.env_intensity = o.env_intensity;
     settings.ibl = !g->no_ibl;

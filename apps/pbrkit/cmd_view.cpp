@@ -1,15 +1,31 @@
 // pbrkit view: the interactive OpenGL viewer (GLFW + Dear ImGui) over the library's
-// gl::run_viewer. --frames/--screenshot automate it for CI (render N frames, save, quit).
+// run_viewer. --frames/--screenshot automate it for CI (render N frames, save, quit).
 #include <memory>
+#include <string>
 
 #include "commands.h"
+#include "gl_options.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
-#include "pbrkit/gl/viewer.h"
+#include "pbrkit/viewer/viewer.h"
 
 namespace pbrkit::cli {
 
+namespace {
+
+// The options the command line spells as names, parsed into ViewerOptions' typed values
+// once CLI11 has read them. The defaults are the names of ViewerOptions' defaults.
+struct ViewNames {
+  std::string tonemap{tone_mapper_name(ViewerOptions{}.display.tone_mapper)};
+  std::string model{brdf_model_name(ViewerOptions{}.brdf.model)};
+  std::string background = "env";
+};
+
+}  // namespace
+
 void register_view_command(CLI::App& app) {
-  auto o = std::make_shared<gl::ViewerOptions>();
+  auto o = std::make_shared<ViewerOptions>();
+  auto names = std::make_shared<ViewNames>();
   auto* cmd = app.add_subcommand(
       "view",
       "Interactive OpenGL viewer: orbit (drag), pan (right drag), zoom (wheel); a panel for "
@@ -27,15 +43,15 @@ void register_view_command(CLI::App& app) {
   cmd->add_option("--height", o->height, "window height")
       ->check(CLI::Range(64, 8192))
       ->capture_default_str();
-  cmd->add_option("--exposure", o->exposure, "exposure in EV")->capture_default_str();
-  cmd->add_option("--tonemap", o->tonemap, "tone mapper")
+  cmd->add_option("--exposure", o->display.exposure_ev, "exposure in EV")->capture_default_str();
+  cmd->add_option("--tonemap", names->tonemap, "tone mapper")
       ->check(CLI::IsMember(tone_mapper_names()))
       ->capture_default_str();
-  cmd->add_option("--model", o->model, "BRDF model: reference or classic")
+  cmd->add_option("--model", names->model, "BRDF model: reference or classic")
       ->check(CLI::IsMember({"reference", "classic"}))
       ->capture_default_str();
-  cmd->add_flag("--multiscatter", o->multiscatter, "multiple-scattering compensation");
-  cmd->add_option("--background", o->background, "env, blur:<mip> or color:<r>,<g>,<b>")
+  cmd->add_flag("--multiscatter", o->brdf.multiscatter, "multiple-scattering compensation");
+  cmd->add_option("--background", names->background, "env, blur:<mip> or color:<r>,<g>,<b>")
       ->capture_default_str();
   cmd->add_option("--msaa", o->msaa,
                   "MSAA samples (default: 4 on a GPU, 1 on a software rasteriser such as llvmpipe)")
@@ -45,7 +61,12 @@ void register_view_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--screenshot", o->screenshot,
                   "screenshot PNG path (the linear EXR goes beside it); default out/view_<n>.png");
-  cmd->callback([o] { gl::run_viewer(*o); });
+  cmd->callback([o, names] {
+    o->display.tone_mapper = parse_tone_mapper(names->tonemap);
+    o->brdf.model = parse_brdf_model(names->model);
+    o->background = parse_background(names->background);
+    run_viewer(*o);
+  });
 }
 
 }  // namespace pbrkit::cli

@@ -1,8 +1,10 @@
 // `pbrkit view` under a virtual X server (xvfb-run), as CI runs it: start the viewer, render
 // a few frames, take a screenshot, quit; the screenshot must show the lit furnace sphere in
 // the middle (grey-white, shaded) on the chosen solid background colour (red), i.e. the
-// renderer drew into the window's context and the display transform ran. And the
-// viewer's defaults (MSAA by rasteriser, the IBL bake of the headless renderer).
+// renderer drew into the window's context and the display transform ran. The projection
+// and the first view's framing follow the window's aspect. And the viewer's defaults (MSAA
+// by rasteriser, the IBL bake of the headless renderer).
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -11,8 +13,9 @@
 
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/renderer.h"
-#include "pbrkit/gl/viewer.h"
 #include "pbrkit/image/image_io.h"
+#include "pbrkit/scene/load.h"
+#include "pbrkit/viewer/viewer.h"
 #include "support/test_paths.h"
 
 namespace {
@@ -21,22 +24,46 @@ bool have_xvfb_run() {
   return std::system("command -v xvfb-run > /dev/null 2>&1") == 0;
 }
 
-TEST(Viewer, RendersFramesAndScreenshotUnderXvfb) {
-  if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed";
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("pbrkit_view_test_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+// Runs `pbrkit view <scene>` in a `width` x `height` window for a few frames on a red
+// background, without tone mapping; the screenshot (empty if the viewer failed), written
+// with its log into `dir`.
+pbrkit::Image view(const std::string& scene, int width, int height,
+                   const std::filesystem::path& dir) {
   const std::filesystem::path png = dir / "shot.png";
   const std::string command = std::string("xvfb-run -a -s '-screen 0 1280x720x24' ") +
-                              pbrkit::test::cli_path().string() +
-                              " view furnace --width 160 --height 120 --frames 3 --msaa 1"
+                              pbrkit::test::cli_path().string() + " view " + scene + " --width " +
+                              std::to_string(width) + " --height " + std::to_string(height) +
+                              " --frames 3 --msaa 1"
                               " --background color:1,0,0 --tonemap none --screenshot " +
                               png.string() + " > " + (dir / "log.txt").string() + " 2>&1";
-  ASSERT_EQ(std::system(command.c_str()), 0) << "see " << (dir / "log.txt");
-  ASSERT_TRUE(std::filesystem::exists(png));
-  ASSERT_TRUE(std::filesystem::exists(dir / "shot.exr"));
+  EXPECT_EQ(std::system(command.c_str()), 0) << "see " << (dir / "log.txt");
+  EXPECT_TRUE(std::filesystem::exists(dir / "shot.exr"));
+  if (!std::filesystem::exists(png)) return {};
+  return pbrkit::read_image(png);  // decoded to linear
+}
 
-  const pbrkit::Image image = pbrkit::read_image(png);  // decoded to linear
+// The bounding box of the furnace sphere's pixels: those with green (the red background
+// has none).
+struct Extent {
+  int x0, x1, y0, y1;
+  int across() const { return x1 - x0 + 1; }
+  int down() const { return y1 - y0 + 1; }
+};
+Extent sphere_extent(const pbrkit::Image& image) {
+  Extent e{image.width, -1, image.height, -1};
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (image.rgb(x, y).g > 0.05f) {
+        e.x0 = std::min(e.x0, x), e.x1 = std::max(e.x1, x);
+        e.y0 = std::min(e.y0, y), e.y1 = std::max(e.y1, y);
+      }
+  return e;
+}
+
+TEST(Viewer, RendersFramesAndScreenshotUnderXvfb) {
+  if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed";
+  const std::filesystem::path dir = pbrkit::test::scratch_dir();
+  const pbrkit::Image image = view("furnace", 160, 120, dir);
   ASSERT_EQ(image.width, 160);
   ASSERT_EQ(image.height, 120);
   // Background: the solid colour, exactly (tone mapper none).
@@ -56,6 +83,59 @@ TEST(Viewer, RendersFramesAndScreenshotUnderXvfb) {
   std::filesystem::remove_all(dir);
 }
 
+// The window's aspect decides the projection, a glTF camera's aspectRatio does not: the
+// furnace sphere seen through its scene's camera, given aspectRatio 1, in a 2:1 and a 1:2
+// window. A sphere straight ahead projects to a circle, so in the wide window it must be as
+// wide as it is high (to a pixel or two: the silhouette is tessellated); with the camera's
+// aspect it would be stretched to twice its height. The vertical field of view is the
+// camera's in both windows, so the sphere spans the same share of the window's height (and
+// overflows the tall window sideways).
+TEST(Viewer, ProjectsWithTheWindowsAspect) {
+  if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed";
+  pbrkit::Scene scene = pbrkit::builtin_scene("furnace");
+  ASSERT_EQ(scene.cameras.size(), 1u);
+  scene.cameras[0].aspect_ratio = 1.0f;
+  const std::filesystem::path dir = pbrkit::test::scratch_dir();
+  const std::filesystem::path glb = dir / "square_camera.glb";
+  pbrkit::write_glb(scene, glb);
+
+  const pbrkit::Image wide = view(glb.string(), 240, 120, dir);
+  const pbrkit::Image tall = view(glb.string(), 120, 240, dir);
+  ASSERT_EQ(wide.width, 240);
+  ASSERT_EQ(tall.height, 240);
+  const Extent w = sphere_extent(wide), t = sphere_extent(tall);
+  ASSERT_GT(w.down(), 20) << "no sphere";
+  EXPECT_NEAR(w.across(), w.down(), 2);
+  EXPECT_NEAR(0.5 * (w.x0 + w.x1), 119.5, 1.5);
+  EXPECT_NEAR(double(t.down()) / 240.0, double(w.down()) / 120.0, 2.5 / 120.0);
+  EXPECT_NEAR(0.5 * (t.y0 + t.y1), 119.5, 1.5);
+  std::filesystem::remove_all(dir);
+}
+
+// Without a glTF camera the first view is the automatic framing for the window's aspect:
+// in a tall window the narrower field of view is the horizontal one, and the whole sphere
+// must fit across it, round and centred.
+TEST(Viewer, FramesTheSceneForTheWindowsAspect) {
+  if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed";
+  pbrkit::Scene scene = pbrkit::builtin_scene("furnace");
+  scene.cameras.clear();
+  const std::filesystem::path dir = pbrkit::test::scratch_dir();
+  const std::filesystem::path glb = dir / "no_camera.glb";
+  pbrkit::write_glb(scene, glb);
+
+  const pbrkit::Image tall = view(glb.string(), 120, 240, dir);
+  ASSERT_EQ(tall.width, 120);
+  const Extent e = sphere_extent(tall);
+  // At least a third of the width: framed, not a speck.
+  ASSERT_GT(e.across(), 40) << "no sphere";
+  EXPECT_NEAR(e.across(), e.down(), 2);
+  EXPECT_GT(e.x0, 0);
+  EXPECT_LT(e.x1, 119);
+  EXPECT_NEAR(0.5 * (e.x0 + e.x1), 59.5, 1.5);
+  EXPECT_NEAR(0.5 * (e.y0 + e.y1), 119.5, 1.5);
+  std::filesystem::remove_all(dir);
+}
+
 // The viewer's interactive defaults: no MSAA on software rasterisers (4x MSAA costs about
 // 2.5x the frame on llvmpipe), 4x on GPUs; and the IBL bake of `pbrkit render --renderer
 // gl`, so the viewer shows what a headless render writes.
@@ -66,7 +146,7 @@ TEST(Viewer, InteractiveDefaults) {
   EXPECT_EQ(pbrkit::gl::interactive_msaa("NVIDIA H100 80GB HBM3/PCIe/SSE2"), 4);
   EXPECT_EQ(pbrkit::gl::interactive_msaa("AMD Radeon RX 7900 XTX (radeonsi, navi31, LLVM 15.0.6)"),
             4);
-  const pbrkit::gl::ViewerOptions options;
+  const pbrkit::ViewerOptions options;
   EXPECT_EQ(options.msaa, 0);  // 0: chosen from the context
   const pbrkit::BakeOptions bake = pbrkit::gl::realtime_bake_options();
   EXPECT_EQ(options.bake_size, bake.face_size);

@@ -3,7 +3,8 @@
 // platform (EGL_MESA_platform_surfaceless) first, then the EGL device platform
 // (EGL_EXT_platform_device; on a machine with a GPU this picks the GPU's EGL). Rendering
 // goes into the renderer's own framebuffer objects; there is no default framebuffer.
-// The windowed path (GLFW) lives in viewer.cpp; both drive the same Renderer.
+// The windowed path (GLFW) is the viewer (pbrkit/viewer/viewer.cpp, its own library);
+// both drive the same Renderer.
 #include <memory>
 #include <string>
 #include <string_view>

@@ -3,71 +3,24 @@
 // shaders/brdf.glsl (the C++ Brdf's twin), KHR_lights_punctual lights and split-sum IBL
 // from the baker's maps (ibl/bake.h), rendered into a float framebuffer with MSAA and read
 // back as linear RGB. Works in any current GL 4.5 core context: the headless EGL one
-// (context.h) or a GLFW window's (viewer.h). Output conventions (camera, environment
-// orientation, exposure and tone mapping after readback) are the path tracer's.
+// (context.h) or a GLFW window's (pbrkit/viewer/viewer.h). Output conventions (camera,
+// environment orientation, exposure and tone mapping after readback) are the path tracer's.
+//
+// renderer.cpp is the frame: what is drawn in which order with which state. Its parts
+// have files of their own: what a frame shows (render_settings.h), the IBL maps
+// (ibl_maps.h), and, private to the renderer, the scene on the GPU (gpu_scene.h), the
+// shader permutations (shader_permutations.h), the framebuffers (render_targets.h) and
+// the GPU timer (gpu_timer.h).
 #include <memory>
-#include <optional>
-#include <string_view>
-#include <vector>
 
-#include <glm/glm.hpp>
-
-#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
-#include "pbrkit/gl/brdf_eval.h"
-#include "pbrkit/ibl/bake.h"
+#include "pbrkit/gl/ibl_maps.h"
+#include "pbrkit/gl/render_settings.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image.h"
 #include "pbrkit/scene/scene.h"
 
 namespace pbrkit::gl {
-
-/// What is behind the geometry.
-struct Background {
-  enum class Mode { kEnvironment, kBlurred, kColor };
-  Mode mode = Mode::kEnvironment;
-  float blur_lod = 3.0f;  ///< kBlurred: mip of the prefiltered specular cube
-  glm::vec3 color{0.0f};  ///< kColor: linear RGB
-};
-/// "env", "blur:<mip>" or "color:<r>,<g>,<b>"; Error naming the option otherwise.
-Background parse_background(std::string_view text);
-
-enum class IrradianceMode { kSH, kCube };
-IrradianceMode parse_irradiance_mode(std::string_view name);  ///< "sh" | "cube"
-
-/// Image-based lighting maps as the baker makes them (ibl/bake.h). The cubes hold the
-/// environment as it was baked, i.e. with `rotation_deg` and `intensity` already applied;
-/// the renderer applies only the difference to the current settings.
-struct IblMaps {
-  Cubemap specular;
-  Cubemap irradiance;
-  SH9 sh{};
-  float rotation_deg = 0.0f;
-  float intensity = 1.0f;
-};
-/// IblMaps from a bake of `env` (its rotation and intensity are baked in).
-IblMaps ibl_maps_from_bake(BakeResult bake, const Environment& env);
-/// The bake the real-time renderer makes on the fly from an environment (`pbrkit render
-/// --renderer gl`, `pbrkit view`): `face_size` px specular faces down to 8 px, `samples`
-/// GGX samples, a 16 px irradiance cube and a 32 px LUT, and a quadrature budget of 2^30
-/// (the rough levels exact, the roughness-0.25 one sampled) so that it takes well under a
-/// second on two cores.
-BakeOptions realtime_bake_options(int face_size = 128, int samples = 256);
-
-struct RenderSettings {
-  BrdfOptions brdf;  ///< model (reference | classic) and multiscatter
-  FresnelMode fresnel = FresnelMode::kSchlick;
-  bool ibl = true;  ///< image-based lighting on (when maps are set)
-  IrradianceMode irradiance = IrradianceMode::kSH;
-  bool lights = true;               ///< punctual lights on
-  std::vector<bool> light_enabled;  ///< per light; missing entries are on
-  int msaa = 4;                     ///< samples per pixel (1 = off)
-  Background background;
-  float env_rotation_deg = 0.0f;
-  float env_intensity = 1.0f;
-  float metallic_override = -1.0f;   ///< >= 0 replaces every material's metallic
-  float roughness_override = -1.0f;  ///< >= 0 replaces every material's roughness
-};
 
 class Renderer {
  public:

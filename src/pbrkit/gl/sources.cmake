@@ -1,4 +1,5 @@
-# The OpenGL renderer (headless through EGL, windowed through GLFW). Its shaders are the
+# The OpenGL renderer (headless through EGL, or in any current context such as the
+# viewer's window: src/pbrkit/viewer). Its shaders are the
 # .glsl files in shaders/, embedded into the library at build time by embed_shaders.cmake
 # (one generated .cpp holding every file's bytes), so the binary needs no data files.
 set(_pbrkit_gl_dir ${CMAKE_CURRENT_SOURCE_DIR}/pbrkit/gl)
@@ -19,6 +20,10 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/compute_eval.cpp
   ${_pbrkit_gl_dir}/display_eval.cpp
   ${_pbrkit_gl_dir}/energy_texture.cpp
+  ${_pbrkit_gl_dir}/ibl_maps.cpp
+  ${_pbrkit_gl_dir}/gpu_scene.cpp
+  ${_pbrkit_gl_dir}/shader_permutations.cpp
+  ${_pbrkit_gl_dir}/render_targets.cpp
+  ${_pbrkit_gl_dir}/gpu_timer.cpp
   ${_pbrkit_gl_dir}/renderer.cpp
-  ${_pbrkit_gl_dir}/viewer.cpp
   ${_pbrkit_gl_embedded})

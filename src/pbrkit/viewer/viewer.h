@@ -7,25 +7,27 @@
 #include <optional>
 #include <string>
 
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/gl/renderer.h"
+#include "pbrkit/image/display.h"
 
-namespace pbrkit::gl {
+namespace pbrkit {
 
 struct ViewerOptions {
   std::string scene = "spheres";  ///< .gltf/.glb or a built-in scene name
   std::string env;                ///< empty: the built-in default environment
   bool no_env = false;
   std::optional<int> camera;  ///< initial glTF camera
+  /// The window asked for; every frame is rendered at the framebuffer's size, and the
+  /// projection and the first view's framing take its aspect.
   int width = 1280, height = 720;
-  float exposure = 0.0f;
-  std::string tonemap = "pbr-neutral";
-  std::string model = "reference";
-  bool multiscatter = false;
-  std::string background = "env";
+  DisplaySettings display;  ///< the initial exposure and tone mapper
+  BrdfOptions brdf;         ///< the initial model and multiple-scattering compensation
+  gl::Background background;
   /// MSAA samples; 0: interactive_msaa (4 on a GPU, 1 on a software rasteriser).
   int msaa = 0;
-  int bake_size = realtime_bake_options().face_size;
-  int bake_samples = realtime_bake_options().samples;
+  int bake_size = gl::realtime_bake_options().face_size;
+  int bake_samples = gl::realtime_bake_options().samples;
   /// Automation (CI): render this many frames, save `screenshot`, quit (0: interactive).
   int frames = 0;
   std::string screenshot;  ///< PNG path (the EXR goes beside it); also the F12 target
@@ -35,4 +37,4 @@ struct ViewerOptions {
 /// no window can be opened (e.g. no X display: run under xvfb-run).
 void run_viewer(const ViewerOptions& options);
 
-}  // namespace pbrkit::gl
+}  // namespace pbrkit

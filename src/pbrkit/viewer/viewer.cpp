@@ -1,4 +1,4 @@
-#include "pbrkit/gl/viewer.h"
+#include "pbrkit/viewer/viewer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,13 +28,16 @@
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 
-namespace pbrkit::gl {
+namespace pbrkit {
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Orbit camera around `target`: yaw about +Y, pitch above the horizon, distance.
+// Orbit camera around `target`: yaw about +Y, pitch above the horizon, distance. It keeps
+// a vertical field of view only: each frame's projection takes the aspect of the window's
+// framebuffer at that frame (Renderer::render), so a resized window shows more or less of
+// the scene sideways, never a stretched one.
 struct Orbit {
   glm::vec3 target{0.0f};
   float yaw = 0.0f, pitch = 0.35f, distance = 5.0f;
@@ -53,7 +56,7 @@ struct Orbit {
   Camera camera() const {
     Camera c;
     c.name = "viewer";
-    c.yfov = yfov;
+    c.yfov = yfov;  // no aspect_ratio: the framebuffer's, frame by frame
     c.znear = std::max(1e-3f * distance, 1e-4f);
     const glm::vec3 eye =
         target + distance * glm::vec3(std::cos(pitch) * std::sin(yaw), std::sin(pitch),
@@ -67,39 +70,50 @@ struct ViewerState {
   ViewerOptions options;
   Scene scene;
   std::optional<Environment> env;
-  std::optional<IblMaps> ibl;
+  std::optional<gl::IblMaps> ibl;
   std::vector<std::string> env_choices;  // "" = the built-in default
   int env_choice = 0;
-  RenderSettings settings;
+  gl::RenderSettings settings;
   GLint max_samples = 1;  // GL_MAX_SAMPLES of the window's context
-  ToneMapper tone_mapper = ToneMapper::kPbrNeutral;
-  float exposure = 0.0f;
+  DisplaySettings display;
   bool override_metallic = false, override_roughness = false;
   float metallic = 1.0f, roughness = 0.5f;
   Orbit orbit;
 };
 
-void load_environment(ViewerState& s, Renderer& renderer) {
+void load_environment(ViewerState& s, gl::Renderer& renderer) {
   s.env.reset();
   s.ibl.reset();
   if (!s.options.no_env) {
     s.env = load_environment_or_default(s.env_choices[std::size_t(s.env_choice)], 0.0f, 1.0f);
-    const BakeOptions bake = realtime_bake_options(s.options.bake_size, s.options.bake_samples);
-    s.ibl = ibl_maps_from_bake(bake_environment(*s.env, bake), *s.env);
+    const BakeOptions bake = gl::realtime_bake_options(s.options.bake_size, s.options.bake_samples);
+    s.ibl = gl::ibl_maps_from_bake(bake_environment(*s.env, bake), *s.env);
   }
   renderer.set_environment(s.env ? &*s.env : nullptr);
   renderer.set_ibl(s.ibl ? &*s.ibl : nullptr);
 }
 
-void load_scene_into(ViewerState& s, Renderer& renderer, bool reset_camera) {
+void load_scene_into(ViewerState& s, gl::Renderer& renderer) {
   s.scene = load_scene(s.options.scene);
   renderer.set_scene(s.scene);
   s.settings.light_enabled.assign(s.scene.lights.size(), true);
-  if (reset_camera) {
-    const float aspect = float(s.options.width) / float(s.options.height);
-    s.orbit = Orbit::from_camera(select_camera(s.scene, s.options.camera, aspect),
-                                 s.scene.world_bounds());
-  }
+}
+
+// The window's framebuffer aspect, width / height: what the frames are rendered at, which
+// need not be the size asked for (a window manager may place the window at another size).
+// The size asked for while the window has no area (minimised).
+float framebuffer_aspect(GLFWwindow* window, const ViewerOptions& options) {
+  int width = 0, height = 0;
+  glfwGetFramebufferSize(window, &width, &height);
+  if (width <= 0 || height <= 0) return float(options.width) / float(options.height);
+  return float(width) / float(height);
+}
+
+// The initial view: the chosen glTF camera's, or the automatic framing, which fits the
+// scene into the narrower of the two fields of view of a frame of `aspect`.
+void reset_orbit(ViewerState& s, float aspect) {
+  s.orbit =
+      Orbit::from_camera(select_camera(s.scene, s.options.camera, aspect), s.scene.world_bounds());
 }
 
 void save_screenshot(const std::string& png, const Image& frame, const ViewerState& s) {
@@ -107,11 +121,11 @@ void save_screenshot(const std::string& png, const Image& frame, const ViewerSta
   if (!parent.empty()) std::filesystem::create_directories(parent);
   const std::string exr = std::filesystem::path(png).replace_extension(".exr").string();
   write_exr(exr, rgb_channels(frame), ExrPixelType::kFloat);
-  write_display_png(png, frame, {s.exposure, s.tone_mapper});
+  write_display_png(png, frame, s.display);
   note("wrote {} and {}", png, exr);
 }
 
-void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms) {
+void draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gpu_ms) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("pbrkit view");
@@ -137,8 +151,8 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   }
   ImGui::SliderFloat("rotation", &s.settings.env_rotation_deg, -180.0f, 180.0f, "%.0f deg");
   ImGui::SliderFloat("intensity", &s.settings.env_intensity, 0.0f, 4.0f);
-  ImGui::SliderFloat("exposure", &s.exposure, -6.0f, 6.0f, "%.1f EV");
-  int tm = int(s.tone_mapper);
+  ImGui::SliderFloat("exposure", &s.display.exposure_ev, -6.0f, 6.0f, "%.1f EV");
+  int tm = int(s.display.tone_mapper);
   static const std::vector<std::string> names = tone_mapper_names();
   const auto getter = [](void* data, int i, const char** out) {
     *out = static_cast<const std::vector<std::string>*>(data)->at(std::size_t(i)).c_str();
@@ -146,7 +160,7 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   };
   if (ImGui::Combo("tone mapper", &tm, getter, const_cast<std::vector<std::string>*>(&names),
                    int(names.size())))
-    s.tone_mapper = ToneMapper(tm);
+    s.display.tone_mapper = ToneMapper(tm);
   int model = s.settings.brdf.model == BrdfModel::kReference ? 0 : 1;
   const char* models[] = {"reference", "classic"};
   if (ImGui::Combo("model", &model, models, 2))
@@ -162,7 +176,7 @@ void draw_panel(ViewerState& s, Renderer& renderer, double cpu_ms, double gpu_ms
   int irradiance = int(s.settings.irradiance);
   const char* irradiance_modes[] = {"SH9", "cube"};
   if (ImGui::Combo("irradiance", &irradiance, irradiance_modes, 2))
-    s.settings.irradiance = IrradianceMode(irradiance);
+    s.settings.irradiance = gl::IrradianceMode(irradiance);
   for (std::size_t i = 0; i < s.scene.lights.size() && i < 16; ++i) {
     bool on = s.settings.light_enabled[i];
     const std::string label = "light " + std::to_string(i) + " " + s.scene.lights[i].name;
@@ -209,19 +223,18 @@ void run_viewer(const ViewerOptions& options) {
   {
     ViewerState s;
     s.options = options;
-    s.settings.brdf = {parse_brdf_model(options.model), options.multiscatter};
-    s.settings.background = parse_background(options.background);
+    s.settings.brdf = options.brdf;
+    s.settings.background = options.background;
     s.settings.msaa = options.msaa;
     glGetIntegerv(GL_MAX_SAMPLES, &s.max_samples);
     if (s.settings.msaa <= 0) {
-      const std::string gpu = current_renderer();
-      s.settings.msaa = interactive_msaa(gpu);
+      const std::string gpu = gl::current_renderer();
+      s.settings.msaa = gl::interactive_msaa(gpu);
       if (s.settings.msaa == 1)
         note("view: MSAA off on {}, a software rasteriser (--msaa 4 or the panel turns it on)",
              gpu);
     }
-    s.tone_mapper = parse_tone_mapper(options.tonemap);
-    s.exposure = options.exposure;
+    s.display = options.display;
     s.env_choices.push_back(options.env);
     // The environments pbrkit ships (data/env/), offered in the panel by name order.
     std::vector<std::string> shipped;
@@ -229,8 +242,9 @@ void run_viewer(const ViewerOptions& options) {
       if (entry.path().extension() == ".exr") shipped.push_back(entry.path().string());
     std::sort(shipped.begin(), shipped.end());
     s.env_choices.insert(s.env_choices.end(), shipped.begin(), shipped.end());
-    Renderer renderer;
-    load_scene_into(s, renderer, true);
+    gl::Renderer renderer;
+    load_scene_into(s, renderer);
+    reset_orbit(s, framebuffer_aspect(window, options));
     load_environment(s, renderer);
 
     double cpu_ms = 0.0, gpu_ms = 0.0;
@@ -264,7 +278,7 @@ void run_viewer(const ViewerOptions& options) {
         if (ImGui::IsKeyPressed(GLFW_KEY_F12) || ImGui::IsKeyPressed(GLFW_KEY_P)) screenshot = true;
         if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
           try {
-            load_scene_into(s, renderer, false);
+            load_scene_into(s, renderer);
           } catch (const Error& e) {
             warn("reload failed: {}", e.what());
           }
@@ -277,6 +291,8 @@ void run_viewer(const ViewerOptions& options) {
       int fb_w = 0, fb_h = 0;
       glfwGetFramebufferSize(window, &fb_w, &fb_h);
       if (fb_w > 0 && fb_h > 0) {
+        // At the framebuffer's size of this frame, so the projection has the window's
+        // aspect, also right after a resize.
         Camera camera = s.orbit.camera();
         renderer.render(camera, fb_w, fb_h, s.settings);
         gpu_ms = renderer.latest_gpu_time_ms();
@@ -284,7 +300,7 @@ void run_viewer(const ViewerOptions& options) {
         // PNG outputs' code, held to it by tests/gl/display_glsl_test.cpp); the float
         // frame is read back only for a screenshot.
         glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        renderer.display(s.exposure, s.tone_mapper);
+        renderer.display(s.display.exposure_ev, s.display.tone_mapper);
         if (screenshot || last_frame) frame = renderer.read_back();
       }
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -313,4 +329,4 @@ void run_viewer(const ViewerOptions& options) {
   glfwDestroyWindow(window);
 }
 
-}  // namespace pbrkit::gl
+}  // namespace pbrkit

@@ -1,0 +1,190 @@
+#include "pbrkit/gl/gpu_scene.h"
+
+#include <cstdint>
+
+namespace pbrkit::gl {
+
+namespace {
+
+GLenum pixel_format(int channels) {
+  switch (channels) {
+    case 1:
+      return GL_RED;
+    case 2:
+      return GL_RG;
+    case 3:
+      return GL_RGB;
+    default:
+      return GL_RGBA;
+  }
+}
+
+GLint wrap_mode(WrapMode w) {
+  switch (w) {
+    case WrapMode::kClampToEdge:
+      return GL_CLAMP_TO_EDGE;
+    case WrapMode::kMirroredRepeat:
+      return GL_MIRRORED_REPEAT;
+    case WrapMode::kRepeat:
+      break;
+  }
+  return GL_REPEAT;
+}
+
+// One cube texture with every level of `cube` (RGB float), or a 1x1 black one.
+GLuint upload_cube(const Cubemap* cube) {
+  GLuint tex = 0;
+  glCreateTextures(GL_TEXTURE_CUBE_MAP, 1, &tex);
+  if (!cube || cube->mips.empty()) {
+    glTextureStorage2D(tex, 1, GL_RGBA32F, 1, 1);
+    const float black[4] = {0, 0, 0, 1};
+    for (int face = 0; face < 6; ++face)
+      glTextureSubImage3D(tex, 0, 0, 0, face, 1, 1, 1, GL_RGBA, GL_FLOAT, black);
+  } else {
+    const int levels = cube->levels();
+    glTextureStorage2D(tex, levels, GL_RGBA32F, cube->size(0), cube->size(0));
+    for (int level = 0; level < levels; ++level)
+      for (int face = 0; face < 6; ++face) {
+        // The baker's faces are in the GL convention: mips[level][face] uploads as-is to
+        // GL_TEXTURE_CUBE_MAP_POSITIVE_X + face (layer `face` with DSA).
+        const Image& img = cube->mips[std::size_t(level)][std::size_t(face)];
+        glTextureSubImage3D(tex, level, 0, 0, face, img.width, img.height, 1,
+                            pixel_format(img.channels), GL_FLOAT, img.data.data());
+      }
+  }
+  glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(tex, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return tex;
+}
+
+}  // namespace
+
+void GpuScene::upload(const Scene& scene) {
+  release();
+  for (const Mesh& mesh : scene.meshes) {
+    GpuMesh g;
+    glCreateVertexArrays(1, &g.vao);
+    glCreateBuffers(GLsizei(g.buffers.size()), g.buffers.data());
+    auto attribute = [&](GLuint index, const void* data, std::size_t count, int components) {
+      if (count == 0) return;
+      glNamedBufferStorage(g.buffers[index], GLsizeiptr(count * components * sizeof(float)), data,
+                           0);
+      glVertexArrayVertexBuffer(g.vao, index, g.buffers[index], 0,
+                                GLsizei(components * sizeof(float)));
+      glVertexArrayAttribFormat(g.vao, index, components, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribBinding(g.vao, index, index);
+      glEnableVertexArrayAttrib(g.vao, index);
+    };
+    attribute(0, mesh.positions.data(), mesh.positions.size(), 3);
+    attribute(1, mesh.normals.data(), mesh.normals.size(), 3);
+    attribute(2, mesh.tangents.data(), mesh.tangents.size(), 4);
+    attribute(3, mesh.texcoords0.data(), mesh.texcoords0.size(), 2);
+    attribute(4, mesh.texcoords1.data(), mesh.texcoords1.size(), 2);
+    attribute(5, mesh.colors0.data(), mesh.colors0.size(), 4);
+    g.has_colors = !mesh.colors0.empty();
+    g.material = mesh.material;
+    const AlphaMode mode = scene.material_of(mesh).alpha_mode;
+    g.alpha_mode = !has_alpha(scene, mesh) ? 0 : mode == AlphaMode::kMask ? 1 : 2;
+    glNamedBufferStorage(g.buffers[6], GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                         mesh.indices.empty() ? nullptr : mesh.indices.data(), 0);
+    glVertexArrayElementBuffer(g.vao, g.buffers[6]);
+    g.index_count = GLsizei(mesh.indices.size());
+    Bounds b;
+    for (const glm::vec3& p : mesh.positions) b.extend(p);
+    g.center = b.empty() ? glm::vec3(0.0f) : b.center();
+    meshes.push_back(g);
+  }
+  for (const Texture& t : scene.textures) {
+    GLuint tex = 0;
+    glCreateTextures(GL_TEXTURE_2D, 1, &tex);
+    if (t.mips.empty()) {
+      glTextureStorage2D(tex, 1, GL_RGBA32F, 1, 1);
+      const float white[4] = {1, 1, 1, 1};
+      glTextureSubImage2D(tex, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, white);
+    } else {
+      glTextureStorage2D(tex, GLsizei(t.mips.size()), GL_RGBA32F, t.width(), t.height());
+      for (std::size_t level = 0; level < t.mips.size(); ++level) {
+        const Image& img = t.mips[level];
+        glTextureSubImage2D(tex, GLint(level), 0, 0, img.width, img.height,
+                            pixel_format(img.channels), GL_FLOAT, img.data.data());
+      }
+    }
+    const bool mip = t.sampler.min_mipmap && t.mips.size() > 1;
+    const bool lin = t.sampler.min == FilterMode::kLinear;
+    glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER,
+                        mip ? (lin ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR)
+                            : (lin ? GL_LINEAR : GL_NEAREST));
+    glTextureParameteri(tex, GL_TEXTURE_MAG_FILTER,
+                        t.sampler.mag == FilterMode::kLinear ? GL_LINEAR : GL_NEAREST);
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_S, wrap_mode(t.sampler.wrap_s));
+    glTextureParameteri(tex, GL_TEXTURE_WRAP_T, wrap_mode(t.sampler.wrap_t));
+    textures.push_back(tex);
+  }
+  materials = scene.materials;
+  instances = scene.instances;
+  lights = scene.lights;
+}
+
+void GpuScene::release() {
+  for (GpuMesh& m : meshes) {
+    glDeleteVertexArrays(1, &m.vao);
+    glDeleteBuffers(GLsizei(m.buffers.size()), m.buffers.data());
+  }
+  meshes.clear();
+  if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
+  textures.clear();
+}
+
+const Material& GpuScene::material_of(const GpuMesh& mesh) const {
+  return mesh.material >= 0 && std::size_t(mesh.material) < materials.size()
+             ? materials[std::size_t(mesh.material)]
+             : Scene::default_material();
+}
+
+GpuEnvironment::GpuEnvironment() {
+  specular_cube = upload_cube(nullptr);
+  irradiance_cube = upload_cube(nullptr);
+}
+
+GpuEnvironment::~GpuEnvironment() {
+  glDeleteTextures(1, &specular_cube);
+  glDeleteTextures(1, &irradiance_cube);
+  if (env_texture) glDeleteTextures(1, &env_texture);
+}
+
+void GpuEnvironment::set_environment(const Environment* env) {
+  if (env_texture) glDeleteTextures(1, &env_texture);
+  env_texture = 0;
+  has_env = env && !env->map.empty();
+  if (!has_env) return;
+  glCreateTextures(GL_TEXTURE_2D, 1, &env_texture);
+  glTextureStorage2D(env_texture, 1, GL_RGBA32F, env->map.width, env->map.height);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(env_texture, 0, 0, 0, env->map.width, env->map.height,
+                      pixel_format(env->map.channels), GL_FLOAT, env->map.data.data());
+  // Bilinear, u wraps (the seam at u = 0 / 1), v clamps at the poles: Environment::eval.
+  glTextureParameteri(env_texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(env_texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(env_texture, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(env_texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  env_rotation = env->rotation_deg;
+  env_intensity = env->intensity;
+}
+
+void GpuEnvironment::set_ibl(const IblMaps* maps) {
+  glDeleteTextures(1, &specular_cube);
+  glDeleteTextures(1, &irradiance_cube);
+  has_ibl = maps != nullptr && !maps->specular.mips.empty();
+  specular_cube = upload_cube(has_ibl ? &maps->specular : nullptr);
+  irradiance_cube = upload_cube(has_ibl ? &maps->irradiance : nullptr);
+  specular_levels = has_ibl ? maps->specular.levels() : 1;
+  if (has_ibl) {
+    ibl_params.sh = maps->sh;
+    ibl_params.rotation_deg = maps->rotation_deg;
+    ibl_params.intensity = maps->intensity;
+  }
+}
+
+}  // namespace pbrkit::gl

@@ -1,0 +1,74 @@
+#pragma once
+// Private to the OpenGL renderer (renderer.cpp): the scene on the GPU. Meshes become vertex
+// arrays over one buffer per attribute plus an index buffer, glTF textures become float
+// textures with the glTF sampler's filters and wraps, and the environment becomes its
+// equirect texture and the IBL cubes; materials, instances and lights stay on the CPU,
+// where the frame reads them to set uniforms.
+#include <array>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <glm/glm.hpp>
+
+#include "pbrkit/gl/ibl_maps.h"
+#include "pbrkit/image/environment.h"
+#include "pbrkit/scene/scene.h"
+
+namespace pbrkit::gl {
+
+struct GpuMesh {
+  GLuint vao = 0;
+  std::array<GLuint, 7> buffers{};  // 6 attributes + indices
+  GLsizei index_count = 0;
+  bool has_colors = false;
+  int material = -1;
+  /// The material's alphaMode as drawn: 0 opaque, 1 mask, 2 blend; BLEND without any
+  /// alpha below 1 is drawn opaque (scene.h has_alpha).
+  int alpha_mode = 0;
+  glm::vec3 center{0.0f};
+};
+
+/// A Scene's meshes and textures on the GPU, with the materials, instances and lights
+/// that index them. Needs the current GL context for its whole life.
+struct GpuScene {
+  std::vector<GpuMesh> meshes;
+  std::vector<GLuint> textures;
+  std::vector<Material> materials;
+  std::vector<Instance> instances;
+  std::vector<Light> lights;
+
+  GpuScene() = default;
+  ~GpuScene() { release(); }
+  GpuScene(const GpuScene&) = delete;
+  GpuScene& operator=(const GpuScene&) = delete;
+
+  /// Uploads `scene`, replacing what was there.
+  void upload(const Scene& scene);
+  void release();
+  /// The mesh's material, or the glTF default material when it has none.
+  const Material& material_of(const GpuMesh& mesh) const;
+};
+
+/// The environment's textures: the sharp equirect map (the background) and the IBL cubes
+/// (1x1 black ones until maps are set), with the rotation and intensity each was made with.
+struct GpuEnvironment {
+  GLuint env_texture = 0;
+  float env_rotation = 0.0f, env_intensity = 1.0f;
+  bool has_env = false;
+  GLuint specular_cube = 0, irradiance_cube = 0;
+  int specular_levels = 1;
+  bool has_ibl = false;
+  IblMaps ibl_params;  // rotation, intensity and SH (cubes are on the GPU)
+
+  GpuEnvironment();
+  ~GpuEnvironment();
+  GpuEnvironment(const GpuEnvironment&) = delete;
+  GpuEnvironment& operator=(const GpuEnvironment&) = delete;
+
+  /// The equirect map of `env` (nullptr: none).
+  void set_environment(const Environment* env);
+  /// The cubes and SH of `maps` (nullptr: none).
+  void set_ibl(const IblMaps* maps);
+};
+
+}  // namespace pbrkit::gl

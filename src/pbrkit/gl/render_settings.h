@@ -1,0 +1,40 @@
+#pragma once
+// What a frame of the OpenGL renderer (renderer.h) shows and how: the BRDF model and
+// Fresnel form, image-based and punctual lighting on or off, the irradiance form, MSAA,
+// the background, and the live overrides of the viewer's panel. Typed values only; the
+// command line's spellings are parsed in apps/pbrkit/gl_options.cpp.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "pbrkit/core/brdf.h"
+#include "pbrkit/gl/brdf_eval.h"
+
+namespace pbrkit::gl {
+
+/// What is behind the geometry.
+struct Background {
+  enum class Mode { kEnvironment, kBlurred, kColor };
+  Mode mode = Mode::kEnvironment;
+  float blur_lod = 3.0f;  ///< kBlurred: mip of the prefiltered specular cube
+  glm::vec3 color{0.0f};  ///< kColor: linear RGB
+};
+
+enum class IrradianceMode { kSH, kCube };
+
+struct RenderSettings {
+  BrdfOptions brdf;  ///< model (reference | classic) and multiscatter
+  FresnelMode fresnel = FresnelMode::kSchlick;
+  bool ibl = true;  ///< image-based lighting on (when maps are set)
+  IrradianceMode irradiance = IrradianceMode::kSH;
+  bool lights = true;               ///< punctual lights on
+  std::vector<bool> light_enabled;  ///< per light; missing entries are on
+  int msaa = 4;                     ///< samples per pixel (1 = off)
+  Background background;
+  float env_rotation_deg = 0.0f;
+  float env_intensity = 1.0f;
+  float metallic_override = -1.0f;   ///< >= 0 replaces every material's metallic
+  float roughness_override = -1.0f;  ///< >= 0 replaces every material's roughness
+};
+
+}  // namespace pbrkit::gl

@@ -1,0 +1,58 @@
+#include "pbrkit/gl/render_targets.h"
+
+#include <algorithm>
+#include <cstddef>
+
+#include "pbrkit/util/error.h"
+
+namespace pbrkit::gl {
+
+void RenderTargets::release() {
+  glDeleteFramebuffers(1, &msaa_fbo);
+  glDeleteRenderbuffers(1, &msaa_color);
+  glDeleteRenderbuffers(1, &msaa_depth);
+  glDeleteFramebuffers(1, &resolve_fbo);
+  glDeleteTextures(1, &resolve_color);
+  msaa_fbo = msaa_color = msaa_depth = resolve_fbo = resolve_color = 0;
+}
+
+void RenderTargets::ensure(int w, int h, int s) {
+  if (w == width && h == height && s == samples && msaa_fbo) return;
+  release();
+  width = w, height = h, samples = s;
+  glCreateRenderbuffers(1, &msaa_color);
+  glCreateRenderbuffers(1, &msaa_depth);
+  glNamedRenderbufferStorageMultisample(msaa_color, s > 1 ? s : 0, GL_RGBA32F, w, h);
+  glNamedRenderbufferStorageMultisample(msaa_depth, s > 1 ? s : 0, GL_DEPTH_COMPONENT32F, w, h);
+  glCreateFramebuffers(1, &msaa_fbo);
+  glNamedFramebufferRenderbuffer(msaa_fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, msaa_color);
+  glNamedFramebufferRenderbuffer(msaa_fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, msaa_depth);
+  glCreateTextures(GL_TEXTURE_2D, 1, &resolve_color);
+  glTextureStorage2D(resolve_color, 1, GL_RGBA32F, w, h);
+  glCreateFramebuffers(1, &resolve_fbo);
+  glNamedFramebufferTexture(resolve_fbo, GL_COLOR_ATTACHMENT0, resolve_color, 0);
+  if (glCheckNamedFramebufferStatus(msaa_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE ||
+      glCheckNamedFramebufferStatus(resolve_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+    fail("OpenGL: a {}x{} float framebuffer with {} samples is not supported here", w, h, s);
+}
+
+void RenderTargets::resolve() const {
+  glBlitNamedFramebuffer(msaa_fbo, resolve_fbo, 0, 0, width, height, 0, 0, width, height,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+Image RenderTargets::read_back() const {
+  Image flipped(width, height, 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(resolve_color, 0, GL_RGBA, GL_FLOAT,
+                    GLsizei(flipped.data.size() * sizeof(float)), flipped.data.data());
+  // GL's row 0 is the bottom; Image's row 0 is the top.
+  Image out(width, height, 4);
+  const std::size_t row = std::size_t(width) * 4;
+  for (int y = 0; y < height; ++y)
+    std::copy_n(flipped.data.data() + std::size_t(height - 1 - y) * row, row,
+                out.data.data() + std::size_t(y) * row);
+  return out;
+}
+
+}  // namespace pbrkit::gl

@@ -1,0 +1,32 @@
+#pragma once
+// Private to the OpenGL renderer (renderer.cpp): the frame's framebuffers. A frame is drawn
+// into a float colour + depth target with `samples` samples per pixel (one: no MSAA) and
+// resolved into a single-sample float texture, which read_back() and Renderer::display()
+// read. Both are remade only when the size or the sample count changes.
+#include <epoxy/gl.h>
+
+#include "pbrkit/image/image.h"
+
+namespace pbrkit::gl {
+
+struct RenderTargets {
+  // Framebuffers: multisampled (or not) render target, and the resolved one.
+  GLuint msaa_fbo = 0, msaa_color = 0, msaa_depth = 0;
+  GLuint resolve_fbo = 0, resolve_color = 0;
+  int width = 0, height = 0, samples = 0;
+
+  RenderTargets() = default;
+  ~RenderTargets() { release(); }
+  RenderTargets(const RenderTargets&) = delete;
+  RenderTargets& operator=(const RenderTargets&) = delete;
+
+  /// Targets of `w` x `h` with `s` samples (Error if the driver cannot make them).
+  void ensure(int w, int h, int s);
+  void release();
+  /// Resolves the samples into the single-sample float target.
+  void resolve() const;
+  /// The resolved frame, linear RGBA float, row 0 at the top (as Image everywhere).
+  Image read_back() const;
+};
+
+}  // namespace pbrkit::gl

@@ -1,0 +1,33 @@
+#include "pbrkit/gl/shader_permutations.h"
+
+namespace pbrkit::gl {
+
+ShaderPermutations::ShaderPermutations() {
+  // The default surface program is compiled up front, so that a driver without GL 4.5
+  // features fails here with the compile log rather than at the first frame.
+  surface(SurfaceFeatures{});
+  for (int mode = 0; mode < 3; ++mode)
+    background_[std::size_t(mode)] =
+        Program::graphics("background_vertex.glsl", "background_fragment.glsl",
+                          fmt::format("#define MODE {}\n", mode));
+}
+
+const Program& ShaderPermutations::surface(const SurfaceFeatures& f) {
+  auto it = surface_.find(f.key());
+  if (it == surface_.end())
+    it = surface_
+             .emplace(f.key(),
+                      Program::graphics("pbr_vertex.glsl", "pbr_fragment.glsl", f.defines()))
+             .first;
+  return it->second;
+}
+
+const Program& ShaderPermutations::display(ToneMapper mapper) {
+  Program& p = display_[std::size_t(mapper)];
+  if (!p.id())
+    p = Program::graphics("display_vertex.glsl", "display_fragment.glsl",
+                          fmt::format("#define TONE_MAPPER {}\n", int(mapper)));
+  return p;
+}
+
+}  // namespace pbrkit::gl

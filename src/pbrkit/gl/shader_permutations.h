@@ -1,0 +1,68 @@
+#pragma once
+// Private to the OpenGL renderer (renderer.cpp): its shader permutations. Each program is
+// one pair of shader files compiled with a set of #defines; every set in use is its own
+// program, compiled on first use and kept, as real-time engines do.
+#include <array>
+#include <cstdint>
+#include <string>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "pbrkit/core/color.h"
+#include "pbrkit/gl/program.h"
+
+namespace pbrkit::gl {
+
+// Compile-time features of the surface program (pbr_fragment.glsl says why they are not
+// uniforms: on llvmpipe an unused branch still costs its texture fetches).
+struct SurfaceFeatures {
+  unsigned textures = 0;  ///< bit t: texture t bound (baseColor, MR, normal, occlusion, emissive)
+  bool colors = false;    ///< the mesh has COLOR_0
+  int alpha_mode = 0;     ///< 0 opaque, 1 mask, 2 blend
+  bool ibl = false;
+  bool irradiance_sh = true;
+  bool multiscatter = false;
+  int geometry = 0;  ///< GeometryModel for punctual lights
+  int fresnel = 0;   ///< 0 Schlick, 1 spherical Gaussian
+  int light_count = 0;
+
+  std::uint32_t key() const {
+    return textures | unsigned(alpha_mode) << 5 | unsigned(ibl) << 7 |
+           unsigned(irradiance_sh) << 8 | unsigned(multiscatter) << 9 | unsigned(geometry) << 10 |
+           unsigned(fresnel) << 12 | unsigned(light_count) << 13 | unsigned(colors) << 18;
+  }
+  std::string defines() const {
+    std::string d;
+    for (int t = 0; t < 5; ++t)
+      d += fmt::format("#define HAS_TEXTURE_{} {}\n", t, (textures >> t) & 1u);
+    d += fmt::format("#define HAS_COLOR_0 {}\n", int(colors));
+    d += fmt::format(
+        "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
+        "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
+        "#define LIGHT_COUNT {}\n",
+        alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel,
+        light_count);
+    return d;
+  }
+};
+
+/// The renderer's programs: the surface program per SurfaceFeatures, the background's per
+/// MODE (0 environment, 1 blurred, 2 colour; background_fragment.glsl) and the display
+/// transform's per ToneMapper. Needs the current GL context for its whole life.
+class ShaderPermutations {
+ public:
+  /// Compiles the default surface program and the three background programs.
+  ShaderPermutations();
+
+  const Program& surface(const SurfaceFeatures& f);
+  const Program& background(int mode) const { return background_[std::size_t(mode)]; }
+  const Program& display(ToneMapper mapper);
+
+ private:
+  std::unordered_map<std::uint32_t, Program> surface_;  // by SurfaceFeatures::key
+  std::array<Program, 3> background_;                   // by background MODE
+  std::array<Program, 4> display_;                      // by ToneMapper, compiled on first use
+};
+
+}  // namespace pbrkit::gl
