@@ -2,8 +2,9 @@
 // The metallic-roughness BRDF of docs/MODEL.md: Lambert diffuse plus GGX
 // Cook-Torrance specular, with a selectable G ("reference" or "classic") and optional
 // multiple-scattering energy compensation. One implementation for every renderer:
-// the path tracer calls eval/sample/pdf, the GL shaders mirror eval line by line, and the
-// baker's LUT integrates the same specular lobe.
+// the path tracer binds it to the view direction at each vertex (Brdf::at, BoundBrdf) and
+// calls eval/sample there, the GL shaders mirror eval line by line, and the baker's LUT
+// integrates the same specular lobe.
 //
 // All directions are in the local shading frame (n = +Z), both pointing away from the
 // surface: wo towards the viewer (v), wi towards the light (l).
@@ -47,9 +48,16 @@ struct BrdfSample {
   bool valid = false;      ///< false when the sample fell below the horizon
 };
 
+class BoundBrdf;
+
 class Brdf {
  public:
   Brdf(glm::vec3 base_color, float metallic, float roughness, const BrdfOptions& options = {});
+
+  /// The BRDF seen from `wo`: what depends on wo alone is computed here, once, for the
+  /// calls that follow (a path vertex evaluates a light sample and draws a BSDF sample).
+  /// eval, sample and pdf below are this with a single call each. @see BoundBrdf
+  BoundBrdf at(glm::vec3 wo) const;
 
   /// f(wo, wi), without the cosine. Zero unless both directions are above the surface.
   glm::vec3 eval(glm::vec3 wo, glm::vec3 wi) const;
@@ -75,8 +83,7 @@ class Brdf {
   const BrdfOptions& options() const { return options_; }
 
  private:
-  glm::vec3 eval_specular(glm::vec3 wo, glm::vec3 wi) const;
-  glm::vec3 eval_diffuse_and_ms(glm::vec3 wo, glm::vec3 wi) const;
+  friend class BoundBrdf;
 
   glm::vec3 base_color_;
   float metallic_, roughness_, alpha_;
@@ -89,5 +96,49 @@ class Brdf {
   glm::vec3 Fms_{0.0f};
   glm::vec3 Es_avg_{0.0f};
 };
+
+/// A Brdf with wo fixed (Brdf::at): the lobe-selection probability (with its albedo table
+/// lookup), Smith's Lambda(wo) or Schlick-GGX's G1(wo), the Lambertian term and the
+/// compensation's albedos at wo are computed once, and eval shares the half vector, D and
+/// F between f and the pdf of one direction. This is the BRDF's implementation; Brdf's
+/// eval, sample and pdf call it. Holds a copy of the Brdf, so it may outlive it.
+class BoundBrdf {
+ public:
+  /// `wo` in the local shading frame.
+  BoundBrdf(const Brdf& brdf, glm::vec3 wo);
+
+  /// f(wo, wi) without the cosine (Brdf::eval); with `pdf`, also the pdf of sample() for
+  /// wi (Brdf::pdf), which shares the half vector and D with f.
+  glm::vec3 eval(glm::vec3 wi, float* pdf = nullptr) const;
+  /// The combined pdf of sample() for wi (Brdf::pdf).
+  float pdf(glm::vec3 wi) const;
+  /// A direction drawn as Brdf::sample does, with its pdf and weight f cos / pdf.
+  BrdfSample sample(float u_lobe, glm::vec2 u) const;
+
+  glm::vec3 wo() const { return wo_; }
+  /// Brdf::specular_probability(wo).
+  float specular_probability() const { return p_spec_; }
+  const Brdf& brdf() const { return brdf_; }
+
+ private:
+  glm::vec3 eval_specular(glm::vec3 wi, float D, glm::vec3 F) const;
+  glm::vec3 eval_diffuse_and_ms(glm::vec3 wi, glm::vec3 F) const;
+  float pdf(glm::vec3 wi, float WOdotH, float D) const;
+  glm::vec3 sample_visible_normal(glm::vec2 u) const;
+
+  Brdf brdf_;
+  glm::vec3 wo_;
+  float p_spec_ = 1.0f;      // specular_probability(wo)
+  glm::vec3 lambert_{0.0f};  // (1 - metallic) baseColor / pi
+  float lambda_o_ = 0.0f;    // Smith's Lambda(wo) (reference G)
+  float G1_o_ = 0.0f;        // Smith's G1(wo) (the visible-normal pdf)
+  float schlick_o_ = 0.0f;   // Schlick-GGX G1(n.v) (classic G)
+  glm::vec3 Es_o_{0.0f};     // specular_albedo(wo.z) (compensation)
+  float E_o_ = 0.0f;         // E(wo.z) (compensation)
+};
+
+inline BoundBrdf Brdf::at(glm::vec3 wo) const {
+  return BoundBrdf(*this, wo);
+}
 
 }  // namespace pbrkit

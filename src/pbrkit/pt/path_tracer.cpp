@@ -17,6 +17,7 @@
 #include <tbb/task_arena.h>
 #include <xmmintrin.h>
 
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/energy.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
@@ -25,7 +26,6 @@
 #include "pbrkit/pt/lights.h"
 #include "pbrkit/pt/ray_offset.h"
 #include "pbrkit/pt/shading.h"
-#include "pbrkit/pt/vertex_brdf.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {
@@ -157,8 +157,8 @@ class Integrator {
 
       const Frame frame(in.ns);
       const glm::vec3 wo_local = frame.to_local(wo);
-      const VertexBrdf brdf(Brdf(in.base_color, in.metallic, in.roughness, settings_.brdf),
-                            wo_local);
+      const BoundBrdf brdf =
+          Brdf(in.base_color, in.metallic, in.roughness, settings_.brdf).at(wo_local);
       const std::uint32_t block = kFilterBlocks + std::uint32_t(depth) * kBlocksPerBounce;
       const glm::vec4 u_nee = sampler.sample_block(index, block);
       const glm::vec4 u_bsdf = sampler.sample_block(index, block + 1);
