@@ -1,11 +1,12 @@
 // The pixel filters (pt/pixel_filter.h): the tent's inverse CDF against the tent's CDF
-// written independently here, and the box's support.
+// written independently here, the box's support, and the filter names.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "pbrkit/pt/pixel_filter.h"
+#include "pbrkit/util/error.h"
 
 namespace pbrkit::test {
 namespace {
@@ -40,6 +41,14 @@ TEST(PixelFilter, OffsetsStayInTheFilterSupport) {
       EXPECT_EQ(tent.x, sample_tent(ux));
       EXPECT_EQ(tent.y, sample_tent(uy));
     }
+}
+
+TEST(PixelFilter, NamesParseAndUnknownIsAnError) {
+  for (PixelFilter f : {PixelFilter::kBox, PixelFilter::kTent})
+    EXPECT_EQ(parse_pixel_filter(pixel_filter_name(f)), f);
+  EXPECT_EQ(pixel_filter_name(PixelFilter::kTent), "tent");
+  EXPECT_EQ(parse_pixel_filter("box"), PixelFilter::kBox);
+  EXPECT_THROW(parse_pixel_filter("gaussian"), Error);
 }
 
 }  // namespace
