@@ -44,6 +44,11 @@ inline float power_heuristic(float f, float g) {
 
 }  // namespace
 
+// Li's helpers below are defined `inline` (they are used in this file only) so that the
+// compiler inlines them into Li as it did when they were in-class definitions: out of
+// line, the sampling loop executed 2% more instructions (callgrind, spheres at 96x96,
+// 16 spp).
+
 PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
                           const SceneGeometry::PacketHit& primary, OwenSobolPixel& sampler,
                           std::uint32_t pixel, std::uint32_t index, std::uint64_t& rays) const {
@@ -148,8 +153,9 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 // environment are weighted against the BSDF sampling that could have found them (power
 // heuristic); delta lights, which only this strategy reaches, have weight 1. Returns the
 // contribution to the path's radiance, beta f Li tr w / pdf.
-glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame, const BoundBrdf& brdf,
-                                glm::vec4 u_nee, glm::vec3 beta, std::uint64_t& rays) const {
+inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame,
+                                       const BoundBrdf& brdf, glm::vec4 u_nee, glm::vec3 beta,
+                                       std::uint64_t& rays) const {
   LightSample ls;
   // (The light choice needs no random number when there is a single light.)
   const float u_light = lights_.size() > 1 ? u_nee.x : 0.5f;
@@ -173,10 +179,10 @@ glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame, const
 // surfaces (glTF alphaMode MASK: alpha < cutoff is a hole; BLEND: transparent with
 // probability 1 - alpha, an unbiased stand-in for blending).
 // `first`, when given, is the intersection of the first pass (from a packet).
-bool Integrator::closest_hit(glm::vec3& origin, glm::vec3 direction, std::uint32_t pixel,
-                             std::uint32_t index, int depth, std::uint64_t& rays, SurfaceHit& hit,
-                             const Material*& material,
-                             const SceneGeometry::PacketHit* first) const {
+inline bool Integrator::closest_hit(glm::vec3& origin, glm::vec3 direction, std::uint32_t pixel,
+                                    std::uint32_t index, int depth, std::uint64_t& rays,
+                                    SurfaceHit& hit, const Material*& material,
+                                    const SceneGeometry::PacketHit* first) const {
   for (std::uint32_t pass = 0; pass < 256; ++pass) {
     std::uint32_t geom = 0, prim = 0;
     float t = 0.0f, u = 0.0f, v = 0.0f;
@@ -211,8 +217,8 @@ bool Integrator::closest_hit(glm::vec3& origin, glm::vec3 direction, std::uint32
 
 // Visibility of a light sample: 0 or 1 through opaque geometry; through alpha-tested
 // and blended surfaces the expected transmittance (MASK: 0 or 1, BLEND: 1 - alpha).
-glm::vec3 Integrator::transmittance(const SurfaceHit& hit, const LightSample& ls,
-                                    std::uint64_t& rays) const {
+inline glm::vec3 Integrator::transmittance(const SurfaceHit& hit, const LightSample& ls,
+                                           std::uint64_t& rays) const {
   const glm::vec3 o = offset_ray_origin(hit.p, hit.ng);
   float tfar;
   if (ls.infinite) {
