@@ -48,6 +48,7 @@ void BM_PathTraceSpheres(benchmark::State& state) {
   pbrkit::PathTracerSettings s;
   s.width = s.height = size;
   s.spp = spp;
+  s.noise_threshold = 0.0f;  // no adaptive stopping (the library's default is on)
   s.max_bounces = 8;
   s.threads = threads;
   double samples = 0, rays = 0, seconds = 0, build = 0, bvh = 0, cpu = 0;
@@ -182,6 +183,7 @@ void BM_EmbreeReplay(benchmark::State& state) {
   pbrkit::PathTracerSettings s;
   s.width = s.height = 256;
   s.spp = 32;  // the same mix as 256 spp, and a log of ~4 M queries (128 MB)
+  s.noise_threshold = 0.0f;
   s.max_bounces = 8;
   s.threads = threads;
   double render_rays = 0, render_seconds = 0, replay_rays = 0, replay_seconds = 0;

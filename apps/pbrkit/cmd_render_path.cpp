@@ -62,22 +62,24 @@ class StopSignals {
   struct sigaction old_term_ {};
 };
 
+// The options of --renderer path. Those that set a PathTracerSettings field start from a
+// default-constructed one: the library and the CLI have one set of defaults.
 struct PathOptions {
-  std::uint32_t spp = 1024;
-  double time = 0.0;
-  float noise_threshold = 0.02f;
-  std::uint32_t min_spp = 16;
-  int max_bounces = 8;
-  std::uint32_t seed = 0;
-  int threads = 0;
+  std::uint32_t spp = PathTracerSettings{}.spp;
+  double time = PathTracerSettings{}.time_limit;
+  float noise_threshold = PathTracerSettings{}.noise_threshold;
+  std::uint32_t min_spp = PathTracerSettings{}.min_spp;
+  int max_bounces = PathTracerSettings{}.max_bounces;
+  std::uint32_t seed = PathTracerSettings{}.seed;
+  int threads = PathTracerSettings{}.threads;
   std::string sample_range;
   std::string checkpoint;
-  double checkpoint_interval = 60.0;
+  double checkpoint_interval = PathTracerSettings{}.checkpoint_interval;
   std::string resume;
   std::vector<std::string> aovs;
   bool half = false;
   bool full_float = false;
-  std::string filter = "tent";
+  std::string filter{pixel_filter_name(PathTracerSettings{}.filter)};
 };
 
 std::pair<std::uint32_t, std::uint32_t> parse_sample_range(const std::string& text) {
@@ -196,7 +198,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.max_bounces = po.max_bounces;
     s.seed = po.seed;
     s.threads = po.threads;
-    s.filter = po.filter == "box" ? PixelFilter::kBox : PixelFilter::kTent;
+    s.filter = parse_pixel_filter(po.filter);
     s.brdf.model = parse_brdf_model(o.model);
     s.brdf.multiscatter = o.multiscatter;
     const bool partial = !po.sample_range.empty();

@@ -1,9 +1,11 @@
 // The metallic-roughness BRDF (core/brdf.h): `classic` against the seeds' formulas and
 // `reference` against Heitz 2014 written independently here, reciprocity, positivity,
-// energy bounds, and a chi-square fit of Brdf::sample against Brdf::pdf.
+// energy bounds, a chi-square fit of Brdf::sample against Brdf::pdf, and the bound form
+// (Brdf::at) reused across calls.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
 
 #include "pbrkit/core/brdf.h"
@@ -319,6 +321,65 @@ TEST(Brdf, ClassicSampleMatchesPdfChi2) {
         [&](glm::vec3 wi) { return double(brdf.pdf(wo, wi)); }, options);
     EXPECT_TRUE(r.passed) << "ms " << ms << "\n" << r.report;
   }
+}
+
+// ---- The bound form: Brdf::at(wo) serves all the calls of one path vertex. ----
+
+template <typename T>
+bool same_bits(const T& a, const T& b) {
+  return std::memcmp(&a, &b, sizeof(T)) == 0;
+}
+
+// One BoundBrdf per wo, reused for 20 directions, against Brdf's one-call forms (each
+// binds wo afresh): the same bits, so nothing of one call leaks into the next. Within the
+// bound form, eval's f does not depend on asking for the pdf, eval's pdf is pdf()'s, and a
+// sample carries the pdf of its direction. Both G models, with and without compensation,
+// random materials (with out-of-range inputs and roughness 0 and 1) and directions (with
+// directions below the horizon and a grazing wo).
+TEST(BoundBrdf, ReusedAcrossCallsAndConsistent) {
+  Pcg32 rng(17);
+  int valid_samples = 0;
+  for (BrdfModel model : {BrdfModel::kReference, BrdfModel::kClassic})
+    for (bool multiscatter : {false, true}) {
+      const BrdfOptions options{model, multiscatter};
+      for (int m = 0; m < 300; ++m) {
+        const glm::vec3 base(1.2f * rng.next_float() - 0.1f, rng.next_float(), rng.next_float());
+        const float metallic = 1.2f * rng.next_float() - 0.1f;
+        const float roughness = m % 10 == 0 ? 0.0f : m % 10 == 1 ? 1.0f : rng.next_float();
+        const Brdf brdf(base, metallic, roughness, options);
+        for (int o = 0; o < 20; ++o) {
+          glm::vec3 wo = sample_uniform_sphere(rng.next_2d()).direction;
+          if (o == 0) wo = glm::normalize(glm::vec3(1.0f, 0.0f, 1e-4f));  // grazing
+          const BoundBrdf bound = brdf.at(wo);
+          for (int i = 0; i < 20; ++i) {
+            const glm::vec3 wi = sample_uniform_sphere(rng.next_2d()).direction;
+            float pdf = -1.0f;
+            const glm::vec3 f = bound.eval(wi, &pdf);
+            ASSERT_TRUE(same_bits(f, brdf.eval(wo, wi))) << "eval, material " << m;
+            ASSERT_TRUE(same_bits(pdf, brdf.pdf(wo, wi))) << "pdf, material " << m;
+            ASSERT_TRUE(same_bits(bound.eval(wi), f));
+            ASSERT_TRUE(same_bits(bound.pdf(wi), pdf));
+            if (wo.z <= 0.0f || wi.z <= 0.0f) {
+              ASSERT_EQ(f, glm::vec3(0.0f));
+              ASSERT_EQ(pdf, 0.0f);
+            }
+            const float u_lobe = rng.next_float();
+            const glm::vec2 u = rng.next_2d();
+            const BrdfSample a = bound.sample(u_lobe, u), b = brdf.sample(wo, u_lobe, u);
+            ASSERT_EQ(a.valid, b.valid);
+            ASSERT_TRUE(same_bits(a.wi, b.wi));
+            ASSERT_TRUE(same_bits(a.pdf, b.pdf));
+            ASSERT_TRUE(same_bits(a.weight, b.weight)) << "sample, material " << m;
+            if (a.valid) {
+              ASSERT_GT(a.wi.z, 0.0f);
+              ASSERT_TRUE(same_bits(a.pdf, bound.pdf(a.wi)));
+            }
+            valid_samples += a.valid;
+          }
+        }
+      }
+    }
+  EXPECT_GT(valid_samples, 40000);  // most samples above the horizon are valid
 }
 
 }  // namespace

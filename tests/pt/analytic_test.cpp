@@ -75,6 +75,7 @@ PathTracerSettings small_settings(int size, std::uint32_t spp) {
   PathTracerSettings s;
   s.width = s.height = size;
   s.spp = spp;
+  s.noise_threshold = 0.0f;
   s.filter = PixelFilter::kBox;
   s.threads = 2;
   return s;

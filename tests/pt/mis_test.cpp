@@ -41,6 +41,7 @@ Estimate render(LightStrategy strategy) {
   PathTracerSettings s;
   s.width = s.height = 24;
   s.spp = 32;
+  s.noise_threshold = 0.0f;
   s.max_bounces = 1;
   s.strategy = strategy;
   s.threads = 2;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
+#include "pbrkit/pt/adaptive_sampling.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {
@@ -76,18 +76,7 @@ Image Film::noise_image() const {
 }
 
 float Film::pixel_noise(std::size_t i) const {
-  // Cycles' adaptive sampling (intern/cycles/kernel/film/adaptive_sampling.h): compare
-  // the mean of all samples, I, with the mean of the even-indexed half, E; their
-  // difference estimates the error of I. Normalised by sqrt(I) as Cycles does so that
-  // the threshold is perceptually uniform-ish.
-  const float n = count[i];
-  if (n < 2.0f) return std::numeric_limits<float>::infinity();
-  const float n_even = std::ceil(n * 0.5f);  // ranges starting on an even index
-  const glm::vec3 I = sum[i] / n;
-  const glm::vec3 E = sum_even[i] / n_even;
-  const glm::vec3 d = glm::abs(I - E);
-  const float err = (d.x + d.y + d.z) / (1e-4f + std::sqrt(I.x + I.y + I.z));
-  return err;
+  return half_buffer_error(sum[i], sum_even[i], count[i]);
 }
 
 void Film::merge(const Film& other) {

@@ -44,7 +44,8 @@ struct Film {
   Image noise_image() const;   ///< per-pixel relative error estimate (1 channel)
 
   /// Relative error of pixel i from the two half buffers (Cycles' adaptive sampling):
-  /// sum|I - E| / sqrt(sum I) with I the full mean and E the even-sample mean.
+  /// sum|I - E| / sqrt(sum I) with I the full mean and E the even-sample mean
+  /// (pt/adaptive_sampling.h).
   float pixel_noise(std::size_t i) const;
 
   /// Adds `other` (a disjoint sample range of the same image) into this film.

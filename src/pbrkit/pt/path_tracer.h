@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <string_view>
 
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/image/environment.h"
@@ -37,7 +38,12 @@ enum class PixelFilter {
   kBox,   ///< width 1 pixel (what an unfiltered rasteriser computes with supersampling)
   kTent,  ///< triangle of radius 1 pixel (width 2); the default
 };
+PixelFilter parse_pixel_filter(std::string_view name);  ///< "tent" | "box"
+std::string_view pixel_filter_name(PixelFilter filter);
 
+/// A render's settings. The defaults are the product's, and `pbrkit render --renderer path`
+/// takes its option defaults from here: a ground-truth render (up to 1024 spp, adaptive
+/// sampling at noise 0.02, 8 bounces, the tent filter).
 struct PathTracerSettings {
   int width = 512;
   int height = 512;
@@ -45,7 +51,7 @@ struct PathTracerSettings {
   // --- stopping rules -----------------------------------------------------------------
   /// Samples per pixel: the render ends when every pixel has `spp` samples (or has
   /// converged, or the time is up).
-  std::uint32_t spp = 64;
+  std::uint32_t spp = 1024;
   /// Render only samples [sample_begin, sample_end) of each pixel's sequence
   /// (sample_end = 0: up to spp). Used by --sample-range to split a render over machines.
   std::uint32_t sample_begin = 0;
@@ -54,7 +60,7 @@ struct PathTracerSettings {
   double time_limit = 0.0;
   /// Adaptive sampling (0: off). A pixel stops receiving samples once its relative error,
   /// estimated from two interleaved half buffers as Cycles does, is below this.
-  float noise_threshold = 0.0f;
+  float noise_threshold = 0.02f;
   /// Samples every pixel receives before the noise test may stop it.
   std::uint32_t min_spp = 16;
 
@@ -76,9 +82,10 @@ struct PathTracerSettings {
   int threads = 0;  ///< 0: all hardware threads
   /// Set by the caller (e.g. a signal handler) to stop early; polled between tiles.
   const std::atomic<bool>* stop = nullptr;
-  /// Called (from the calling thread) with a snapshot every `checkpoint_interval`
-  /// seconds at a pass boundary, so long renders can be resumed.
-  double checkpoint_interval = 0.0;
+  /// When set, `checkpoint` is called (from the calling thread) with a snapshot every
+  /// `checkpoint_interval` seconds (0: never) at a pass boundary, so long renders can be
+  /// resumed.
+  double checkpoint_interval = 60.0;
   std::function<void(const Film&)> checkpoint;
   /// Continue from this state (a checkpoint of the same scene and settings) instead of
   /// starting empty; the final result equals an uninterrupted render.
