@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "accumulation.h"
 #include "commands.h"
 #include "output_paths.h"
 #include "pbrkit/core/color.h"
@@ -56,9 +57,9 @@ void register_merge_command(CLI::App& app) {
                   "also write the merged accumulation EXR here (to merge again later)");
   cmd->callback([o] {
     const ImageOutputs outputs = image_outputs(o->output);
-    Film film = read_film(o->parts.front());
+    Film film = read_accumulation(o->parts.front());
     for (std::size_t i = 1; i < o->parts.size(); ++i) {
-      const Film part = read_film(o->parts[i]);
+      const Film part = read_accumulation(o->parts[i]);
       if (part.width != film.width || part.height != film.height)
         fail("{}: is {}x{} but {} is {}x{}; parts of one render have the same size", o->parts[i],
              part.width, part.height, o->parts.front(), film.width, film.height);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "accumulation.h"
 #include "commands.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/image/display.h"
@@ -209,7 +210,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
     }
     std::optional<Film> resume;
     if (!po.resume.empty()) {
-      resume = read_film(po.resume);
+      resume = read_accumulation(po.resume);
       s.resume = &*resume;
     }
     if (!po.checkpoint.empty()) {

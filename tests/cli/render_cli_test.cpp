@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "pbrkit/image/image_io.h"
+#include "pbrkit/pt/film.h"
+#include "pbrkit/util/error.h"
 #include "support/test_paths.h"
 
 namespace pbrkit {
@@ -153,6 +155,34 @@ TEST(RenderAspect, SizeFollowsTheCamerasAspectRatio) {
     const Image png = read_image(dir / "x.png");
     EXPECT_EQ(png.width, c.width) << c.args;
     EXPECT_EQ(png.height, c.height) << c.args;
+  }
+}
+
+}  // namespace
+}  // namespace pbrkit
+
+namespace pbrkit {
+namespace {
+
+// The library says what is wrong with a file that is not an accumulation EXR; only the
+// command line names the flags that write one.
+TEST(MergeCli, ANonAccumulationFileNamesTheCommandsThatWriteOne) {
+  const fs::path dir = test::scratch_dir();
+  int code = 0;
+  std::string log =
+      render("furnace --spp 1 --width 8 --height 8 -o " + (dir / "a.exr").string(), &code);
+  ASSERT_EQ(code, 0) << log;
+  ASSERT_EQ(test::run_command(test::cli_path().string() + " merge " + (dir / "a.exr").string() +
+                                  " -o " + (dir / "m.png").string(),
+                              &log),
+            1);
+  EXPECT_NE(log.find("not a pbrkit accumulation file"), std::string::npos) << log;
+  EXPECT_NE(log.find("--sample-range"), std::string::npos) << log;
+  try {
+    read_film(dir / "a.exr");
+    ADD_FAILURE() << "read_film accepted a plain EXR";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
   }
 }
 

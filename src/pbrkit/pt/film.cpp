@@ -122,10 +122,7 @@ Film read_film(const std::filesystem::path& path) {
                channels);
         return image;
       }
-    fail(
-        "{}: not a pbrkit accumulation file (no layer '{}'; write one with "
-        "'pbrkit render --sample-range' or '--checkpoint')",
-        path.string(), name);
+    fail("{}: not a pbrkit accumulation file (no layer '{}')", path.string(), name);
   };
   const Image& s = find("pbrkit_sum", 3);
   Film film(s.width, s.height);
