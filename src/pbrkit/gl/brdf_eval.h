@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "pbrkit/core/brdf.h"
+#include "pbrkit/gl/render_settings.h"
 
 namespace pbrkit::gl {
 
@@ -17,8 +18,6 @@ struct BrdfCase {
   float metallic = 0.0f;
   float roughness = 0.5f;
 };
-
-enum class FresnelMode { kSchlick, kSphericalGaussian };
 
 /// brdf_eval(make_brdf(...), wo, wi) of brdf.glsl for every case, read back as RGB.
 std::vector<glm::vec3> eval_brdf_glsl(const std::vector<BrdfCase>& cases,

@@ -8,7 +8,6 @@
 #include <glm/glm.hpp>
 
 #include "pbrkit/core/brdf.h"
-#include "pbrkit/gl/brdf_eval.h"
 
 namespace pbrkit::gl {
 
@@ -21,6 +20,9 @@ struct Background {
 };
 
 enum class IrradianceMode { kSH, kCube };
+
+/// The specular Fresnel term: Schlick's approximation, or UE4's spherical-Gaussian form.
+enum class FresnelMode { kSchlick, kSphericalGaussian };
 
 struct RenderSettings {
   BrdfOptions brdf;  ///< model (reference | classic) and multiscatter
