@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
 #include "pbrkit/scene/load.h"
@@ -145,6 +146,94 @@ TEST(GltfWriter, BuiltinScenesFollowTheCameraSchema) {
     ASSERT_TRUE(gltf.contains("cameras"));
     expect_cameras_follow_schema(gltf);
   }
+}
+
+TEST(GltfWriter, SceneWithoutGeometryHasNoEmptyBuffer) {
+  // buffer.byteLength has a minimum of 1, so a scene with nothing to store has no buffer.
+  Scene s;
+  s.source = "test";
+  Camera camera;
+  camera.name = "only";
+  s.cameras.push_back(camera);
+  const auto path = test::scratch_dir() / "no_geometry.glb";
+  write_glb(s, path);
+  const json gltf = glb_json(path);
+  EXPECT_FALSE(gltf.contains("buffers")) << gltf.dump();
+  const Scene loaded = load_scene(path.string());
+  EXPECT_EQ(loaded.cameras.size(), 1u);
+  EXPECT_TRUE(loaded.meshes.empty());
+}
+
+TEST(GltfWriter, AlphaCutoffOnlyForMaskMaterials) {
+  // The material schema: alphaCutoff is ignored unless alphaMode is MASK and must not be
+  // defined when alphaMode is not (OPAQUE is written as no alphaMode).
+  Scene s;
+  s.source = "test";
+  for (AlphaMode mode : {AlphaMode::kOpaque, AlphaMode::kBlend, AlphaMode::kMask}) {
+    Material m;
+    m.alpha_mode = mode;
+    m.alpha_cutoff = 0.25f;
+    s.materials.push_back(m);
+  }
+  add_mesh_instance(s, make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), 2);
+  const auto path = test::scratch_dir() / "alpha.glb";
+  write_glb(s, path);
+  const json gltf = glb_json(path);
+  ASSERT_EQ(gltf["materials"].size(), 3u);
+  EXPECT_FALSE(gltf["materials"][0].contains("alphaMode"));
+  EXPECT_FALSE(gltf["materials"][0].contains("alphaCutoff"));
+  EXPECT_EQ(gltf["materials"][1]["alphaMode"], "BLEND");
+  EXPECT_FALSE(gltf["materials"][1].contains("alphaCutoff"));
+  EXPECT_EQ(gltf["materials"][2]["alphaMode"], "MASK");
+  EXPECT_EQ(gltf["materials"][2]["alphaCutoff"], 0.25);
+  const Scene loaded = load_scene(path.string());
+  EXPECT_EQ(loaded.materials[2].alpha_cutoff, 0.25f);
+}
+
+TEST(GltfWriter, DirectionalLightHasNoRange) {
+  // KHR_lights_punctual: range bounds point and spot lights; a directional light's would
+  // never be used.
+  Scene s;
+  s.source = "test";
+  Light sun;
+  sun.type = Light::Type::kDirectional;
+  sun.range = 5.0f;
+  sun.direction = {0, -1, 0};
+  s.lights.push_back(sun);
+  Light bulb;
+  bulb.type = Light::Type::kPoint;
+  bulb.range = 7.0f;
+  bulb.position = {0, 2, 0};
+  s.lights.push_back(bulb);
+  const auto path = test::scratch_dir() / "lights.glb";
+  write_glb(s, path);
+  const json lights = glb_json(path)["extensions"]["KHR_lights_punctual"]["lights"];
+  ASSERT_EQ(lights.size(), 2u);
+  EXPECT_FALSE(lights[0].contains("range")) << lights[0].dump();
+  EXPECT_EQ(lights[1]["range"], 7.0);
+}
+
+TEST(GltfWriter, IdentityTransformsAreLeftOut) {
+  // node.matrix defaults to the identity (the validator's NODE_MATRIX_DEFAULT).
+  Scene s;
+  s.source = "test";
+  s.materials.emplace_back();
+  const Mesh quad = make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+  add_mesh_instance(s, quad, 0);
+  add_mesh_instance(s, quad, 0, glm::translate(glm::mat4(1.0f), glm::vec3(1, 2, 3)));
+  const auto path = test::scratch_dir() / "matrices.glb";
+  write_glb(s, path);
+  const json nodes = glb_json(path)["nodes"];
+  ASSERT_EQ(nodes.size(), 2u);
+  EXPECT_FALSE(nodes[0].contains("matrix")) << nodes[0].dump();
+  ASSERT_EQ(nodes[1]["matrix"].size(), 16u);
+  EXPECT_EQ(nodes[1]["matrix"][12], 1.0);
+  EXPECT_EQ(nodes[1]["matrix"][13], 2.0);
+  EXPECT_EQ(nodes[1]["matrix"][14], 3.0);
+  const Scene loaded = load_scene(path.string());
+  ASSERT_EQ(loaded.instances.size(), 2u);
+  EXPECT_EQ(loaded.instances[0].transform, glm::mat4(1.0f));
+  EXPECT_EQ(loaded.instances[1].transform[3], glm::vec4(1, 2, 3, 1));
 }
 
 }  // namespace

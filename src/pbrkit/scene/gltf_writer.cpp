@@ -175,7 +175,9 @@ void Writer::add_material(const Material& m) {
   g.alphaMode = m.alpha_mode == AlphaMode::kMask    ? "MASK"
                 : m.alpha_mode == AlphaMode::kBlend ? "BLEND"
                                                     : "OPAQUE";
-  g.alphaCutoff = m.alpha_cutoff;
+  // The material schema: alphaCutoff is ignored unless alphaMode is MASK and must not be
+  // given when alphaMode is absent (as tinygltf writes OPAQUE); tinygltf leaves out 0.5.
+  g.alphaCutoff = m.alpha_mode == AlphaMode::kMask ? m.alpha_cutoff : 0.5f;
   g.doubleSided = m.double_sided;
   model_.materials.push_back(g);
 }
@@ -209,8 +211,10 @@ void Writer::add_mesh(const Mesh& m) {
   model_.meshes.push_back(g);
 }
 
+// node.matrix, column-major; empty (left out) for the identity, which is its default.
 std::vector<double> matrix_values(const glm::mat4& m) {
   std::vector<double> v;
+  if (m == glm::mat4(1.0f)) return v;
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) v.push_back(m[c][r]);
   return v;
@@ -266,7 +270,8 @@ tinygltf::Model Writer::build() {
                                             : "directional";
     g.color = {l.color.r, l.color.g, l.color.b};
     g.intensity = l.intensity;
-    g.range = l.range.value_or(0.0f);
+    // KHR_lights_punctual: range bounds point and spot lights only (tinygltf leaves out 0).
+    g.range = l.type == Light::Type::kDirectional ? 0.0f : l.range.value_or(0.0f);
     g.spot.innerConeAngle = l.inner_cone_angle;
     g.spot.outerConeAngle = l.outer_cone_angle;
     model_.lights.push_back(g);
@@ -288,6 +293,8 @@ tinygltf::Model Writer::build() {
   model_.scenes.push_back(gscene);
   model_.defaultScene = 0;
   model_.buffers[0].data.resize((model_.buffers[0].data.size() + 3) / 4 * 4, 0);
+  // buffer.byteLength must be at least 1: a scene without meshes or textures has no buffer.
+  if (model_.buffers[0].data.empty()) model_.buffers.clear();
   auto uses = [&](const char* ext) { model_.extensionsUsed.push_back(ext); };
   if (!scene_.lights.empty()) uses("KHR_lights_punctual");
   if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
