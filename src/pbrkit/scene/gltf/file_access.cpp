@@ -63,6 +63,13 @@ bool fs_write(std::string* err, const std::string&, const std::vector<unsigned c
 // callback only keeps the encoded bytes.
 bool keep_encoded_image(tinygltf::Image* image, const int, std::string* err, std::string*, int, int,
                         const unsigned char* bytes, int size, void*) {
+  // tinygltf points into an image's bufferView without checking that the view lies inside
+  // its buffer: such images are copied later, by read_image_buffer_views.
+  if (image->bufferView >= 0) {
+    image->as_is = true;
+    image->width = image->height = -1;
+    return true;
+  }
   if (size <= 0 || bytes == nullptr) {
     *err = "empty image data";
     return false;
@@ -130,6 +137,22 @@ void Loader::rebuild_glb() {
   const std::uint32_t total = std::uint32_t(glb.size());
   std::memcpy(glb.data() + 8, &total, 4);
   bytes_ = std::move(glb);
+}
+
+// The bytes of images stored in a bufferView (keep_encoded_image left them out), copied
+// once check_buffer_views has put every view inside its buffer.
+void Loader::read_image_buffer_views() {
+  for (std::size_t i = 0; i < model_.images.size(); ++i) {
+    tinygltf::Image& image = model_.images[i];
+    if (image.bufferView < 0) continue;
+    if (std::size_t(image.bufferView) >= model_.bufferViews.size())
+      error(fmt::format("images[{}].bufferView", i),
+            fmt::format("bufferView {} does not exist", image.bufferView));
+    const auto& view = model_.bufferViews[std::size_t(image.bufferView)];
+    const auto begin =
+        model_.buffers[std::size_t(view.buffer)].data.begin() + std::ptrdiff_t(view.byteOffset);
+    image.image.assign(begin, begin + std::ptrdiff_t(view.byteLength));
+  }
 }
 
 void Loader::parse_model() {

@@ -29,10 +29,11 @@ Scene Loader::load() {
   }
 
   // tinygltf parses the model; every file it reads goes through our callbacks.
-  parse_model();             // file_access.cpp
-  check_buffers();           // validation.cpp
-  size_meshopt_fallbacks();  // meshopt.cpp
-  check_buffer_views();      // validation.cpp
+  parse_model();              // file_access.cpp
+  check_buffers();            // validation.cpp
+  size_meshopt_fallbacks();   // meshopt.cpp
+  check_buffer_views();       // validation.cpp
+  read_image_buffer_views();  // file_access.cpp
 
   // Compressed data decoded into ordinary buffers and accessors.
   decode_meshopt_views();     // meshopt.cpp

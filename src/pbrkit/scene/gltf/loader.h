@@ -47,6 +47,7 @@ class Loader {
   void read_container();
   void rebuild_glb();
   void parse_model();
+  void read_image_buffer_views();
 
   // validation.cpp: the JSON and the sizes in it, checked before anything trusts them.
   json parse_json() const;

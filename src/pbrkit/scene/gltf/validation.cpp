@@ -114,6 +114,10 @@ void Loader::check_uris(const json& root) {
         if (is_buffer && !(is_glb_ && i == 0))
           error(fmt::format("{}[{}]", key, i),
                 "buffer has no uri (only the first buffer of a .glb may omit it)");
+        // The buffer schema's minimum; tinygltf would throw std::out_of_range copying a
+        // BIN chunk into 0 bytes.
+        if (is_buffer && arr[i]["byteLength"].get<std::uint64_t>() == 0)
+          error(fmt::format("{}[{}].byteLength", key, i), "must be at least 1");
         continue;
       }
       if (!arr[i]["uri"].is_string()) error(where, "must be a string");
