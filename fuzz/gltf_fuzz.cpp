@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-#include "pbrkit/scene/gltf_loader.h"
+#include "pbrkit/scene/gltf/load_gltf.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 

@@ -2,12 +2,17 @@
 // tool. Attributes are written as FLOAT / UNSIGNED_INT so they round-trip exactly.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 
 #include <stb_image_write.h>
 #include <tiny_gltf.h>
+#include <nlohmann/json.hpp>
 
 #include "pbrkit/core/color.h"
+#include "pbrkit/scene/gltf_container.h"
 #include "pbrkit/scene/load.h"
 #include "pbrkit/util/atomic_file.h"
 #include "pbrkit/util/error.h"
@@ -170,7 +175,9 @@ void Writer::add_material(const Material& m) {
   g.alphaMode = m.alpha_mode == AlphaMode::kMask    ? "MASK"
                 : m.alpha_mode == AlphaMode::kBlend ? "BLEND"
                                                     : "OPAQUE";
-  g.alphaCutoff = m.alpha_cutoff;
+  // The material schema: alphaCutoff is ignored unless alphaMode is MASK and must not be
+  // given when alphaMode is absent (as tinygltf writes OPAQUE); tinygltf leaves out 0.5.
+  g.alphaCutoff = m.alpha_mode == AlphaMode::kMask ? m.alpha_cutoff : 0.5f;
   g.doubleSided = m.double_sided;
   model_.materials.push_back(g);
 }
@@ -204,8 +211,10 @@ void Writer::add_mesh(const Mesh& m) {
   model_.meshes.push_back(g);
 }
 
+// node.matrix, column-major; empty (left out) for the identity, which is its default.
 std::vector<double> matrix_values(const glm::mat4& m) {
   std::vector<double> v;
+  if (m == glm::mat4(1.0f)) return v;
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) v.push_back(m[c][r]);
   return v;
@@ -261,7 +270,8 @@ tinygltf::Model Writer::build() {
                                             : "directional";
     g.color = {l.color.r, l.color.g, l.color.b};
     g.intensity = l.intensity;
-    g.range = l.range.value_or(0.0f);
+    // KHR_lights_punctual: range bounds point and spot lights only (tinygltf leaves out 0).
+    g.range = l.type == Light::Type::kDirectional ? 0.0f : l.range.value_or(0.0f);
     g.spot.innerConeAngle = l.inner_cone_angle;
     g.spot.outerConeAngle = l.outer_cone_angle;
     model_.lights.push_back(g);
@@ -283,6 +293,8 @@ tinygltf::Model Writer::build() {
   model_.scenes.push_back(gscene);
   model_.defaultScene = 0;
   model_.buffers[0].data.resize((model_.buffers[0].data.size() + 3) / 4 * 4, 0);
+  // buffer.byteLength must be at least 1: a scene without meshes or textures has no buffer.
+  if (model_.buffers[0].data.empty()) model_.buffers.clear();
   auto uses = [&](const char* ext) { model_.extensionsUsed.push_back(ext); };
   if (!scene_.lights.empty()) uses("KHR_lights_punctual");
   if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
@@ -298,15 +310,60 @@ tinygltf::Model Writer::build() {
   return std::move(model_);
 }
 
+// tinygltf 2.7 writes a perspective camera's zfar always (0.0 for "none") and its
+// aspectRatio when positive, but the camera.perspective schema requires both to be positive
+// (zfar also greater than znear) and gives their absence a meaning: an infinite projection
+// (glTF 2.0, Cameras, "Projection Matrices") and the viewport's aspect ratio. A written
+// "zfar": 0.0 makes Blender clip every ray. So the GLB's JSON chunk is rewritten without
+// the values the scene's cameras do not have; the BIN chunk is kept as it is (section 4.4:
+// the JSON chunk is padded with spaces to 4 bytes).
+std::string omit_absent_camera_values(const std::string& glb, const Scene& scene,
+                                      const std::string& name) {
+  const GlbChunks chunks = parse_glb(glb.data(), glb.size(), name);
+  nlohmann::json gltf = nlohmann::json::parse(chunks.json, chunks.json + chunks.json_size);
+  for (std::size_t i = 0; i < scene.cameras.size(); ++i) {
+    const Camera& c = scene.cameras[i];
+    if (c.type != Camera::Type::kPerspective) continue;
+    nlohmann::json& perspective = gltf["cameras"][i]["perspective"];  // model order = scene order
+    if (!c.zfar) perspective.erase("zfar");
+    if (!c.aspect_ratio) perspective.erase("aspectRatio");
+  }
+  std::string json = gltf.dump();
+  while (json.size() % 4 != 0) json.push_back(' ');
+  std::string out;
+  auto u32 = [&out](std::size_t v) {
+    const auto le = std::uint32_t(v);  // GLB is little-endian, like every platform we build for
+    out.append(reinterpret_cast<const char*>(&le), 4);
+  };
+  out += "glTF";
+  u32(2);
+  u32(12 + 8 + json.size() + (chunks.bin ? 8 + chunks.bin_size : 0));
+  u32(json.size());
+  u32(0x4E4F534A);  // "JSON"
+  out += json;
+  if (chunks.bin) {
+    u32(chunks.bin_size);
+    u32(0x004E4942);  // "BIN\0"
+    out.append(reinterpret_cast<const char*>(chunks.bin), chunks.bin_size);
+  }
+  return out;
+}
+
 }  // namespace
 
 void write_glb(const Scene& scene, const std::filesystem::path& path) {
   tinygltf::Model model = Writer(scene).build();
+  std::ostringstream glb;
+  tinygltf::TinyGLTF gltf;
+  // prettyPrint, writeBinary (buffers and images go into the BIN chunk)
+  if (!gltf.WriteGltfSceneToStream(&model, glb, false, true))
+    fail("{}: cannot write the glTF file", path.string());
+  const std::string bytes = omit_absent_camera_values(glb.str(), scene, path.string());
   write_file_atomically(path, [&](const std::filesystem::path& temp) {
-    tinygltf::TinyGLTF gltf;
-    // embedImages, embedBuffers, prettyPrint, writeBinary
-    if (!gltf.WriteGltfSceneToFile(&model, temp.string(), true, true, false, true))
-      fail("{}: cannot write the glTF file", path.string());
+    std::ofstream out(temp, std::ios::binary);
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    out.close();
+    if (!out) fail("{}: cannot write the glTF file", path.string());
   });
 }
 

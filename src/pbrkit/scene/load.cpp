@@ -1,6 +1,6 @@
 #include "pbrkit/scene/load.h"
 
-#include "pbrkit/scene/gltf_loader.h"
+#include "pbrkit/scene/gltf/load_gltf.h"
 
 namespace pbrkit {
 

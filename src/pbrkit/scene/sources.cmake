@@ -2,8 +2,19 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/asset_uri.cpp
   ${CMAKE_CURRENT_LIST_DIR}/builtin_scenes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/camera.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/accessors.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/cameras.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/draco.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/file_access.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/lights.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/loader.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/materials.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/meshes.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/meshopt.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/nodes.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/textures.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/validation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_container.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/gltf_loader.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_writer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/load.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_attributes.cpp

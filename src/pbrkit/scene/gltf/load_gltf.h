@@ -1,5 +1,6 @@
 #pragma once
-// The glTF 2.0 loader behind load_scene (internal to the scene module).
+// The glTF 2.0 loader behind load_scene (internal to the scene module). The work is in
+// this folder: loader.cpp runs the steps in order, one file per concept.
 #include <filesystem>
 
 #include "pbrkit/scene/load.h"

@@ -1,0 +1,67 @@
+// glTF 2.0 loading through Debian's tinygltf, hardened for hostile files: the container
+// (GLB header, JSON, URIs) is checked before tinygltf sees it, every file access goes
+// through our own callbacks, and every index, offset and size in the parsed model is
+// checked before it is used. Errors name the file and the JSON path of the bad element.
+// This file is the order of the work; each step lives in the file named beside it.
+#include "pbrkit/scene/gltf/load_gltf.h"
+
+#include "pbrkit/scene/gltf/loader.h"
+#include "pbrkit/util/log.h"
+
+namespace pbrkit {
+
+namespace gltf {
+
+Scene Loader::load() {
+  scene_.source = file_;
+  // The bytes and, for a .glb, its chunks: checked before any parser runs.
+  read_container();  // file_access.cpp
+
+  // The JSON, checked with nlohmann: types, version, extensions, URIs and their sizes.
+  json root = parse_json();  // validation.cpp
+  check_json(root);
+  bool modified = prepare_meshopt_fallbacks(root);  // meshopt.cpp
+  check_uris(root);
+  modified = drop_draco_indices(root) || modified;  // draco.cpp
+  if (modified) {
+    json_text_ = root.dump();
+    if (is_glb_) rebuild_glb();  // file_access.cpp
+  }
+
+  // tinygltf parses the model; every file it reads goes through our callbacks.
+  parse_model();              // file_access.cpp
+  check_buffers();            // validation.cpp
+  size_meshopt_fallbacks();   // meshopt.cpp
+  check_buffer_views();       // validation.cpp
+  read_image_buffer_views();  // file_access.cpp
+
+  // Compressed data decoded into ordinary buffers and accessors.
+  decode_meshopt_views();     // meshopt.cpp
+  decode_draco_primitives();  // draco.cpp
+
+  // What is not rendered is said, not refused.
+  if (!model_.animations.empty())
+    note("{}: {} animation(s) ignored (the scene is shown at rest)", file_,
+         model_.animations.size());
+  if (!model_.skins.empty()) note("{}: {} skin(s) shown in bind pose", file_, model_.skins.size());
+
+  // The scene: materials (with their textures) first, since meshes generate tangents
+  // for normal-mapped materials; then the nodes, which build meshes, cameras and lights.
+  build_materials();  // materials.cpp, textures.cpp
+  build_nodes();      // nodes.cpp, meshes.cpp, accessors.cpp, cameras.cpp, lights.cpp
+  scene_.node_count = model_.nodes.size();
+  return std::move(scene_);
+}
+
+}  // namespace gltf
+
+Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
+  return gltf::Loader(path, options).load();
+}
+
+Scene load_gltf_from_memory(std::string bytes, const std::filesystem::path& name,
+                            const LoadOptions& options) {
+  return gltf::Loader(std::move(bytes), name, options).load();
+}
+
+}  // namespace pbrkit

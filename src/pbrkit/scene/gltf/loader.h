@@ -1,0 +1,118 @@
+#pragma once
+// One glTF file's load: the state its steps share. load() (loader.cpp) runs the steps in
+// order; each step is defined in the file of this folder named beside its declaration.
+// Private to src/pbrkit/scene/gltf/.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>  // every step formats its messages
+#include <tiny_gltf.h>
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "pbrkit/scene/load.h"
+
+namespace pbrkit::gltf {
+
+using nlohmann::json;
+
+// Image files (external or data: URIs) larger than this are refused before they are read.
+inline constexpr std::size_t kMaxImageFileBytes = std::size_t(1) << 30;
+
+class Loader {
+ public:
+  Loader(std::filesystem::path path, const LoadOptions& options)
+      : path_(std::move(path)), file_(path_.string()), options_(options) {}
+  /// Loads from bytes already in memory; `path` names them and its folder resolves URIs.
+  Loader(std::string bytes, std::filesystem::path path, const LoadOptions& options)
+      : path_(std::move(path)),
+        file_(path_.string()),
+        options_(options),
+        bytes_(std::move(bytes)),
+        preloaded_(true) {}
+
+  Scene load();
+
+ private:
+  // validation.cpp: messages name the file and the JSON path of the bad element.
+  [[noreturn]] void error(const std::string& where, const std::string& what) const;
+  void warning(const std::string& message);
+
+  // file_access.cpp: the file's bytes, the GLB container, tinygltf behind our callbacks.
+  void read_container();
+  void rebuild_glb();
+  void parse_model();
+  void read_image_buffer_views();
+
+  // validation.cpp: the JSON and the sizes in it, checked before anything trusts them.
+  json parse_json() const;
+  void check_json(const json& root);
+  void check_uris(const json& root);
+  void check_buffers() const;
+  void check_buffer_views();
+
+  // meshopt.cpp: EXT_meshopt_compression.
+  bool prepare_meshopt_fallbacks(json& root);
+  void size_meshopt_fallbacks();
+  void decode_meshopt_views();
+
+  // draco.cpp: KHR_draco_mesh_compression.
+  bool drop_draco_indices(json& root) const;
+  void decode_draco_primitives();
+
+  // accessors.cpp: a view of an accessor's bytes after validation.
+  struct AccessorView {
+    const tinygltf::Accessor* accessor = nullptr;
+    const unsigned char* data = nullptr;  // null: all zeros (sparse only)
+    std::size_t stride = 0;
+    int components = 0;
+  };
+  AccessorView accessor_view(int index, const std::string& where);
+  std::vector<float> read_floats(int index, const std::string& where, int expected_components,
+                                 bool allow_normalized_int);
+  std::vector<std::uint32_t> read_indices(int index, const std::string& where);
+
+  // meshes.cpp: one Mesh per primitive.
+  std::vector<int> build_mesh(int mesh_index, const std::vector<double>& weights);
+  void build_primitive(int mesh_index, int prim_index, const std::vector<double>& weights,
+                       std::vector<int>& out);
+
+  // materials.cpp: materials and their texture references.
+  void build_materials();
+  TextureRef texture_ref(int texture_index, int texcoord, const tinygltf::ExtensionMap& ext,
+                         bool srgb, const std::string& where);
+  // textures.cpp: images decoded once per colour space, with their samplers.
+  int texture_for(int texture_index, bool srgb, const std::string& where);
+
+  // nodes.cpp: the hierarchy, its transforms and mesh instances.
+  void build_nodes();
+  glm::mat4 local_transform(int node) const;
+  // cameras.cpp, lights.cpp: what a node carries besides a mesh.
+  void add_camera(int camera, const glm::mat4& world, const std::string& where);
+  void add_light(const tinygltf::Value& extension, const glm::mat4& world,
+                 const std::string& where);
+
+  std::filesystem::path path_;
+  std::string file_;
+  LoadOptions options_;
+  std::string bytes_;
+  bool preloaded_ = false;
+  bool is_glb_ = false;
+  std::string json_text_;
+  tinygltf::Model model_;
+  Scene scene_;
+  std::map<std::pair<int, bool>, int> texture_cache_;
+  std::size_t texture_bytes_ = 0;
+  std::size_t triangles_ = 0;
+  std::map<std::size_t, std::size_t> meshopt_fallbacks_;  // buffer -> real byteLength
+  // Decoded Draco primitives: (mesh, primitive) -> attribute name -> accessor index of a
+  // synthetic accessor appended to the model.
+  std::map<std::pair<int, int>, std::pair<std::map<std::string, int>, int>> draco_;
+};
+
+}  // namespace pbrkit::gltf

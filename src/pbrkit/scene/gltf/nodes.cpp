@@ -1,0 +1,155 @@
+// Nodes (glTF 2.0 section 3.5): the hierarchy is checked to be a set of disjoint trees
+// without recursion, then walked from the scene's roots, accumulating transforms and
+// instancing meshes, cameras and lights.
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "pbrkit/scene/gltf/loader.h"
+#include "pbrkit/util/log.h"
+
+namespace pbrkit::gltf {
+
+namespace {
+
+bool finite_matrix(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+}  // namespace
+
+glm::mat4 Loader::local_transform(int node) const {
+  const auto& n = model_.nodes[std::size_t(node)];
+  const std::string where = fmt::format("nodes[{}]", node);
+  glm::mat4 m(1.0f);
+  if (n.matrix.size() == 16) {
+    for (int i = 0; i < 16; ++i)
+      glm::value_ptr(m)[i] = float(n.matrix[std::size_t(i)]);  // column-major
+  } else {
+    if (!n.matrix.empty()) error(where + ".matrix", "must have 16 numbers");
+    glm::vec3 t(0.0f), s(1.0f);
+    glm::quat r(1.0f, 0.0f, 0.0f, 0.0f);
+    if (n.translation.size() == 3)
+      t = {float(n.translation[0]), float(n.translation[1]), float(n.translation[2])};
+    else if (!n.translation.empty())
+      error(where + ".translation", "must have 3 numbers");
+    if (n.rotation.size() == 4)  // glTF stores (x, y, z, w); glm::quat takes (w, x, y, z)
+      r = glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                    float(n.rotation[2]));
+    else if (!n.rotation.empty())
+      error(where + ".rotation", "must have 4 numbers");
+    if (n.scale.size() == 3)
+      s = {float(n.scale[0]), float(n.scale[1]), float(n.scale[2])};
+    else if (!n.scale.empty())
+      error(where + ".scale", "must have 3 numbers");
+    const float len = glm::length(r);
+    if (std::isfinite(len) && len > 0.0f) r = r / len;
+    m = glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(r) * glm::scale(glm::mat4(1.0f), s);
+  }
+  if (!finite_matrix(m)) error(where, "transform has NaN or infinite values");
+  return m;
+}
+
+void Loader::build_nodes() {
+  const std::size_t count = model_.nodes.size();
+  // The hierarchy must be a set of disjoint trees (glTF 2.0 section 3.5.3).
+  std::vector<int> parent(count, -1);
+  for (std::size_t i = 0; i < count; ++i)
+    for (std::size_t k = 0; k < model_.nodes[i].children.size(); ++k) {
+      const int c = model_.nodes[i].children[k];
+      const std::string where = fmt::format("nodes[{}].children[{}]", i, k);
+      if (c < 0 || std::size_t(c) >= count)
+        error(where, fmt::format("node {} does not exist ({} nodes)", c, count));
+      if (std::size_t(c) == i) error(where, fmt::format("node {} is its own child (cycle)", c));
+      if (parent[std::size_t(c)] >= 0)
+        error(where, fmt::format("node {} already has parent {} (cycle or shared child)", c,
+                                 parent[std::size_t(c)]));
+      parent[std::size_t(c)] = int(i);
+    }
+  // With one parent each, a cycle is a parent chain that never reaches a root.
+  std::vector<char> state(count, 0);  // 0 unknown, 1 on the current chain, 2 reaches a root
+  for (std::size_t i = 0; i < count; ++i) {
+    std::vector<std::size_t> chain;
+    for (std::size_t j = i;;) {
+      if (state[j] == 2) break;
+      if (state[j] == 1)
+        error(fmt::format("nodes[{}]", j), "is part of a cycle in the node hierarchy");
+      state[j] = 1;
+      chain.push_back(j);
+      if (parent[j] < 0) break;
+      j = std::size_t(parent[j]);
+    }
+    for (std::size_t k : chain) state[k] = 2;
+  }
+
+  std::vector<int> roots;
+  if (!model_.scenes.empty()) {
+    int s = model_.defaultScene;
+    if (s < 0) s = 0;
+    if (std::size_t(s) >= model_.scenes.size())
+      error("scene", fmt::format("scene {} does not exist", s));
+    if (model_.scenes.size() > 1)
+      note("{}: {} scenes; showing scene {}", file_, model_.scenes.size(), s);
+    for (std::size_t k = 0; k < model_.scenes[std::size_t(s)].nodes.size(); ++k) {
+      const int r = model_.scenes[std::size_t(s)].nodes[k];
+      const std::string where = fmt::format("scenes[{}].nodes[{}]", s, k);
+      if (r < 0 || std::size_t(r) >= count) error(where, fmt::format("node {} does not exist", r));
+      if (parent[std::size_t(r)] >= 0)
+        error(where,
+              fmt::format("node {} is not a root (its parent is {})", r, parent[std::size_t(r)]));
+      if (std::find(roots.begin(), roots.end(), r) != roots.end())
+        error(where, fmt::format("node {} is listed twice", r));
+      roots.push_back(r);
+    }
+  } else {
+    for (std::size_t i = 0; i < count; ++i)
+      if (parent[i] < 0) roots.push_back(int(i));
+  }
+
+  std::map<int, std::vector<int>> mesh_cache;  // glTF mesh -> our meshes (default weights)
+  std::vector<std::pair<int, glm::mat4>> stack;
+  for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
+  while (!stack.empty()) {
+    const auto [node, parent_world] = stack.back();
+    stack.pop_back();
+    const auto& n = model_.nodes[std::size_t(node)];
+    const glm::mat4 world = parent_world * local_transform(node);
+    if (!finite_matrix(world))
+      error(fmt::format("nodes[{}]", node), "accumulated transform overflows");
+    const std::string where = fmt::format("nodes[{}]", node);
+    if (n.mesh >= 0) {
+      if (std::size_t(n.mesh) >= model_.meshes.size())
+        error(where + ".mesh", fmt::format("mesh {} does not exist", n.mesh));
+      const auto& gmesh = model_.meshes[std::size_t(n.mesh)];
+      std::vector<int> meshes;
+      if (!n.weights.empty() && n.weights != gmesh.weights) {
+        meshes = build_mesh(n.mesh, n.weights);
+      } else {
+        auto cached = mesh_cache.find(n.mesh);
+        if (cached == mesh_cache.end())
+          cached = mesh_cache.emplace(n.mesh, build_mesh(n.mesh, gmesh.weights)).first;
+        meshes = cached->second;
+      }
+      for (int m : meshes) {
+        scene_.instances.push_back({m, world, node});
+        triangles_ += scene_.meshes[std::size_t(m)].triangle_count();
+        if (triangles_ > options_.limits.max_triangles)
+          error(where, fmt::format("the scene exceeds the limit of {} triangles",
+                                   options_.limits.max_triangles));
+      }
+    }
+    if (n.camera >= 0) add_camera(n.camera, world, where);  // cameras.cpp
+    if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end())
+      add_light(it->second, world, where);  // lights.cpp
+    for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) stack.push_back({*c, world});
+  }
+}
+
+}  // namespace pbrkit::gltf
