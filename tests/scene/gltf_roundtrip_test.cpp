@@ -2,6 +2,10 @@
 // built-in scenes (and of a scene exercising the optional features).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "pbrkit/scene/load.h"
 #include "pbrkit/scene/primitives.h"
 #include "support/test_paths.h"
@@ -25,8 +29,12 @@ void expect_same_material(const Material& a, const Material& b) {
   EXPECT_EQ(a.base_color_factor, b.base_color_factor);
   EXPECT_EQ(a.metallic_factor, b.metallic_factor);
   EXPECT_EQ(a.roughness_factor, b.roughness_factor);
-  EXPECT_EQ(a.emissive_factor, b.emissive_factor);
-  EXPECT_EQ(a.emissive_strength, b.emissive_strength);
+  // glTF keeps emissiveFactor in [0, 1]: a brighter factor comes back as a [0, 1] colour
+  // and a larger strength, with the same emitted radiance.
+  const glm::vec3 ea = a.emissive_factor * a.emissive_strength;
+  const glm::vec3 eb = b.emissive_factor * b.emissive_strength;
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(ea[c], eb[c], 1e-6f * std::max(1.0f, ea[c]));
+  EXPECT_LE(std::max({b.emissive_factor.r, b.emissive_factor.g, b.emissive_factor.b}), 1.0f);
   EXPECT_EQ(a.normal_scale, b.normal_scale);
   EXPECT_EQ(a.occlusion_strength, b.occlusion_strength);
   EXPECT_EQ(a.alpha_mode, b.alpha_mode);
@@ -103,6 +111,7 @@ TEST(GltfRoundTrip, BuiltinScenes) {
     const Scene original = builtin_scene(name);
     const auto path = dir / (name + ".glb");
     write_glb(original, path);
+    EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
     const Scene loaded = load_scene(path.string());
     EXPECT_TRUE(loaded.warnings.empty());
     expect_same_scene(original, loaded);
@@ -142,7 +151,12 @@ TEST(GltfRoundTrip, OptionalFeatures) {
   Mesh mesh = make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0});
   mesh.texcoords1 = mesh.texcoords0;
   mesh.colors0.assign(4, glm::vec4(0.5f, 0.25f, 1.0f, 1.0f));
-  add_mesh_instance(s, mesh, 0, glm::mat4(2.0f));
+  // A transform glTF can store (the writer flattens nodes to world matrices, which must
+  // decompose into translation, rotation and scale).
+  add_mesh_instance(s, mesh, 0,
+                    glm::scale(glm::rotate(glm::translate(glm::mat4(1.0f), {1.0f, 2.0f, 3.0f}),
+                                           0.5f, glm::vec3(0.0f, 1.0f, 0.0f)),
+                               glm::vec3(2.0f)));
   Light spot;
   spot.name = "spot";
   spot.type = Light::Type::kSpot;
@@ -156,6 +170,7 @@ TEST(GltfRoundTrip, OptionalFeatures) {
   s.lights.push_back(spot);
   const auto path = test::scratch_dir() / "features.glb";
   write_glb(s, path);
+  EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
   const Scene loaded = load_scene(path.string());
   expect_same_scene(s, loaded);
   ASSERT_EQ(loaded.textures.size(), 2u);

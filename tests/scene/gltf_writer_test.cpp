@@ -85,6 +85,7 @@ TEST(GltfWriter, InfinitePerspectiveCameraHasNoZfar) {
   camera.znear = 0.25f;
   const auto path = test::scratch_dir() / "infinite.glb";
   write_glb(scene_with_camera(camera), path);
+  EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
   const json gltf = glb_json(path);
   ASSERT_EQ(gltf["cameras"].size(), 1u);
   const json& p = gltf["cameras"][0]["perspective"];
@@ -108,6 +109,7 @@ TEST(GltfWriter, FiniteZfarAndAspectRatioRoundTrip) {
   camera.aspect_ratio = 1.5f;
   const auto path = test::scratch_dir() / "finite.glb";
   write_glb(scene_with_camera(camera), path);
+  EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
   const json gltf = glb_json(path);
   const json& p = gltf["cameras"][0]["perspective"];
   EXPECT_EQ(p["zfar"], 250.0);
@@ -130,6 +132,7 @@ TEST(GltfWriter, OrthographicCameraAlwaysHasZfar) {
   camera.ymag = 3.0f;
   const auto path = test::scratch_dir() / "ortho.glb";
   write_glb(scene_with_camera(camera), path);
+  EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
   const json gltf = glb_json(path);
   EXPECT_EQ(gltf["cameras"][0]["orthographic"]["zfar"], 1e6);
   expect_cameras_follow_schema(gltf);
@@ -142,6 +145,7 @@ TEST(GltfWriter, BuiltinScenesFollowTheCameraSchema) {
     SCOPED_TRACE(name);
     const auto path = dir / (name + ".glb");
     write_glb(builtin_scene(name), path);
+    EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
     const json gltf = glb_json(path);
     ASSERT_TRUE(gltf.contains("cameras"));
     expect_cameras_follow_schema(gltf);
@@ -157,6 +161,7 @@ TEST(GltfWriter, SceneWithoutGeometryHasNoEmptyBuffer) {
   s.cameras.push_back(camera);
   const auto path = test::scratch_dir() / "no_geometry.glb";
   write_glb(s, path);
+  EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
   const json gltf = glb_json(path);
   EXPECT_FALSE(gltf.contains("buffers")) << gltf.dump();
   const Scene loaded = load_scene(path.string());
@@ -178,6 +183,7 @@ TEST(GltfWriter, AlphaCutoffOnlyForMaskMaterials) {
   add_mesh_instance(s, make_quad({0, 0, 0}, {1, 0, 0}, {0, 1, 0}), 2);
   const auto path = test::scratch_dir() / "alpha.glb";
   write_glb(s, path);
+  EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
   const json gltf = glb_json(path);
   ASSERT_EQ(gltf["materials"].size(), 3u);
   EXPECT_FALSE(gltf["materials"][0].contains("alphaMode"));
@@ -207,6 +213,7 @@ TEST(GltfWriter, DirectionalLightHasNoRange) {
   s.lights.push_back(bulb);
   const auto path = test::scratch_dir() / "lights.glb";
   write_glb(s, path);
+  EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
   const json lights = glb_json(path)["extensions"]["KHR_lights_punctual"]["lights"];
   ASSERT_EQ(lights.size(), 2u);
   EXPECT_FALSE(lights[0].contains("range")) << lights[0].dump();
@@ -223,6 +230,7 @@ TEST(GltfWriter, IdentityTransformsAreLeftOut) {
   add_mesh_instance(s, quad, 0, glm::translate(glm::mat4(1.0f), glm::vec3(1, 2, 3)));
   const auto path = test::scratch_dir() / "matrices.glb";
   write_glb(s, path);
+  EXPECT_EQ(test::validate_gltf(path), "");  // the Khronos glTF-Validator
   const json nodes = glb_json(path)["nodes"];
   ASSERT_EQ(nodes.size(), 2u);
   EXPECT_FALSE(nodes[0].contains("matrix")) << nodes[0].dump();

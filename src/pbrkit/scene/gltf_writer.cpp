@@ -21,6 +21,20 @@ namespace pbrkit {
 
 namespace {
 
+// glTF's emissiveFactor is limited to [0, 1] (material schema); brighter emission is the
+// factor times KHR_materials_emissive_strength. A factor above 1 (a built-in or loaded
+// scene's) is written as its colour over its largest component, with that component
+// moved into the strength, so the emitted radiance (factor * strength) is unchanged.
+struct GltfEmission {
+  glm::vec3 factor;
+  float strength;
+};
+GltfEmission gltf_emission(const Material& m) {
+  const float peak = std::max({m.emissive_factor.r, m.emissive_factor.g, m.emissive_factor.b});
+  if (peak <= 1.0f) return {m.emissive_factor, m.emissive_strength};
+  return {m.emissive_factor / peak, m.emissive_strength * peak};
+}
+
 class Writer {
  public:
   explicit Writer(const Scene& scene) : scene_(scene) { model_.buffers.emplace_back(); }
@@ -155,11 +169,12 @@ void Writer::add_material(const Material& m) {
   pbr.roughnessFactor = m.roughness_factor;
   pbr.baseColorTexture = texture_info(m.base_color_texture);
   pbr.metallicRoughnessTexture = texture_info(m.metallic_roughness_texture);
-  g.emissiveFactor.assign({m.emissive_factor.r, m.emissive_factor.g, m.emissive_factor.b});
+  const GltfEmission emission = gltf_emission(m);
+  g.emissiveFactor.assign({emission.factor.r, emission.factor.g, emission.factor.b});
   g.emissiveTexture = texture_info(m.emissive_texture);
-  if (m.emissive_strength != 1.0f) {
+  if (emission.strength != 1.0f) {
     tinygltf::Value::Object o;
-    o["emissiveStrength"] = tinygltf::Value(double(m.emissive_strength));
+    o["emissiveStrength"] = tinygltf::Value(double(emission.strength));
     g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(o);
   }
   const tinygltf::TextureInfo normal = texture_info(m.normal_texture);
@@ -298,7 +313,7 @@ tinygltf::Model Writer::build() {
   auto uses = [&](const char* ext) { model_.extensionsUsed.push_back(ext); };
   if (!scene_.lights.empty()) uses("KHR_lights_punctual");
   if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
-                  [](const Material& m) { return m.emissive_strength != 1.0f; }))
+                  [](const Material& m) { return gltf_emission(m).strength != 1.0f; }))
     uses("KHR_materials_emissive_strength");
   auto has_transform = [](const Material& m) {
     for (const TextureRef* r : m.textures())
