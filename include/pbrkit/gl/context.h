@@ -16,10 +16,14 @@ class HeadlessContext {
   /// Creates the context and makes it current on the calling thread. Throws pbrkit::Error
   /// explaining what failed (no EGL platform, no 4.5 core context).
   HeadlessContext();
+  /// Destroys the context (unbinding it first if it is current on the calling thread). The
+  /// EGL display, which all contexts of a process share, is terminated only with the last
+  /// context using it, so other HeadlessContexts stay usable.
   ~HeadlessContext();
   HeadlessContext(const HeadlessContext&) = delete;
   HeadlessContext& operator=(const HeadlessContext&) = delete;
 
+  /// Makes the context current on the calling thread; pbrkit::Error if EGL refuses.
   void make_current();
   /// "surfaceless" or "device".
   const std::string& platform() const { return platform_; }

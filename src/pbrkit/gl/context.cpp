@@ -1,5 +1,7 @@
 #include "pbrkit/gl/context.h"
 
+#include <map>
+#include <mutex>
 #include <vector>
 
 #include <epoxy/egl.h>
@@ -12,14 +14,54 @@ namespace pbrkit::gl {
 
 namespace {
 
-// Initialises `display` and creates a 4.5 core context without a config
-// (EGL_KHR_no_config_context) and without a surface (EGL_KHR_surfaceless_context);
-// returns EGL_NO_CONTEXT (and terminates the display) on failure.
-EGLContext create_core_context(EGLDisplay display) {
+// eglGetPlatformDisplayEXT returns the same EGLDisplay for the same platform and device
+// every time it is called in a process, and eglInitialize / eglTerminate act on that one
+// display, not on a per-caller handle: eglInitialize on an initialised display does
+// nothing, and one eglTerminate ends every context created on it (one current on some
+// thread lives on only until it is released; measured on Mesa: the next eglMakeCurrent of
+// any other fails with EGL_BAD_DISPLAY). So all HeadlessContexts share
+// their display (gl_tests' shared context and render_headless's own, say), and the first
+// one destroyed must not terminate it under the others: the last context using the
+// display terminates it. Not terminating at all would also work but would keep the
+// driver's state (llvmpipe's threads among it) until exit after the last context is gone;
+// EGL_KHR_display_reference would have EGL count, but not every EGL has it. A mutex,
+// because contexts may be made and destroyed on different threads.
+std::mutex& displays_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+std::map<EGLDisplay, int>& display_users() {
+  static std::map<EGLDisplay, int> users;
+  return users;
+}
+
+// Initialises `display` for one more user; false if it cannot be initialised.
+bool acquire_display(EGLDisplay display) {
+  if (display == EGL_NO_DISPLAY) return false;
+  const std::lock_guard<std::mutex> lock(displays_mutex());
   EGLint major = 0, minor = 0;
-  if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor)) return EGL_NO_CONTEXT;
+  if (!eglInitialize(display, &major, &minor)) return false;
+  ++display_users()[display];
+  return true;
+}
+
+// One user fewer; the last one terminates the display.
+void release_display(EGLDisplay display) {
+  const std::lock_guard<std::mutex> lock(displays_mutex());
+  auto& users = display_users();
+  const auto it = users.find(display);
+  if (it == users.end() || --it->second > 0) return;
+  users.erase(it);
+  eglTerminate(display);
+}
+
+// Initialises `display` and creates a 4.5 core context without a config
+// (EGL_KHR_no_config_context) and without a surface (EGL_KHR_surfaceless_context), current
+// on the calling thread; returns EGL_NO_CONTEXT (and releases the display) on failure.
+EGLContext create_core_context(EGLDisplay display) {
+  if (!acquire_display(display)) return EGL_NO_CONTEXT;
   if (!eglBindAPI(EGL_OPENGL_API)) {
-    eglTerminate(display);
+    release_display(display);
     return EGL_NO_CONTEXT;
   }
   const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION,
@@ -31,12 +73,12 @@ EGLContext create_core_context(EGLDisplay display) {
                                EGL_NONE};
   EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes);
   if (context == EGL_NO_CONTEXT) {
-    eglTerminate(display);
+    release_display(display);
     return EGL_NO_CONTEXT;
   }
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
     eglDestroyContext(display, context);
-    eglTerminate(display);
+    release_display(display);
     return EGL_NO_CONTEXT;
   }
   return context;
@@ -77,14 +119,19 @@ HeadlessContext::HeadlessContext() {
 
 HeadlessContext::~HeadlessContext() {
   auto display = static_cast<EGLDisplay>(display_);
-  eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-  eglDestroyContext(display, static_cast<EGLContext>(context_));
-  eglTerminate(display);
+  auto context = static_cast<EGLContext>(context_);
+  // Unbind it if it is this thread's current context (another context current here stays
+  // current), destroy it, and terminate the display if no other context uses it.
+  if (eglGetCurrentContext() == context)
+    eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+  eglDestroyContext(display, context);
+  release_display(display);
 }
 
 void HeadlessContext::make_current() {
-  eglMakeCurrent(static_cast<EGLDisplay>(display_), EGL_NO_SURFACE, EGL_NO_SURFACE,
-                 static_cast<EGLContext>(context_));
+  if (!eglMakeCurrent(static_cast<EGLDisplay>(display_), EGL_NO_SURFACE, EGL_NO_SURFACE,
+                      static_cast<EGLContext>(context_)))
+    fail("OpenGL: cannot make the headless context current (EGL error 0x{:x})", eglGetError());
 }
 
 bool is_software_renderer(std::string_view gl_renderer) {
