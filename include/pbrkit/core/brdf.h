@@ -247,23 +247,7 @@ inline float BoundBrdf::pdf(glm::vec3 wi) const {
 }
 
 inline glm::vec3 BoundBrdf::sample_visible_normal(glm::vec2 u) const {
-  // sample_ggx_vndf(wo, u, alpha).h (core/microfacet.cpp; Heitz 2018, listing 1), without
-  // the pdf it also computes: the pdf of the sample comes from eval, which shares D.
-  const glm::vec3 wo = wo_;
-  const float alpha = brdf_.alpha_;
-  const glm::vec3 Vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
-  const float lensq = Vh.x * Vh.x + Vh.y * Vh.y;
-  const glm::vec3 T1 =
-      lensq > 0.0f ? glm::vec3(-Vh.y, Vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1.0f, 0.0f, 0.0f);
-  const glm::vec3 T2 = glm::cross(Vh, T1);
-  const float r = std::sqrt(u.x);
-  const float phi = 2.0f * kPi * u.y;
-  const float t1 = r * std::cos(phi);
-  float t2 = r * std::sin(phi);
-  const float s = 0.5f * (1.0f + Vh.z);
-  t2 = (1.0f - s) * safe_sqrt(1.0f - t1 * t1) + s * t2;
-  const glm::vec3 Nh = t1 * T1 + t2 * T2 + safe_sqrt(1.0f - t1 * t1 - t2 * t2) * Vh;
-  return glm::normalize(glm::vec3(alpha * Nh.x, alpha * Nh.y, std::max(Nh.z, 1e-7f)));
+  return sample_ggx_visible_normal(wo_, u, brdf_.alpha_);
 }
 
 inline BrdfSample BoundBrdf::sample(float u_lobe, glm::vec2 u) const {

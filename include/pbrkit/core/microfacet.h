@@ -4,9 +4,13 @@
 // fresnelSchlick) so a reader with the papers open can check each line.
 //
 // alpha = roughness^2 throughout (Burley 2012 / Karis 2013 remap).
+#include <algorithm>
+#include <cmath>
 #include <string_view>
 
 #include <glm/glm.hpp>
+
+#include "pbrkit/core/math.h"
 
 namespace pbrkit {
 
@@ -72,6 +76,28 @@ float ggx_ndf_pdf(glm::vec3 h, float alpha);
 /// pdf = G1(wo) max(0, wo.h) D(h) / wo.z.
 HalfVectorSample sample_ggx_vndf(glm::vec3 wo, glm::vec2 u, float alpha);
 float ggx_vndf_pdf(glm::vec3 wo, glm::vec3 h, float alpha);
+
+/// The half vector of sample_ggx_vndf without its pdf (Heitz 2018, listing 1), inline for
+/// the path tracer's per-vertex BRDF (core/brdf.h BoundBrdf), whose pdf shares D with eval.
+inline glm::vec3 sample_ggx_visible_normal(glm::vec3 wo, glm::vec2 u, float alpha) {
+  // Stretch the view vector to the hemisphere configuration.
+  const glm::vec3 Vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
+  // Orthonormal basis around Vh (with the singularity at the pole handled).
+  const float lensq = Vh.x * Vh.x + Vh.y * Vh.y;
+  const glm::vec3 T1 =
+      lensq > 0.0f ? glm::vec3(-Vh.y, Vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1.0f, 0.0f, 0.0f);
+  const glm::vec3 T2 = glm::cross(Vh, T1);
+  // Uniform point on the projected disk, warped to the visible half (section 4.2).
+  const float r = std::sqrt(u.x);
+  const float phi = 2.0f * kPi * u.y;
+  const float t1 = r * std::cos(phi);
+  float t2 = r * std::sin(phi);
+  const float s = 0.5f * (1.0f + Vh.z);
+  t2 = (1.0f - s) * safe_sqrt(1.0f - t1 * t1) + s * t2;
+  // Reproject onto the hemisphere and unstretch.
+  const glm::vec3 Nh = t1 * T1 + t2 * T2 + safe_sqrt(1.0f - t1 * t1 - t2 * t2) * Vh;
+  return glm::normalize(glm::vec3(alpha * Nh.x, alpha * Nh.y, std::max(Nh.z, 1e-7f)));
+}
 
 /// Converts a half-vector pdf to the pdf of the reflected direction: pdf_h / (4 |wo.h|).
 inline float reflected_pdf(float pdf_h, float WOdotH) {

@@ -98,23 +98,7 @@ float ggx_ndf_pdf(glm::vec3 h, float alpha) {
 }
 
 HalfVectorSample sample_ggx_vndf(glm::vec3 wo, glm::vec2 u, float alpha) {
-  // Heitz 2018, listing 1. Stretch the view vector to the hemisphere configuration.
-  const glm::vec3 Vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
-  // Orthonormal basis around Vh (with the singularity at the pole handled).
-  const float lensq = Vh.x * Vh.x + Vh.y * Vh.y;
-  const glm::vec3 T1 =
-      lensq > 0.0f ? glm::vec3(-Vh.y, Vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1.0f, 0.0f, 0.0f);
-  const glm::vec3 T2 = glm::cross(Vh, T1);
-  // Uniform point on the projected disk, warped to the visible half (section 4.2).
-  const float r = std::sqrt(u.x);
-  const float phi = 2.0f * kPi * u.y;
-  const float t1 = r * std::cos(phi);
-  float t2 = r * std::sin(phi);
-  const float s = 0.5f * (1.0f + Vh.z);
-  t2 = (1.0f - s) * safe_sqrt(1.0f - t1 * t1) + s * t2;
-  // Reproject onto the hemisphere and unstretch.
-  const glm::vec3 Nh = t1 * T1 + t2 * T2 + safe_sqrt(1.0f - t1 * t1 - t2 * t2) * Vh;
-  const glm::vec3 h = glm::normalize(glm::vec3(alpha * Nh.x, alpha * Nh.y, std::max(Nh.z, 1e-7f)));
+  const glm::vec3 h = sample_ggx_visible_normal(wo, u, alpha);
   return {h, ggx_vndf_pdf(wo, h, alpha)};
 }
 
