@@ -14,7 +14,6 @@
 #include <pmmintrin.h>
 #include <sys/resource.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <xmmintrin.h>
 
@@ -26,6 +25,7 @@
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/util/parallel.h"
 
 namespace {
 
@@ -147,7 +147,7 @@ double replay(const pbrkit::SceneGeometry& geometry, const std::vector<RayRecord
   tbb::task_arena arena(threads);
   const auto start = std::chrono::steady_clock::now();
   arena.execute([&] {
-    tbb::parallel_for(std::size_t(0), bounds.size() - 1, [&](std::size_t c) {
+    pbrkit::parallel_for(std::size_t(0), bounds.size() - 1, [&](std::size_t c) {
       _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
       _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
       std::uint32_t geom, prim, hits = 0;

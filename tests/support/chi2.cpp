@@ -12,9 +12,9 @@
 #include <numeric>
 
 #include <fmt/format.h>
-#include <tbb/parallel_for.h>
 
 #include "pbrkit/core/sampling.h"
+#include "pbrkit/util/parallel.h"
 
 namespace pbrkit::test {
 namespace {
@@ -128,7 +128,7 @@ std::vector<double> integrate_pdf_over_bins(const std::function<double(glm::vec3
   const Cubature cubature{pdf, options.integration_tolerance / (2.0 * kPi * kPi),
                           options.integration_max_depth};
   std::vector<double> integral(std::size_t(nt) * np);
-  tbb::parallel_for(0, nt * np, [&](int k) {
+  pbrkit::parallel_for(0, nt * np, [&](int k) {
     const int i = k / np, j = k % np;
     const double t0 = kPi * i / nt, t1 = kPi * (i + 1) / nt;
     const double p0 = 2.0 * kPi * j / np, p1 = 2.0 * kPi * (j + 1) / np;
@@ -149,7 +149,7 @@ Chi2Result chi2_sphere_test(const std::function<std::optional<glm::vec3>(float, 
   constexpr std::size_t kChunk = 1 << 15;
   const std::size_t chunks = (options.samples + kChunk - 1) / kChunk;
   std::vector<std::vector<std::uint64_t>> partial(chunks);
-  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
+  pbrkit::parallel_for(std::size_t(0), chunks, [&](std::size_t c) {
     auto& hist = partial[c];
     hist.assign(cells + 2, 0);
     Pcg32 rng(options.seed, c);

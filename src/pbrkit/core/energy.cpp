@@ -5,11 +5,10 @@
 #include <cmath>
 #include <mutex>
 
-#include <tbb/parallel_for.h>
-
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
+#include "pbrkit/util/parallel.h"
 
 namespace pbrkit {
 
@@ -42,7 +41,7 @@ EnergyTable::EnergyTable(GeometryModel model)
     : model_(model), ab_(std::size_t(kMuSize) * kRoughnessSize), ab_avg_(kRoughnessSize) {
   // Each entry is independent and deterministic (Hammersley points), so the table is
   // the same whatever the thread count.
-  tbb::parallel_for(0, kRoughnessSize * kMuSize, [&](int k) {
+  pbrkit::parallel_for(0, kRoughnessSize * kMuSize, [&](int k) {
     const int i = k % kMuSize, j = k / kMuSize;
     const float r = float(j) / float(kRoughnessSize - 1);
     const float mu = float(i) / float(kMuSize - 1);

@@ -3,8 +3,6 @@
 // multiple-scattering compensation (Fdez-Aguera 2019; Kulla & Conty 2017). See brdf_lut.h.
 #include "pbrkit/ibl/brdf_lut.h"
 
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 #include <vector>
 
@@ -14,6 +12,7 @@
 #include "pbrkit/core/sampling.h"
 #include "pbrkit/ibl/simd.h"
 #include "pbrkit/util/error.h"
+#include "pbrkit/util/parallel.h"
 
 namespace pbrkit {
 
@@ -114,7 +113,7 @@ Image compute_brdf_lut(BrdfModel model, int size) {
   Image lut(size, size, 4);
   // The points do not depend on the texel: generate them once.
   const DiskPoints points = disk_points();
-  tbb::parallel_for(0, size, [&](int y) {
+  pbrkit::parallel_for(0, size, [&](int y) {
     const float roughness = std::max((float(y) + 0.5f) / float(size), kMinRoughness);
     for (int x = 0; x < size; ++x) {
       const float NdotV = (float(x) + 0.5f) / float(size);

@@ -2,11 +2,10 @@
 // (see environment_cube.h).
 #include "pbrkit/ibl/environment_cube.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 
 #include "pbrkit/util/error.h"
+#include "pbrkit/util/parallel.h"
 
 namespace pbrkit {
 
@@ -25,7 +24,7 @@ Cubemap resample_to_cube(const Environment& env, int face_size) {
   const int ss = cube_supersampling(env.map.width, face_size);
   const float inv = 1.0f / float(face_size * ss);
   const float weight = 1.0f / float(ss * ss);
-  tbb::parallel_for(0, 6 * face_size, [&](int r) {
+  pbrkit::parallel_for(0, 6 * face_size, [&](int r) {
     const int face = r / face_size, y = r % face_size;
     Image& img = cube.mips[0][face];
     for (int x = 0; x < face_size; ++x) {
@@ -50,7 +49,7 @@ void build_mip_chain(Cubemap& cube, int min_size) {
     cube.mips.push_back(make_rgba_faces(size));
     const auto& src = cube.mips[src_level];
     auto& dst = cube.mips.back();
-    tbb::parallel_for(0, 6, [&](int face) {
+    pbrkit::parallel_for(0, 6, [&](int face) {
       // 2x2 box filter. Texels of one face have nearly equal solid angles at these sizes;
       // the filtered importance sampling only needs a band-limited chain (Colbert &
       // Krivanek 2007, section 20.4).

@@ -1,10 +1,9 @@
 // The diffuse irradiance cube by direct quadrature (see irradiance_cube.h).
 #include "pbrkit/ibl/irradiance_cube.h"
 
-#include <tbb/parallel_for.h>
-
 #include "pbrkit/ibl/prefilter_kernels.h"
 #include "pbrkit/util/error.h"
+#include "pbrkit/util/parallel.h"
 
 namespace pbrkit {
 
@@ -18,7 +17,7 @@ Cubemap irradiance_cube(const Cubemap& source, int size) {
   const detail::QuadratureSource texels = detail::flatten_level(source, level);
   Cubemap out;
   out.mips.push_back(make_rgba_faces(size));
-  tbb::parallel_for(0, 6 * size, [&](int r) {
+  pbrkit::parallel_for(0, 6 * size, [&](int r) {
     const int face = r / size, y = r % size;
     for (int x = 0; x < size; ++x) {
       const glm::vec3 n =

@@ -4,7 +4,6 @@
 #include "pbrkit/ibl/prefilter.h"
 
 #include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <atomic>
@@ -18,6 +17,7 @@
 #include "pbrkit/ibl/cube_lookup.h"
 #include "pbrkit/ibl/prefilter_kernels.h"
 #include "pbrkit/ibl/roughness_mapping.h"
+#include "pbrkit/util/parallel.h"
 
 namespace pbrkit {
 
@@ -282,7 +282,7 @@ Cubemap prefilter_specular(const Cubemap& input, const BakeOptions& options,
     total_work += 6.0 * size * row_work[m];
   }
   ProgressCounter counter(progress, std::max(total_work, 1.0));
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size()), [&](const auto& range) {
+  pbrkit::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size()), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const Row row = rows[i];
       const int size = face_size >> row.level;

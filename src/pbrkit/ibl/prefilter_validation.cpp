@@ -1,14 +1,13 @@
 // Brute-force prefilter references (see prefilter_validation.h).
 #include "pbrkit/ibl/prefilter_validation.h"
 
-#include <tbb/parallel_for.h>
-
 #include <cmath>
 
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/microfacet.h"
+#include "pbrkit/util/parallel.h"
 
 namespace pbrkit {
 
@@ -63,7 +62,7 @@ std::vector<PrefilterError> validate_prefilter(const Environment& env, const Cub
       }
     const float roughness = mip_roughness(level, specular.levels(), mapping);
     std::vector<double> errors(probes.size());
-    tbb::parallel_for(std::size_t(0), probes.size(), [&](std::size_t i) {
+    pbrkit::parallel_for(std::size_t(0), probes.size(), [&](std::size_t i) {
       const Probe& p = probes[i];
       const glm::vec3 R =
           cube_direction(p.face, {(p.x + 0.5f) / float(size), (p.y + 0.5f) / float(size)});

@@ -1,11 +1,10 @@
 // Irradiance spherical harmonics (Ramamoorthi & Hanrahan 2001).
 #include "pbrkit/ibl/spherical_harmonics.h"
 
-#include <tbb/parallel_for.h>
-
 #include <vector>
 
 #include "pbrkit/core/math.h"
+#include "pbrkit/util/parallel.h"
 
 namespace pbrkit {
 
@@ -40,7 +39,7 @@ SH9 project_sh_irradiance(const Cubemap& cube, int level) {
   std::vector<std::array<glm::dvec3, 9>> partial(rows);
   // One task per row y of all six faces: the texel solid angles (4 atan2 each) are the same
   // on every face, so they are computed once per row.
-  tbb::parallel_for(0, size, [&](int y) {
+  pbrkit::parallel_for(0, size, [&](int y) {
     std::vector<float> omega(static_cast<std::size_t>(size));
     for (int x = 0; x < size; ++x) omega[std::size_t(x)] = cube_texel_solid_angle(x, y, size);
     for (int face = 0; face < 6; ++face) {
