@@ -222,25 +222,26 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
   while (!complete && !should_stop()) {
     target = next_target(target, total, settings.min_spp);
     arena.execute([&] {
-      parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1),
-                   [&](const tbb::blocked_range2d<int>& r) {
-                     set_ftz_daz();
-                     std::uint64_t& rays = ray_counts.local();
-                     for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
-                       for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
-                         if (should_stop()) return;
-                         std::uint64_t tile_samples = 0;
-                         const int x1 = std::min(settings.width, (tx + 1) * kTileSize);
-                         const int y1 = std::min(settings.height, (ty + 1) * kTileSize);
-                         for (int by = ty * kTileSize; by < y1; by += kPacketSide)
-                           for (int bx = tx * kTileSize; bx < x1; bx += kPacketSide)
-                             tile_samples += render_packet(bx, by, rays);
-                         // Shared counters are touched once per tile, not per sample.
-                         samples_taken.fetch_add(tile_samples, std::memory_order_relaxed);
-                         work_done.fetch_add(double(tile_samples), std::memory_order_relaxed);
-                         report(false);
-                       }
-                   });
+      pbrkit::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1),
+                           [&](const tbb::blocked_range2d<int>& r) {
+                             set_ftz_daz();
+                             std::uint64_t& rays = ray_counts.local();
+                             for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
+                               for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
+                                 if (should_stop()) return;
+                                 std::uint64_t tile_samples = 0;
+                                 const int x1 = std::min(settings.width, (tx + 1) * kTileSize);
+                                 const int y1 = std::min(settings.height, (ty + 1) * kTileSize);
+                                 for (int by = ty * kTileSize; by < y1; by += kPacketSide)
+                                   for (int bx = tx * kTileSize; bx < x1; bx += kPacketSide)
+                                     tile_samples += render_packet(bx, by, rays);
+                                 // Shared counters are touched once per tile, not per sample.
+                                 samples_taken.fetch_add(tile_samples, std::memory_order_relaxed);
+                                 work_done.fetch_add(double(tile_samples),
+                                                     std::memory_order_relaxed);
+                                 report(false);
+                               }
+                           });
     });
     if (should_stop()) break;
     // Adaptive sampling: pixels whose two half-buffer estimates agree (and their

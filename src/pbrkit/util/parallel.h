@@ -2,7 +2,9 @@
 // pbrkit::parallel_for: oneTBB's parallel_for, made visible to ThreadSanitizer.
 //
 // Every parallel loop in pbrkit goes through these overloads instead of calling
-// tbb::parallel_for directly. In an ordinary build each one is a plain forwarding call to
+// tbb::parallel_for directly. Call them qualified, `pbrkit::parallel_for(...)`: with a
+// oneTBB range argument an unqualified call also finds tbb::parallel_for by argument-
+// dependent lookup, and C++20 overload resolution prefers its constrained template. In an ordinary build each one is a plain forwarding call to
 // the same tbb::parallel_for form (the same range, body and default auto_partitioner), so
 // the generated code, the schedule and every result are unchanged.
 //
