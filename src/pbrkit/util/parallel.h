@@ -4,9 +4,10 @@
 // Every parallel loop in pbrkit goes through these overloads instead of calling
 // tbb::parallel_for directly. Call them qualified, `pbrkit::parallel_for(...)`: with a
 // oneTBB range argument an unqualified call also finds tbb::parallel_for by argument-
-// dependent lookup, and C++20 overload resolution prefers its constrained template. In an ordinary build each one is a plain forwarding call to
-// the same tbb::parallel_for form (the same range, body and default auto_partitioner), so
-// the generated code, the schedule and every result are unchanged.
+// dependent lookup, and C++20 overload resolution prefers its constrained template. In an ordinary
+// build each one is a plain forwarding call to the same tbb::parallel_for form (the same range,
+// body and default auto_partitioner), so the generated code, the schedule and every result are
+// unchanged.
 //
 // Why: the oneTBB library pbrkit links (Debian's libtbb.so) is not built with
 // ThreadSanitizer. The happens-before edges that parallel_for guarantees are created inside
