@@ -64,6 +64,53 @@ struct TextureRef {
 
 enum class AlphaMode { kOpaque, kMask, kBlend };
 
+// The KHR_materials_* surface extensions (docs/MODEL.md, "Revision 2"). Each is absent
+// (std::nullopt) when the material does not use it; the values are the extension's own
+// factors with its README's defaults, and the textures hold the channels the README names.
+
+/// KHR_materials_specular: the dielectric's F0 tint and strength.
+struct SpecularExtension {
+  float factor = 1.0f;           ///< specularFactor
+  TextureRef texture;            ///< specularTexture, A channel (linear)
+  glm::vec3 color_factor{1.0f};  ///< specularColorFactor (linear, may exceed 1)
+  TextureRef color_texture;      ///< specularColorTexture, RGB (sRGB)
+};
+
+/// KHR_materials_clearcoat: a GGX dielectric coat (ior 1.5) over the whole material.
+struct ClearcoatExtension {
+  float factor = 0.0f;            ///< clearcoatFactor
+  TextureRef texture;             ///< clearcoatTexture, R channel
+  float roughness_factor = 0.0f;  ///< clearcoatRoughnessFactor
+  TextureRef roughness_texture;   ///< clearcoatRoughnessTexture, G channel
+  TextureRef normal_texture;      ///< clearcoatNormalTexture (tangent space)
+  float normal_scale = 1.0f;      ///< clearcoatNormalTexture.scale
+};
+
+/// KHR_materials_sheen: the Charlie sheen layer (Estevez & Kulla 2017).
+struct SheenExtension {
+  glm::vec3 color_factor{0.0f};   ///< sheenColorFactor (linear)
+  TextureRef color_texture;       ///< sheenColorTexture, RGB (sRGB)
+  float roughness_factor = 0.0f;  ///< sheenRoughnessFactor
+  TextureRef roughness_texture;   ///< sheenRoughnessTexture, A channel
+};
+
+/// KHR_materials_anisotropy: anisotropic GGX along a direction in the tangent frame.
+struct AnisotropyExtension {
+  float strength = 0.0f;  ///< anisotropyStrength, [0, 1]
+  float rotation = 0.0f;  ///< anisotropyRotation, radians from the tangent
+  TextureRef texture;     ///< anisotropyTexture: RG direction, B strength (linear)
+};
+
+/// KHR_materials_iridescence: a thin film over the base (Belcour & Barla 2017).
+struct IridescenceExtension {
+  float factor = 0.0f;           ///< iridescenceFactor
+  TextureRef texture;            ///< iridescenceTexture, R channel
+  float ior = 1.3f;              ///< iridescenceIor (the film's)
+  float thickness_min = 100.0f;  ///< iridescenceThicknessMinimum, nm
+  float thickness_max = 400.0f;  ///< iridescenceThicknessMaximum, nm
+  TextureRef thickness_texture;  ///< iridescenceThicknessTexture, G channel
+};
+
 /// glTF 2.0 metallic-roughness material with the spec's defaults.
 struct Material {
   std::string name;
@@ -83,16 +130,57 @@ struct Material {
   TextureRef occlusion_texture;           ///< linear, R channel
   TextureRef emissive_texture;            ///< sRGB
 
-  /// The five texture slots in glTF order, named by kTextureSlotNames.
-  std::array<const TextureRef*, 5> textures() const {
-    return {&base_color_texture, &metallic_roughness_texture, &normal_texture, &occlusion_texture,
-            &emissive_texture};
-  }
+  float ior = 1.5f;  ///< KHR_materials_ior (1.5 when absent; 1.0: no dielectric specular)
+  std::optional<SpecularExtension> specular;
+  std::optional<ClearcoatExtension> clearcoat;
+  std::optional<SheenExtension> sheen;
+  std::optional<AnisotropyExtension> anisotropy;
+  std::optional<IridescenceExtension> iridescence;
+  bool unlit = false;  ///< KHR_materials_unlit: the base colour is shown as is
+
+  /// Every texture slot, in the order of TextureSlot / kTextureSlotNames; the slots of an
+  /// absent extension point at an empty TextureRef.
+  std::array<const TextureRef*, 15> textures() const;
 };
 
-/// glTF's names of Material::textures()'s slots.
-inline constexpr std::array<const char*, 5> kTextureSlotNames = {"baseColor", "metallicRoughness",
-                                                                 "normal", "occlusion", "emissive"};
+/// Material::textures()'s slots (the GL renderer's HAS_TEXTURE_n bits use these numbers).
+enum class TextureSlot {
+  kBaseColor,
+  kMetallicRoughness,
+  kNormal,
+  kOcclusion,
+  kEmissive,
+  kSpecular,
+  kSpecularColor,
+  kClearcoat,
+  kClearcoatRoughness,
+  kClearcoatNormal,
+  kSheenColor,
+  kSheenRoughness,
+  kAnisotropy,
+  kIridescence,
+  kIridescenceThickness,
+};
+inline constexpr int kTextureSlotCount = 15;
+
+/// glTF's names of Material::textures()'s slots (extension slots as "<extension>.<name>").
+inline constexpr std::array<const char*, kTextureSlotCount> kTextureSlotNames = {
+    "baseColor",
+    "metallicRoughness",
+    "normal",
+    "occlusion",
+    "emissive",
+    "KHR_materials_specular.specularTexture",
+    "KHR_materials_specular.specularColorTexture",
+    "KHR_materials_clearcoat.clearcoatTexture",
+    "KHR_materials_clearcoat.clearcoatRoughnessTexture",
+    "KHR_materials_clearcoat.clearcoatNormalTexture",
+    "KHR_materials_sheen.sheenColorTexture",
+    "KHR_materials_sheen.sheenRoughnessTexture",
+    "KHR_materials_anisotropy.anisotropyTexture",
+    "KHR_materials_iridescence.iridescenceTexture",
+    "KHR_materials_iridescence.iridescenceThicknessTexture",
+};
 
 /// One glTF primitive as an indexed triangle list (strips and fans converted), with
 /// attributes in object space. Optional attributes are empty when absent.

@@ -166,7 +166,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     const Instance& inst = s.scene.instances[index];
     const GpuMesh& mesh = s.scene.meshes[std::size_t(inst.mesh)];
     const Material& m = s.scene.material_of(mesh);
-    const std::array<const TextureRef*, 5> refs = m.textures();
+    const auto refs = m.textures();
     SurfaceFeatures features = frame;
     features.alpha_mode = mesh.alpha_mode;
     features.colors = mesh.has_colors;

@@ -12,6 +12,28 @@ Bounds Scene::world_bounds() const {
   return bounds;
 }
 
+std::array<const TextureRef*, 15> Material::textures() const {
+  static const TextureRef kNone;
+  auto in = [](const auto& ext, auto member) -> const TextureRef* {
+    return ext ? &((*ext).*member) : &kNone;
+  };
+  return {&base_color_texture,
+          &metallic_roughness_texture,
+          &normal_texture,
+          &occlusion_texture,
+          &emissive_texture,
+          in(specular, &SpecularExtension::texture),
+          in(specular, &SpecularExtension::color_texture),
+          in(clearcoat, &ClearcoatExtension::texture),
+          in(clearcoat, &ClearcoatExtension::roughness_texture),
+          in(clearcoat, &ClearcoatExtension::normal_texture),
+          in(sheen, &SheenExtension::color_texture),
+          in(sheen, &SheenExtension::roughness_texture),
+          in(anisotropy, &AnisotropyExtension::texture),
+          in(iridescence, &IridescenceExtension::texture),
+          in(iridescence, &IridescenceExtension::thickness_texture)};
+}
+
 const Material& Scene::material_of(const Mesh& mesh) const {
   if (mesh.material >= 0 && mesh.material < int(materials.size()))
     return materials[std::size_t(mesh.material)];
