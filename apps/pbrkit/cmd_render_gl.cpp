@@ -78,7 +78,8 @@ RenderRunner add_gl_render_options(CLI::App& render) {
   return [g](const RenderCommandOptions& o) {
     const auto t_start = Clock::now();
     gl::RenderSettings settings;
-    settings.brdf = {parse_brdf_model(o.model), o.multiscatter};
+    const BrdfModel model = parse_brdf_model(o.model);
+    settings.brdf = {model, o.multiscatter.value_or(default_multiscatter(model))};
     settings.fresnel =
         g->fresnel == "sg" ? gl::FresnelMode::kSphericalGaussian : gl::FresnelMode::kSchlick;
     settings.irradiance = parse_irradiance_mode(g->irradiance);

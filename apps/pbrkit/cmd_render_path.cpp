@@ -201,7 +201,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.threads = po.threads;
     s.filter = parse_pixel_filter(po.filter);
     s.brdf.model = parse_brdf_model(o.model);
-    s.brdf.multiscatter = o.multiscatter;
+    s.brdf.multiscatter = o.multiscatter.value_or(default_multiscatter(s.brdf.model));
     const bool partial = !po.sample_range.empty();
     if (partial) {
       std::tie(s.sample_begin, s.sample_end) = parse_sample_range(po.sample_range);

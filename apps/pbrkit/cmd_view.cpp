@@ -1,6 +1,7 @@
 // pbrkit view: the interactive OpenGL viewer (GLFW + Dear ImGui) over the library's
 // run_viewer. --frames/--screenshot automate it for CI (render N frames, save, quit).
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "commands.h"
@@ -18,6 +19,7 @@ namespace {
 struct ViewNames {
   std::string tonemap{tone_mapper_name(ViewerOptions{}.display.tone_mapper)};
   std::string model{brdf_model_name(ViewerOptions{}.brdf.model)};
+  std::optional<bool> multiscatter;
   std::string background = "env";
 };
 
@@ -50,7 +52,8 @@ void register_view_command(CLI::App& app) {
   cmd->add_option("--model", names->model, "BRDF model: reference or classic")
       ->check(CLI::IsMember({"reference", "classic"}))
       ->capture_default_str();
-  cmd->add_flag("--multiscatter", o->brdf.multiscatter, "multiple-scattering compensation");
+  cmd->add_flag("--multiscatter,!--no-multiscatter", names->multiscatter,
+                "multiple-scattering compensation (default: on for reference, off for classic)");
   cmd->add_option("--background", names->background, "env, blur:<mip> or color:<r>,<g>,<b>")
       ->capture_default_str();
   cmd->add_option("--msaa", o->msaa,
@@ -64,6 +67,7 @@ void register_view_command(CLI::App& app) {
   cmd->callback([o, names] {
     o->display.tone_mapper = parse_tone_mapper(names->tonemap);
     o->brdf.model = parse_brdf_model(names->model);
+    o->brdf.multiscatter = names->multiscatter.value_or(default_multiscatter(o->brdf.model));
     o->background = parse_background(names->background);
     run_viewer(*o);
   });

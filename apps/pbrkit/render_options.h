@@ -25,7 +25,8 @@ struct RenderCommandOptions {
   float exposure = 0.0f;  ///< EV
   std::string tonemap = "pbr-neutral";
   std::string model = "reference";
-  bool multiscatter = false;
+  /// Multiple-scattering compensation; unset: default_multiscatter(model) (on for reference).
+  std::optional<bool> multiscatter;
   std::string output;    ///< -o: a .png or .exr path (or empty: out/<scene>_<renderer>.png)
   ImageOutputs outputs;  ///< resolved from `output` before rendering
 };

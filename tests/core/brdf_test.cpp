@@ -73,10 +73,15 @@ dvec3 reference_model(dvec3 V, dvec3 L, dvec3 albedo, double metallic, double ro
   const double alpha = roughness * roughness;
   const double c = H.z, a2 = alpha * alpha;
   const double D = a2 / (kPiD * (c * c * (a2 - 1.0) + 1.0) * (c * c * (a2 - 1.0) + 1.0));
-  const dvec3 F0 = glm::mix(dvec3(0.04), albedo, metallic);
-  const dvec3 F = F0 + (1.0 - F0) * std::pow(1.0 - glm::dot(V, H), 5.0);
-  const dvec3 spec = D * g2_height_correlated(V.z, L.z, alpha) * F / (4.0 * V.z * L.z);
-  return (1.0 - F) * (1.0 - metallic) * albedo / kPiD + spec;
+  // glTF 2.0 Appendix B.3.5, written out: specular_brdf = D V (V including 1/(4 n.l n.v)),
+  // dielectric_brdf = fresnel_mix(ior 1.5, diffuse, specular), metal_brdf = conductor_fresnel(
+  // baseColor, specular), material = mix(dielectric_brdf, metal_brdf, metallic).
+  const double w5 = std::pow(1.0 - glm::dot(V, H), 5.0);
+  const double spec = D * g2_height_correlated(V.z, L.z, alpha) / (4.0 * V.z * L.z);
+  const double F_dielectric = 0.04 + 0.96 * w5;
+  const dvec3 dielectric = (1.0 - F_dielectric) * albedo / kPiD + F_dielectric * spec;
+  const dvec3 metal = (albedo + (1.0 - albedo) * w5) * spec;
+  return (1.0 - metallic) * dielectric + metallic * metal;
 }
 
 dvec3 direction(double theta, double phi) {
@@ -115,8 +120,9 @@ TEST(Brdf, ClassicMatchesSeedFormulas) {
 TEST(Brdf, ReferenceMatchesHeitzClosedForm) {
   for (const FixedCase& fc : kFixedCases) {
     const dvec3 V = direction(fc.theta_v, fc.phi_v), L = direction(fc.theta_l, fc.phi_l);
-    const Brdf brdf(fc.albedo, fc.metallic, fc.roughness);
-    EXPECT_EQ(brdf.options().model, BrdfModel::kReference);  // the default
+    EXPECT_EQ(BrdfOptions{}.model, BrdfModel::kReference);  // the default,
+    EXPECT_TRUE(BrdfOptions{}.multiscatter);                // compensated by default
+    const Brdf brdf(fc.albedo, fc.metallic, fc.roughness, {BrdfModel::kReference, false});
     expect_rel_near(brdf.eval(glm::vec3(V), glm::vec3(L)),
                     reference_model(V, L, dvec3(fc.albedo), fc.metallic, fc.roughness), 1e-5,
                     "reference");

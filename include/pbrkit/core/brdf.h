@@ -1,7 +1,10 @@
 #pragma once
-// The metallic-roughness BRDF of docs/MODEL.md: Lambert diffuse plus GGX
-// Cook-Torrance specular, with a selectable G ("reference" or "classic") and optional
-// multiple-scattering energy compensation. One implementation for every renderer:
+// The base layer of docs/MODEL.md: glTF's metallic-roughness BRDF (Lambert diffuse plus
+// GGX Cook-Torrance specular) with the surface extensions that change it in place
+// (KHR_materials_ior, _specular, _anisotropy, _iridescence), a selectable model
+// ("reference": the glTF specification's Appendix B structure; "classic": the seeds'
+// LearnOpenGL form) and multiple-scattering energy compensation. The coat and sheen layers
+// over it are core/bsdf.h. One implementation for every renderer:
 // the path tracer binds it to the view direction at each vertex (Brdf::at, BoundBrdf) and
 // calls eval/sample there, the GL shaders mirror eval line by line, and the baker's LUT
 // integrates the same specular lobe.
@@ -16,14 +19,16 @@
 
 #include "pbrkit/core/color.h"
 #include "pbrkit/core/energy.h"
+#include "pbrkit/core/iridescence.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"
 
 namespace pbrkit {
 
-/// The named model (MODEL.md): `reference` (default; height-correlated Smith) or
-/// `classic` (the seeds' Schlick-GGX with k_direct; k_IBL is used by the LUT/IBL).
+/// The named model (MODEL.md): `reference` (default; glTF Appendix B's
+/// mix(dielectric, metal, metallic) with height-correlated Smith) or `classic` (the seeds'
+/// kd = (1 - F)(1 - metallic) with Schlick-GGX and k_direct; k_IBL is used by the LUT/IBL).
 enum class BrdfModel { kReference, kClassic };
 BrdfModel parse_brdf_model(std::string_view name);  ///< "reference" | "classic"
 std::string_view brdf_model_name(BrdfModel model);
@@ -31,6 +36,12 @@ std::string_view brdf_model_name(BrdfModel model);
 GeometryModel direct_geometry(BrdfModel model);
 /// G for image-based lighting and the split-sum LUT.
 GeometryModel ibl_geometry(BrdfModel model);
+/// Whether multiple-scattering compensation is on when nobody says: on for `reference`
+/// (the Khronos Sample Viewer, Filament and Cycles conserve energy by default), off for
+/// `classic` (the seeds have none).
+inline bool default_multiscatter(BrdfModel model) {
+  return model == BrdfModel::kReference;
+}
 
 /// Roughness is clamped to at least this in every renderer (alpha >= 4e-4), so the path
 /// tracer and the real-time renderer evaluate the same BRDF; 0.02 is a near-mirror.
@@ -38,12 +49,38 @@ inline constexpr float kMinRoughness = 0.02f;
 
 struct BrdfOptions {
   BrdfModel model = BrdfModel::kReference;
-  /// Kulla-Conty compensation: adds the multiple-scattering lobe
-  /// Fms (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)) and weights the diffuse lobe by
-  /// the complement of the full specular albedo,
+  /// Kulla-Conty compensation (default_multiscatter(model)): adds the multiple-scattering
+  /// lobe Fms (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)) and weights the diffuse lobe by
+  /// the complement of the dielectric's full specular albedo,
   /// (1 - Es(mu_o))(1 - Es(mu_i)) / (1 - Es_avg), so a white dielectric also conserves
-  /// energy. Without it, kd = (1 - F(v.h))(1 - metallic) exactly as in MODEL.md.
-  bool multiscatter = false;
+  /// energy. Without it the diffuse weight is the spec's (1 - specular max3(F_dielectric(v.h)))
+  /// for `reference` and (1 - F(v.h)) for `classic`.
+  bool multiscatter = true;
+};
+
+/// The dielectric's normal-incidence reflectance from KHR_materials_ior and
+/// KHR_materials_specular: min(((ior - 1) / (ior + 1))^2 specularColor, 1) (0.04 for the
+/// default ior 1.5; 0 for ior 1, which has no dielectric specular).
+inline glm::vec3 dielectric_f0(float ior, glm::vec3 specular_color) {
+  const float r = (ior - 1.0f) / (ior + 1.0f);
+  // 0.04 exactly for the default ior (0.2f * 0.2f rounds above it), so materials without
+  // the extensions keep the seeds' F0 to the bit.
+  const float r2 = ior == 1.5f ? 0.04f : r * r;
+  return glm::min(r2 * specular_color, glm::vec3(1.0f));
+}
+
+/// The base layer's inputs at one shading point, after textures (MODEL.md, "Revision 2").
+struct BaseLayer {
+  glm::vec3 base_color{1.0f};
+  float metallic = 1.0f;
+  float roughness = 1.0f;
+  float ior = 1.5f;                ///< KHR_materials_ior
+  float specular = 1.0f;           ///< KHR_materials_specular: weight of the dielectric's specular
+  glm::vec3 specular_color{1.0f};  ///< KHR_materials_specular: F0 tint
+  float anisotropy = 0.0f;         ///< KHR_materials_anisotropy strength, along the local +X
+  float iridescence = 0.0f;        ///< KHR_materials_iridescence factor
+  float iridescence_ior = 1.3f;    ///< the film's ior
+  float iridescence_thickness = 0.0f;  ///< nm
 };
 
 struct BrdfSample {
@@ -57,7 +94,9 @@ class BoundBrdf;
 
 class Brdf {
  public:
-  Brdf(glm::vec3 base_color, float metallic, float roughness, const BrdfOptions& options = {});
+  explicit Brdf(const BaseLayer& layer, const BrdfOptions& options = {});
+  Brdf(glm::vec3 base_color, float metallic, float roughness, const BrdfOptions& options = {})
+      : Brdf(BaseLayer{base_color, metallic, roughness}, options) {}
 
   /// The BRDF seen from `wo`: what depends on wo alone is computed here, once, for the
   /// calls that follow (a path vertex evaluates a light sample and draws a BSDF sample).
@@ -73,33 +112,47 @@ class Brdf {
   /// The combined pdf of sample() for wi (solid angle).
   float pdf(glm::vec3 wo, glm::vec3 wi) const;
   /// Probability of choosing the specular lobe: estimated specular albedo over the
-  /// estimated total (Fresnel at n.v, diffuse weight (1 - metallic) lum(baseColor)).
+  /// estimated total.
   float specular_probability(glm::vec3 wo) const;
 
-  /// The full specular albedo at mu: F0 A + B (+ Fms (1 - E) with compensation);
-  /// per channel. Exposed for the diffuse weighting and for tests.
+  /// The full specular albedo at mu (the dielectric's and the metal's specular mixed by
+  /// metallic, + the multiple-scattering lobe with compensation); per channel. Exposed for
+  /// tests. Exact for isotropic GGX without iridescence (tabulated A, B).
   glm::vec3 specular_albedo(float mu) const;
 
   glm::vec3 base_color() const { return base_color_; }
   float metallic() const { return metallic_; }
   float roughness() const { return roughness_; }
   float alpha() const { return alpha_; }
+  float alpha_x() const { return alpha_x_; }
+  float alpha_y() const { return alpha_y_; }
+  /// classic: mix(F0_dielectric, baseColor, metallic); reference: the same, what a
+  /// split-sum specular term multiplies A by.
   glm::vec3 F0() const { return F0_; }
   const BrdfOptions& options() const { return options_; }
 
  private:
   friend class BoundBrdf;
+  bool reference() const { return options_.model == BrdfModel::kReference; }
+  // Single-scattering specular albedo and the diffuse lobe's share at mu (estimates for
+  // the lobe choice; exact for isotropic GGX without iridescence).
+  glm::vec3 dielectric_albedo(glm::vec2 ab) const;
 
   glm::vec3 base_color_;
   float metallic_, roughness_, alpha_;
-  glm::vec3 F0_;
+  float alpha_x_, alpha_y_;  // anisotropic GGX (alpha_x = alpha_y = alpha when isotropic)
+  glm::vec3 F0_;             // classic's F0; reference: mix(s F0_d, baseColor, metallic)
+  glm::vec3 F0_d_;           // the dielectric's F0 (ior, specular colour)
+  float spec_weight_;        // KHR_materials_specular's specular
+  float iridescence_, film_ior_, film_thickness_;
   BrdfOptions options_;
   GeometryModel geometry_;
   // Compensation state (valid when options_.multiscatter).
   const EnergyTable* table_ = nullptr;
   float E_avg_ = 1.0f;
-  glm::vec3 Fms_{0.0f};
-  glm::vec3 Es_avg_{0.0f};
+  glm::vec3 Fms_{0.0f};     // Fms of the whole specular (the dielectric's weighted + the metal's)
+  glm::vec3 Fms_d_{0.0f};   // reference: the dielectric's Fms (times its weight)
+  glm::vec3 Es_avg_{0.0f};  // classic: Es_avg per channel; reference: the dielectric's
 };
 
 /// A Brdf with wo fixed (Brdf::at): the lobe-selection probability (with its albedo table
@@ -119,26 +172,32 @@ class BoundBrdf {
   float pdf(glm::vec3 wi) const;
   /// A direction drawn as Brdf::sample does, with its pdf and weight f cos / pdf.
   BrdfSample sample(float u_lobe, glm::vec2 u) const;
+  /// The direction alone (no evaluation): what a layered BSDF draws before it evaluates
+  /// every layer. wi.z <= 0 means no sample.
+  glm::vec3 sample_direction(float u_lobe, glm::vec2 u) const;
 
   glm::vec3 wo() const { return wo_; }
   /// Brdf::specular_probability(wo).
   float specular_probability() const { return p_spec_; }
+  /// An estimate of the directional albedo at wo (luminance), for a layered BSDF's lobe
+  /// choice.
+  float albedo_estimate() const { return albedo_est_; }
   const Brdf& brdf() const { return brdf_; }
 
  private:
-  glm::vec3 eval_specular(glm::vec3 wi, float D, glm::vec3 F) const;
-  glm::vec3 eval_diffuse_and_ms(glm::vec3 wi, glm::vec3 F) const;
+  glm::vec3 specular_fresnel(float WOdotH, glm::vec3* diffuse_weight) const;
+  glm::vec3 eval_diffuse_and_ms(glm::vec3 wi, glm::vec3 diffuse_weight) const;
   float pdf(glm::vec3 wi, float WOdotH, float D) const;
-  glm::vec3 sample_visible_normal(glm::vec2 u) const;
 
   Brdf brdf_;
   glm::vec3 wo_;
   float p_spec_ = 1.0f;      // specular_probability(wo)
+  float albedo_est_ = 0.0f;  // albedo_estimate()
   glm::vec3 lambert_{0.0f};  // (1 - metallic) baseColor / pi
   float lambda_o_ = 0.0f;    // Smith's Lambda(wo) (reference G)
   float G1_o_ = 0.0f;        // Smith's G1(wo) (the visible-normal pdf)
   float schlick_o_ = 0.0f;   // Schlick-GGX G1(n.v) (classic G)
-  glm::vec3 Es_o_{0.0f};     // specular_albedo(wo.z) (compensation)
+  float diffuse_o_ = 1.0f;   // compensation: the diffuse lobe's factor at wo
   float E_o_ = 0.0f;         // E(wo.z) (compensation)
 };
 
@@ -150,72 +209,117 @@ inline BoundBrdf Brdf::at(glm::vec3 wo) const {
   return BoundBrdf(*this, wo);
 }
 
+inline glm::vec3 Brdf::dielectric_albedo(glm::vec2 ab) const {
+  // The dielectric's specular with F90 = 1 (KHR_materials_specular), weighted.
+  return spec_weight_ * (F0_d_ * ab.x + ab.y);
+}
+
 inline glm::vec3 Brdf::specular_albedo(float mu) const {
   const glm::vec2 ab = table_->AB(mu, roughness_);
-  glm::vec3 Es = F0_ * ab.x + ab.y;
+  // reference: (1 - metallic) s (F0_d A + B) + metallic (baseColor A + B), F0_ holding both
+  // F0 parts; classic: F0 A + B.
+  const float b_weight = reference() ? (1.0f - metallic_) * spec_weight_ + metallic_ : 1.0f;
+  glm::vec3 Es = F0_ * ab.x + ab.y * b_weight;
   if (options_.multiscatter) Es += Fms_ * (1.0f - (ab.x + ab.y));
   return Es;
 }
 
 inline float Brdf::specular_probability(glm::vec3 wo) const {
+  return at(wo).specular_probability();
+}
+
+inline BoundBrdf::BoundBrdf(const Brdf& brdf, glm::vec3 wo)
+    : brdf_(brdf), wo_(wo), lambert_((1.0f - brdf.metallic_) * brdf.base_color_ * kInvPi) {
   // Weights of the two sampling strategies: the single-scattering specular albedo
   // (sampled by VNDF) against what the cosine strategy covers (diffuse + multiple
   // scattering). Estimates only; any positive split keeps sample() unbiased.
   const float mu = std::max(wo.z, 0.0f);
-  const glm::vec2 ab = table_->AB(mu, roughness_);
-  const glm::vec3 Ess = F0_ * ab.x + ab.y;
-  const float spec = luminance(Ess);
-  float rest = (1.0f - metallic_) * luminance(base_color_) * (1.0f - spec);
-  if (options_.multiscatter) rest += luminance(Fms_) * (1.0f - (ab.x + ab.y));
-  const float total = spec + rest;
-  return total > 0.0f ? spec / total : 1.0f;
-}
-
-inline BoundBrdf::BoundBrdf(const Brdf& brdf, glm::vec3 wo)
-    : brdf_(brdf),
-      wo_(wo),
-      p_spec_(brdf.specular_probability(wo)),
-      lambert_((1.0f - brdf.metallic_) * brdf.base_color_ * kInvPi) {
-  if (wo.z <= 0.0f) return;  // eval, pdf and sample are zero
-  const float alpha = brdf_.alpha_;
-  if (brdf_.geometry_ == GeometryModel::kReference) {
-    lambda_o_ = SmithLambdaGGX(wo, alpha);
-    G1_o_ = 1.0f / (1.0f + lambda_o_);  // SmithG1GGX(wo, alpha), Heitz 2014 eq. 43
+  const glm::vec2 ab = brdf.table_->AB(mu, brdf.roughness_);
+  const float E = ab.x + ab.y;
+  float spec, rest;
+  if (brdf.reference()) {
+    const glm::vec3 Ed = brdf.dielectric_albedo(ab);
+    spec =
+        luminance((1.0f - brdf.metallic_) * Ed + brdf.metallic_ * (brdf.base_color_ * ab.x + ab.y));
+    rest = (1.0f - brdf.metallic_) * luminance(brdf.base_color_) * (1.0f - max3(Ed));
   } else {
-    G1_o_ = SmithG1GGX(wo, alpha);
-    schlick_o_ = GeometrySchlickGGX(std::max(wo.z, 0.0f), k_direct(brdf_.roughness_));
+    spec = luminance(brdf.F0_ * ab.x + ab.y);
+    rest = (1.0f - brdf.metallic_) * luminance(brdf.base_color_) * (1.0f - spec);
+  }
+  if (brdf.options_.multiscatter) rest += luminance(brdf.Fms_) * (1.0f - E);
+  albedo_est_ = spec + rest;
+  p_spec_ = albedo_est_ > 0.0f ? spec / albedo_est_ : 1.0f;
+  if (wo.z <= 0.0f) return;  // eval, pdf and sample are zero
+  const float ax = brdf_.alpha_x_, ay = brdf_.alpha_y_;
+  if (brdf_.geometry_ == GeometryModel::kReference) {
+    lambda_o_ = SmithLambdaGGXAniso(wo, ax, ay);
+    G1_o_ = 1.0f / (1.0f + lambda_o_);  // Smith's G1, Heitz 2014 eq. 43
+  } else {
+    G1_o_ = 1.0f / (1.0f + SmithLambdaGGXAniso(wo, ax, ay));
+    schlick_o_ = GeometrySchlickGGX(mu, k_direct(brdf_.roughness_));
   }
   if (brdf_.options_.multiscatter) {
-    Es_o_ = brdf_.specular_albedo(wo.z);
-    E_o_ = brdf_.table_->E(wo.z, brdf_.roughness_);
+    E_o_ = E;
+    if (brdf.reference()) {
+      // The diffuse lobe under the dielectric's specular (single + multiple scattering).
+      const glm::vec3 Es_o = brdf.dielectric_albedo(ab) + brdf.Fms_d_ * (1.0f - E);
+      diffuse_o_ = (1.0f - max3(Es_o)) / std::max(1.0f - max3(brdf.Es_avg_), 1e-6f);
+    }
   }
 }
 
-inline glm::vec3 BoundBrdf::eval_specular(glm::vec3 wi, float D, glm::vec3 F) const {
-  // Cook-Torrance: D G F / (4 (n.l)(n.v)).
-  float G;
-  if (brdf_.geometry_ == GeometryModel::kReference) {
-    // Height-correlated Smith (Heitz 2014, eq. 99): 1 / (1 + Lambda(v) + Lambda(l)).
-    G = 1.0f / (1.0f + lambda_o_ + SmithLambdaGGX(wi, brdf_.alpha_));
-  } else {
-    // The seeds' GeometrySmith: G1(n.v) G1(n.l) with Schlick-GGX and k_direct.
-    G = schlick_o_ * GeometrySchlickGGX(std::max(wi.z, 0.0f), k_direct(brdf_.roughness_));
+// The specular lobe's Fresnel at v.h (what multiplies D G / (4 n.v n.l)) and, through
+// `diffuse_weight`, the Fresnel part of the diffuse lobe's weight without compensation.
+inline glm::vec3 BoundBrdf::specular_fresnel(float WOdotH, glm::vec3* diffuse_weight) const {
+  const Brdf& b = brdf_;
+  const float c = std::max(WOdotH, 0.0f);
+  const float m = 1.0f - c, m2 = m * m, w5 = m2 * m2 * m;  // Schlick's (1 - v.h)^5
+  if (!b.reference()) {
+    // The seeds: F = F0 + (1 - F0)(1 - v.h)^5 with the mixed F0; kd = 1 - F.
+    glm::vec3 F = b.F0_ + (1.0f - b.F0_) * w5;
+    if (b.iridescence_ > 0.0f)
+      F = glm::mix(F, iridescence_fresnel(c, b.film_ior_, b.film_thickness_, b.F0_),
+                   b.iridescence_);
+    *diffuse_weight = 1.0f - F;
+    return F;
   }
-  return D * G * F / (4.0f * wo_.z * wi.z);
+  // glTF Appendix B: the dielectric's Fresnel (F0 from ior and specular, F90 = 1, weighted
+  // by specular; KHR_materials_specular's fresnel_mix) and the metal's (F0 = baseColor),
+  // mixed by metallic; the diffuse sits under the dielectric's specular only, weighted by
+  // 1 - specular max3(F_dielectric).
+  glm::vec3 Fd = b.F0_d_ + (1.0f - b.F0_d_) * w5;
+  glm::vec3 Fm = b.base_color_ + (1.0f - b.base_color_) * w5;
+  if (b.iridescence_ > 0.0f) {
+    // KHR_materials_iridescence: the thin film replaces both Fresnel terms, by its factor.
+    Fd = glm::mix(Fd, iridescence_fresnel(c, b.film_ior_, b.film_thickness_, b.F0_d_),
+                  b.iridescence_);
+    Fm = glm::mix(Fm, iridescence_fresnel(c, b.film_ior_, b.film_thickness_, b.base_color_),
+                  b.iridescence_);
+  }
+  Fd *= b.spec_weight_;
+  *diffuse_weight = glm::vec3(1.0f - max3(Fd));
+  return (1.0f - b.metallic_) * Fd + b.metallic_ * Fm;
 }
 
-inline glm::vec3 BoundBrdf::eval_diffuse_and_ms(glm::vec3 wi, glm::vec3 F) const {
-  // kd = (1 - F(v.h)) (1 - metallic) (MODEL.md / LearnOpenGL).
-  if (!brdf_.options_.multiscatter) return (1.0f - F) * lambert_;
+inline glm::vec3 BoundBrdf::eval_diffuse_and_ms(glm::vec3 wi, glm::vec3 diffuse_weight) const {
+  if (!brdf_.options_.multiscatter) return diffuse_weight * lambert_;
+  const Brdf& b = brdf_;
+  const glm::vec2 ab_i = b.table_->AB(wi.z, b.roughness_);
+  const float E_i = ab_i.x + ab_i.y;
   // Diffuse under a specular layer, weighted reciprocally by what the specular lobe
   // (single + multiple scattering) does not reflect: the white-dielectric furnace is 1.
-  const glm::vec3 Es_i = brdf_.specular_albedo(wi.z);
-  const glm::vec3 diffuse =
-      lambert_ * (1.0f - Es_o_) * (1.0f - Es_i) / glm::max(1.0f - brdf_.Es_avg_, glm::vec3(1e-6f));
+  glm::vec3 diffuse;
+  if (b.reference()) {
+    const glm::vec3 Es_i = b.dielectric_albedo(ab_i) + b.Fms_d_ * (1.0f - E_i);
+    diffuse = lambert_ * (diffuse_o_ * (1.0f - max3(Es_i)));
+  } else {
+    const glm::vec3 Es_o = b.specular_albedo(wo_.z), Es_i = b.specular_albedo(wi.z);
+    diffuse =
+        lambert_ * (1.0f - Es_o) * (1.0f - Es_i) / glm::max(1.0f - b.Es_avg_, glm::vec3(1e-6f));
+  }
   // Kulla & Conty 2017: f_ms = Fms (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)).
-  const float E_i = brdf_.table_->E(wi.z, brdf_.roughness_);
   const glm::vec3 ms =
-      brdf_.Fms_ * ((1.0f - E_o_) * (1.0f - E_i) / (kPi * std::max(1.0f - brdf_.E_avg_, 1e-6f)));
+      b.Fms_ * ((1.0f - E_o_) * (1.0f - E_i) / (kPi * std::max(1.0f - b.E_avg_, 1e-6f)));
   return diffuse + ms;
 }
 
@@ -232,32 +336,41 @@ inline glm::vec3 BoundBrdf::eval(glm::vec3 wi, float* pdf) const {
     if (pdf) *pdf = 0.0f;
     return glm::vec3(0.0f);
   }
+  const Brdf& b = brdf_;
   const glm::vec3 h = glm::normalize(wo_ + wi);
   const float WOdotH = glm::dot(wo_, h);
-  const float D = DistributionGGX(h, brdf_.alpha_);
-  const glm::vec3 F = fresnelSchlick(std::max(WOdotH, 0.0f), brdf_.F0_);
+  const float D = DistributionGGXAniso(h, b.alpha_x_, b.alpha_y_);
+  glm::vec3 diffuse_weight;
+  const glm::vec3 F = specular_fresnel(WOdotH, &diffuse_weight);
   if (pdf) *pdf = this->pdf(wi, WOdotH, D);
-  return eval_specular(wi, D, F) + eval_diffuse_and_ms(wi, F);
+  // Cook-Torrance: D G F / (4 (n.l)(n.v)).
+  float G;
+  if (b.geometry_ == GeometryModel::kReference) {
+    // Height-correlated Smith (Heitz 2014, eq. 99): 1 / (1 + Lambda(v) + Lambda(l)).
+    G = 1.0f / (1.0f + lambda_o_ + SmithLambdaGGXAniso(wi, b.alpha_x_, b.alpha_y_));
+  } else {
+    // The seeds' GeometrySmith: G1(n.v) G1(n.l) with Schlick-GGX and k_direct.
+    G = schlick_o_ * GeometrySchlickGGX(wi.z, k_direct(b.roughness_));
+  }
+  return D * G * F / (4.0f * wo_.z * wi.z) + eval_diffuse_and_ms(wi, diffuse_weight);
 }
 
 inline float BoundBrdf::pdf(glm::vec3 wi) const {
   if (wo_.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
   const glm::vec3 h = glm::normalize(wo_ + wi);
-  return pdf(wi, glm::dot(wo_, h), DistributionGGX(h, brdf_.alpha_));
+  return pdf(wi, glm::dot(wo_, h), DistributionGGXAniso(h, brdf_.alpha_x_, brdf_.alpha_y_));
 }
 
-inline glm::vec3 BoundBrdf::sample_visible_normal(glm::vec2 u) const {
-  return sample_ggx_visible_normal(wo_, u, brdf_.alpha_);
+inline glm::vec3 BoundBrdf::sample_direction(float u_lobe, glm::vec2 u) const {
+  if (wo_.z <= 0.0f) return glm::vec3(0.0f);
+  if (u_lobe < p_spec_)
+    return reflect_about(wo_, sample_ggx_visible_normal(wo_, u, brdf_.alpha_x_, brdf_.alpha_y_));
+  return sample_cosine_hemisphere(u).direction;
 }
 
 inline BrdfSample BoundBrdf::sample(float u_lobe, glm::vec2 u) const {
   BrdfSample s;
-  if (wo_.z <= 0.0f) return s;
-  if (u_lobe < p_spec_) {
-    s.wi = reflect_about(wo_, sample_visible_normal(u));
-  } else {
-    s.wi = sample_cosine_hemisphere(u).direction;
-  }
+  s.wi = sample_direction(u_lobe, u);
   if (s.wi.z <= 0.0f) return s;
   const glm::vec3 f = eval(s.wi, &s.pdf);
   if (!(s.pdf > 0.0f)) return s;

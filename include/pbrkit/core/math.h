@@ -19,6 +19,11 @@ template <typename T>
 constexpr T sqr(T x) {
   return x * x;
 }
+/// The largest channel (KHR_materials_specular's and _sheen's max3).
+inline float max3(glm::vec3 v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
+
 inline float safe_sqrt(float x) {
   return std::sqrt(std::max(x, 0.0f));
 }

@@ -79,24 +79,47 @@ float ggx_vndf_pdf(glm::vec3 wo, glm::vec3 h, float alpha);
 
 /// The half vector of sample_ggx_vndf without its pdf (Heitz 2018, listing 1), inline for
 /// the path tracer's per-vertex BRDF (core/brdf.h BoundBrdf), whose pdf shares D with eval.
+inline glm::vec3 sample_ggx_visible_normal(glm::vec3 wo, glm::vec2 u, float ax, float ay);
 inline glm::vec3 sample_ggx_visible_normal(glm::vec3 wo, glm::vec2 u, float alpha) {
-  // Stretch the view vector to the hemisphere configuration.
-  const glm::vec3 Vh = glm::normalize(glm::vec3(alpha * wo.x, alpha * wo.y, wo.z));
-  // Orthonormal basis around Vh (with the singularity at the pole handled).
+  return sample_ggx_visible_normal(wo, u, alpha, alpha);
+}
+
+// ---- Anisotropic GGX (KHR_materials_anisotropy; Heitz 2014 section 5.4, Heitz 2018) with
+// alpha_x along the local +X (the anisotropy direction) and alpha_y along +Y. With
+// alpha_x = alpha_y each reduces to its isotropic form above, term for term. Inline: the
+// path tracer's BRDF evaluates them at every vertex.
+
+/// D(h) = 1 / (pi ax ay (hx^2/ax^2 + hy^2/ay^2 + hz^2)^2).
+inline float DistributionGGXAniso(glm::vec3 h, float ax, float ay) {
+  if (h.z <= 0.0f) return 0.0f;
+  const float x = h.x / ax, y = h.y / ay;
+  const float e = x * x + y * y + h.z * h.z;
+  return 1.0f / (kPi * ax * ay * e * e);
+}
+
+/// Smith's Lambda (Heitz 2014, eq. 86): (-1 + sqrt(1 + (ax^2 wx^2 + ay^2 wy^2) / wz^2)) / 2.
+/// Only for w.z > 0.
+inline float SmithLambdaGGXAniso(glm::vec3 w, float ax, float ay) {
+  const float x = ax * w.x, y = ay * w.y;
+  return 0.5f * (-1.0f + std::sqrt(1.0f + (x * x + y * y) / (w.z * w.z)));
+}
+
+/// Visible-normal sampling of the anisotropic distribution (Heitz 2018, listing 1, which is
+/// written for ax != ay): stretch wo, sample the hemisphere's projected disk, unstretch.
+inline glm::vec3 sample_ggx_visible_normal(glm::vec3 wo, glm::vec2 u, float ax, float ay) {
+  const glm::vec3 Vh = glm::normalize(glm::vec3(ax * wo.x, ay * wo.y, wo.z));
   const float lensq = Vh.x * Vh.x + Vh.y * Vh.y;
   const glm::vec3 T1 =
       lensq > 0.0f ? glm::vec3(-Vh.y, Vh.x, 0.0f) / std::sqrt(lensq) : glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::vec3 T2 = glm::cross(Vh, T1);
-  // Uniform point on the projected disk, warped to the visible half (section 4.2).
   const float r = std::sqrt(u.x);
   const float phi = 2.0f * kPi * u.y;
   const float t1 = r * std::cos(phi);
   float t2 = r * std::sin(phi);
   const float s = 0.5f * (1.0f + Vh.z);
   t2 = (1.0f - s) * safe_sqrt(1.0f - t1 * t1) + s * t2;
-  // Reproject onto the hemisphere and unstretch.
   const glm::vec3 Nh = t1 * T1 + t2 * T2 + safe_sqrt(1.0f - t1 * t1 - t2 * t2) * Vh;
-  return glm::normalize(glm::vec3(alpha * Nh.x, alpha * Nh.y, std::max(Nh.z, 1e-7f)));
+  return glm::normalize(glm::vec3(ax * Nh.x, ay * Nh.y, std::max(Nh.z, 1e-7f)));
 }
 
 /// Converts a half-vector pdf to the pdf of the reflected direction: pdf_h / (4 |wo.h|).

@@ -25,21 +25,41 @@ GeometryModel ibl_geometry(BrdfModel model) {
   return model == BrdfModel::kReference ? GeometryModel::kReference : GeometryModel::kClassicIBL;
 }
 
-Brdf::Brdf(glm::vec3 base_color, float metallic, float roughness, const BrdfOptions& options)
-    : base_color_(glm::clamp(base_color, 0.0f, 1.0f)),
-      metallic_(saturate(metallic)),
-      roughness_(std::clamp(roughness, kMinRoughness, 1.0f)),
+Brdf::Brdf(const BaseLayer& layer, const BrdfOptions& options)
+    : base_color_(glm::clamp(layer.base_color, 0.0f, 1.0f)),
+      metallic_(saturate(layer.metallic)),
+      roughness_(std::clamp(layer.roughness, kMinRoughness, 1.0f)),
       alpha_(roughness_ * roughness_),
-      // F0 = mix(0.04, baseColor, metallic) (MODEL.md).
-      F0_(glm::mix(glm::vec3(0.04f), base_color_, metallic_)),
+      F0_d_(dielectric_f0(std::max(layer.ior, 1.0f), glm::max(layer.specular_color, 0.0f))),
+      spec_weight_(saturate(layer.specular)),
+      iridescence_(saturate(layer.iridescence)),
+      film_ior_(std::max(layer.iridescence_ior, 1.0f)),
+      film_thickness_(std::max(layer.iridescence_thickness, 0.0f)),
       options_(options),
       geometry_(direct_geometry(options.model)),
       table_(&EnergyTable::get(geometry_)) {
+  // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, anisotropy^2) along the direction,
+  // alpha_b = alpha across it.
+  const float aniso = saturate(layer.anisotropy);
+  alpha_x_ = glm::mix(alpha_, 1.0f, aniso * aniso);
+  alpha_y_ = alpha_;
+  // F0 = mix(0.04, baseColor, metallic) (MODEL.md), with the dielectric's 0.04 from its ior,
+  // specular colour and weight (reference: what the dielectric and metal Fresnel mix to at
+  // normal incidence; classic: the seeds' F0).
+  F0_ = glm::mix(spec_weight_ * F0_d_, base_color_, metallic_);
   if (options_.multiscatter) {
     const glm::vec2 ab_avg = table_->AB_avg(roughness_);
     E_avg_ = ab_avg.x + ab_avg.y;
-    Fms_ = multiscatter_fresnel(F0_, E_avg_);
-    Es_avg_ = F0_ * ab_avg.x + ab_avg.y + Fms_ * (1.0f - E_avg_);
+    if (options.model == BrdfModel::kReference) {
+      // Each specular (the dielectric's, weighted by specular; the metal's) gets its own
+      // Kulla-Conty Fms; the diffuse sits under the dielectric's only.
+      Fms_d_ = spec_weight_ * multiscatter_fresnel(F0_d_, E_avg_);
+      Fms_ = (1.0f - metallic_) * Fms_d_ + metallic_ * multiscatter_fresnel(base_color_, E_avg_);
+      Es_avg_ = spec_weight_ * (F0_d_ * ab_avg.x + ab_avg.y) + Fms_d_ * (1.0f - E_avg_);
+    } else {
+      Fms_ = multiscatter_fresnel(F0_, E_avg_);
+      Es_avg_ = F0_ * ab_avg.x + ab_avg.y + Fms_ * (1.0f - E_avg_);
+    }
   }
 }
 

@@ -99,20 +99,35 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     }
 
     ShadingInputs in = shade_inputs(scene_, *material, hit);
+    if (in.unlit) {
+      // KHR_materials_unlit: the base colour is what the surface shows, from every
+      // direction; it reflects nothing (as Blender imports it, an emitter of its colour).
+      if (depth == 0) {
+        out.albedo = in.params.base.base_color;
+        out.normal = hit.ng * 0.5f + 0.5f;
+        out.depth = hit.t;
+      }
+      out.L += beta * in.params.base.base_color;
+      break;
+    }
     // A shading normal facing away from the viewer (interpolation or normal maps at
     // silhouettes) would make the BRDF zero; tilt it just enough towards wo.
     const float ndotv = glm::dot(in.ns, wo);
     if (ndotv < 1e-4f) in.ns = glm::normalize(in.ns + (1e-4f - ndotv) * wo);
     if (depth == 0) {
-      out.albedo = in.base_color;
+      out.albedo = in.params.base.base_color;
       out.normal = in.ns * 0.5f + 0.5f;
       out.depth = hit.t;
     }
     if (depth >= settings_.max_bounces) break;
 
-    const Frame frame(in.ns);
-    const BoundBrdf brdf =
-        Brdf(in.base_color, in.metallic, in.roughness, settings_.brdf).at(frame.to_local(wo));
+    // The local frame: +X along the anisotropy direction when there is one.
+    const Frame frame = in.tangent != glm::vec3(0.0f)
+                            ? Frame(in.tangent, glm::cross(in.ns, in.tangent), in.ns)
+                            : Frame(in.ns);
+    in.params.coat.normal = frame.to_local(in.coat_normal);
+    const Bsdf bsdf(in.params, settings_.brdf);
+    const BoundBsdf brdf = bsdf.at(frame.to_local(wo));
     const std::uint32_t block = kFirstBounceBlock + std::uint32_t(depth) * kBlocksPerBounce;
     const glm::vec4 u_nee = sampler.sample_block(index, block);
     const glm::vec4 u_bsdf = sampler.sample_block(index, block + 1);
@@ -154,7 +169,7 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 // heuristic); delta lights, which only this strategy reaches, have weight 1. Returns the
 // contribution to the path's radiance, beta f Li tr w / pdf.
 inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame,
-                                       const BoundBrdf& brdf, glm::vec4 u_nee, glm::vec3 beta,
+                                       const BoundBsdf& brdf, glm::vec4 u_nee, glm::vec3 beta,
                                        std::uint64_t& rays) const {
   LightSample ls;
   // (The light choice needs no random number when there is a single light.)

@@ -7,7 +7,7 @@
 
 #include <glm/glm.hpp>
 
-#include "pbrkit/core/brdf.h"
+#include "pbrkit/core/bsdf.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
 #include "pbrkit/pt/geometry.h"
@@ -46,7 +46,7 @@ class Integrator {
                 std::uint64_t& rays) const;
 
  private:
-  glm::vec3 sample_ld(const SurfaceHit& hit, const Frame& frame, const BoundBrdf& brdf,
+  glm::vec3 sample_ld(const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf,
                       glm::vec4 u_nee, glm::vec3 beta, std::uint64_t& rays) const;
   bool closest_hit(glm::vec3& origin, glm::vec3 direction, std::uint32_t pixel, std::uint32_t index,
                    int depth, std::uint64_t& rays, SurfaceHit& hit, const Material*& material,
