@@ -76,4 +76,72 @@ inline ResidualStats residual_stats(const std::vector<double>& r) {
   return s;
 }
 
+// a(mu) tabulated on [0,1] for interpolation (the quadrature is too slow per pixel).
+struct AlbedoTable {
+  std::vector<double> a;
+  AlbedoTable() = default;
+  explicit AlbedoTable(const Brdf& brdf, int n = 32) {
+    for (int i = 0; i <= n; ++i)
+      a.push_back(directional_albedo(brdf, std::max(i, 1) / double(n), 96));
+  }
+  template <typename F>
+  static AlbedoTable from(F f, int n = 64) {
+    AlbedoTable t;
+    for (int i = 0; i <= n; ++i) t.a.push_back(f(i / double(n)));
+    return t;
+  }
+  double operator()(double mu) const {
+    const double x = std::clamp(mu, 0.0, 1.0) * double(a.size() - 1);
+    const std::size_t i = std::min(std::size_t(x), a.size() - 2);
+    const double f = x - double(i);
+    return a[i] * (1.0 - f) + a[i + 1] * f;
+  }
+};
+
+inline Scene sphere_scene(const Material& m) {
+  Scene scene;
+  scene.source = "test:sphere";
+  scene.materials.push_back(m);
+  add_mesh_instance(scene, make_uv_sphere(1.0f, 128, 64), 0);
+  return scene;
+}
+
+// Residuals of an orthographic render of the unit sphere against L * a(n.z), for pixels
+// whose whole footprint is on the sphere (box filter: the pixel value is the footprint
+// average, which the expectation averages over 4x4 points).
+inline std::vector<double> sphere_residuals(const Image& image, float half, double L,
+                                            const AlbedoTable& albedo, float max_radius,
+                                            float min_mu = 0.0f, float max_mu = 1.0f) {
+  std::vector<double> r;
+  const int w = image.width, h = image.height;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      double expected = 0.0;
+      bool inside = true;
+      float mu_c = 0.0f;
+      for (int j = 0; j < 4 && inside; ++j)
+        for (int i = 0; i < 4 && inside; ++i) {
+          const float X = ((float(x) + (float(i) + 0.5f) / 4.0f) / float(w) * 2.0f - 1.0f) * half;
+          const float Y = (1.0f - (float(y) + (float(j) + 0.5f) / 4.0f) / float(h) * 2.0f) * half;
+          const float r2 = X * X + Y * Y;
+          if (r2 > max_radius * max_radius) inside = false;
+          expected += L * albedo(std::sqrt(std::max(0.0f, 1.0f - r2))) / 16.0;
+          mu_c = std::sqrt(std::max(0.0f, 1.0f - r2));
+        }
+      if (!inside || mu_c < min_mu || mu_c > max_mu) continue;
+      r.push_back(double(image.rgb(x, y).x) - expected);
+    }
+  return r;
+}
+
+inline PathTracerSettings small_settings(int size, std::uint32_t spp) {
+  PathTracerSettings s;
+  s.width = s.height = size;
+  s.spp = spp;
+  s.noise_threshold = 0.0f;
+  s.filter = PixelFilter::kBox;
+  s.threads = 2;
+  return s;
+}
+
 }  // namespace pbrkit::test

@@ -141,8 +141,10 @@ class Brdf {
   glm::vec3 base_color_;
   float metallic_, roughness_, alpha_;
   float alpha_x_, alpha_y_;  // anisotropic GGX (alpha_x = alpha_y = alpha when isotropic)
+  float table_roughness_;    // the albedo tables' roughness: sqrt(sqrt(alpha_x alpha_y))
   glm::vec3 F0_;             // classic's F0; reference: mix(s F0_d, baseColor, metallic)
   glm::vec3 F0_d_;           // the dielectric's F0 (ior, specular colour)
+  float F90_d_;              // the dielectric's F90: 1, or 0 for ior 1 (no interface)
   float spec_weight_;        // KHR_materials_specular's specular
   float iridescence_, film_ior_, film_thickness_;
   BrdfOptions options_;
@@ -211,14 +213,15 @@ inline BoundBrdf Brdf::at(glm::vec3 wo) const {
 
 inline glm::vec3 Brdf::dielectric_albedo(glm::vec2 ab) const {
   // The dielectric's specular with F90 = 1 (KHR_materials_specular), weighted.
-  return spec_weight_ * (F0_d_ * ab.x + ab.y);
+  return spec_weight_ * (F0_d_ * ab.x + F90_d_ * ab.y);
 }
 
 inline glm::vec3 Brdf::specular_albedo(float mu) const {
-  const glm::vec2 ab = table_->AB(mu, roughness_);
+  const glm::vec2 ab = table_->AB(mu, table_roughness_);
   // reference: (1 - metallic) s (F0_d A + B) + metallic (baseColor A + B), F0_ holding both
   // F0 parts; classic: F0 A + B.
-  const float b_weight = reference() ? (1.0f - metallic_) * spec_weight_ + metallic_ : 1.0f;
+  const float b_weight =
+      reference() ? (1.0f - metallic_) * spec_weight_ * F90_d_ + metallic_ : 1.0f;
   glm::vec3 Es = F0_ * ab.x + ab.y * b_weight;
   if (options_.multiscatter) Es += Fms_ * (1.0f - (ab.x + ab.y));
   return Es;
@@ -234,7 +237,7 @@ inline BoundBrdf::BoundBrdf(const Brdf& brdf, glm::vec3 wo)
   // (sampled by VNDF) against what the cosine strategy covers (diffuse + multiple
   // scattering). Estimates only; any positive split keeps sample() unbiased.
   const float mu = std::max(wo.z, 0.0f);
-  const glm::vec2 ab = brdf.table_->AB(mu, brdf.roughness_);
+  const glm::vec2 ab = brdf.table_->AB(mu, brdf.table_roughness_);
   const float E = ab.x + ab.y;
   float spec, rest;
   if (brdf.reference()) {
@@ -287,7 +290,7 @@ inline glm::vec3 BoundBrdf::specular_fresnel(float WOdotH, glm::vec3* diffuse_we
   // by specular; KHR_materials_specular's fresnel_mix) and the metal's (F0 = baseColor),
   // mixed by metallic; the diffuse sits under the dielectric's specular only, weighted by
   // 1 - specular max3(F_dielectric).
-  glm::vec3 Fd = b.F0_d_ + (1.0f - b.F0_d_) * w5;
+  glm::vec3 Fd = b.F0_d_ + (b.F90_d_ - b.F0_d_) * w5;
   glm::vec3 Fm = b.base_color_ + (1.0f - b.base_color_) * w5;
   if (b.iridescence_ > 0.0f) {
     // KHR_materials_iridescence: the thin film replaces both Fresnel terms, by its factor.
@@ -304,7 +307,7 @@ inline glm::vec3 BoundBrdf::specular_fresnel(float WOdotH, glm::vec3* diffuse_we
 inline glm::vec3 BoundBrdf::eval_diffuse_and_ms(glm::vec3 wi, glm::vec3 diffuse_weight) const {
   if (!brdf_.options_.multiscatter) return diffuse_weight * lambert_;
   const Brdf& b = brdf_;
-  const glm::vec2 ab_i = b.table_->AB(wi.z, b.roughness_);
+  const glm::vec2 ab_i = b.table_->AB(wi.z, b.table_roughness_);
   const float E_i = ab_i.x + ab_i.y;
   // Diffuse under a specular layer, weighted reciprocally by what the specular lobe
   // (single + multiple scattering) does not reflect: the white-dielectric furnace is 1.

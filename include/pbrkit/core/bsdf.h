@@ -188,7 +188,10 @@ inline BrdfSample BoundBsdf::sample(float u_lobe, glm::vec2 u) const {
   if (wo_.z <= 0.0f) return s;
   const Bsdf& b = *bsdf_;
   if (u_lobe < p_coat_) {
-    s.wi = b.coat_frame_.to_world(coat_->sample_direction(0.0f, u));
+    // A reflection below the coat's own surface has no coat pdf: no sample.
+    const glm::vec3 wi_c = coat_->sample_direction(0.0f, u);
+    if (!(wi_c.z > 0.0f)) return s;
+    s.wi = b.coat_frame_.to_world(wi_c);
   } else if (u_lobe < p_coat_ + p_sheen_) {
     s.wi = reflect_about(wo_, sample_charlie(u, b.sheen_roughness_).h);
   } else {

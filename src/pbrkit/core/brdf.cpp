@@ -31,6 +31,10 @@ Brdf::Brdf(const BaseLayer& layer, const BrdfOptions& options)
       roughness_(std::clamp(layer.roughness, kMinRoughness, 1.0f)),
       alpha_(roughness_ * roughness_),
       F0_d_(dielectric_f0(std::max(layer.ior, 1.0f), glm::max(layer.specular_color, 0.0f))),
+      // ior 1 is no interface at all: no dielectric specular, not even Schlick's grazing
+      // term (KHR_materials_ior: "ior 1.0 means no dielectric specular"; the exact Fresnel
+      // of an index-matched interface is 0 at every angle).
+      F90_d_(layer.ior > 1.0f ? 1.0f : 0.0f),
       spec_weight_(saturate(layer.specular)),
       iridescence_(saturate(layer.iridescence)),
       film_ior_(std::max(layer.iridescence_ior, 1.0f)),
@@ -43,19 +47,23 @@ Brdf::Brdf(const BaseLayer& layer, const BrdfOptions& options)
   const float aniso = saturate(layer.anisotropy);
   alpha_x_ = glm::mix(alpha_, 1.0f, aniso * aniso);
   alpha_y_ = alpha_;
+  // The albedo tables are isotropic: an anisotropic lobe looks its albedo up at the
+  // roughness of the geometric-mean alpha (exact when isotropic; the white furnace of
+  // tests/core/bsdf_test.cpp measures what it misses).
+  table_roughness_ = aniso > 0.0f ? std::sqrt(std::sqrt(alpha_x_ * alpha_y_)) : roughness_;
   // F0 = mix(0.04, baseColor, metallic) (MODEL.md), with the dielectric's 0.04 from its ior,
   // specular colour and weight (reference: what the dielectric and metal Fresnel mix to at
   // normal incidence; classic: the seeds' F0).
   F0_ = glm::mix(spec_weight_ * F0_d_, base_color_, metallic_);
   if (options_.multiscatter) {
-    const glm::vec2 ab_avg = table_->AB_avg(roughness_);
+    const glm::vec2 ab_avg = table_->AB_avg(table_roughness_);
     E_avg_ = ab_avg.x + ab_avg.y;
     if (options.model == BrdfModel::kReference) {
       // Each specular (the dielectric's, weighted by specular; the metal's) gets its own
       // Kulla-Conty Fms; the diffuse sits under the dielectric's only.
-      Fms_d_ = spec_weight_ * multiscatter_fresnel(F0_d_, E_avg_);
+      Fms_d_ = spec_weight_ * F90_d_ * multiscatter_fresnel(F0_d_, E_avg_);
       Fms_ = (1.0f - metallic_) * Fms_d_ + metallic_ * multiscatter_fresnel(base_color_, E_avg_);
-      Es_avg_ = spec_weight_ * (F0_d_ * ab_avg.x + ab_avg.y) + Fms_d_ * (1.0f - E_avg_);
+      Es_avg_ = spec_weight_ * (F0_d_ * ab_avg.x + F90_d_ * ab_avg.y) + Fms_d_ * (1.0f - E_avg_);
     } else {
       Fms_ = multiscatter_fresnel(F0_, E_avg_);
       Es_avg_ = F0_ * ab_avg.x + ab_avg.y + Fms_ * (1.0f - E_avg_);
