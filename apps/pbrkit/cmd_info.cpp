@@ -39,6 +39,101 @@ std::vector<std::string> material_textures(const Material& m) {
   return out;
 }
 
+nlohmann::json vec3_json(glm::vec3 v) {
+  return {v.r, v.g, v.b};
+}
+
+// A texture reference as glTF names it: the scene texture, its texCoord and transform.
+nlohmann::json texture_json(const TextureRef& ref) {
+  nlohmann::json t = {{"texture", ref.texture}, {"texCoord", ref.texcoord}};
+  if (ref.transform)
+    t["KHR_texture_transform"] = {{"offset", {ref.transform->offset.x, ref.transform->offset.y}},
+                                  {"rotation", ref.transform->rotation},
+                                  {"scale", {ref.transform->scale.x, ref.transform->scale.y}}};
+  return t;
+}
+
+// The KHR_materials_* surface extensions a material uses, each with every value (defaults
+// included) and its textures, under the extension's own property names.
+nlohmann::json material_extensions(const Material& m) {
+  nlohmann::json out = nlohmann::json::object();
+  auto texture = [](nlohmann::json& o, const char* name, const TextureRef& ref) {
+    if (ref.valid()) o[name] = texture_json(ref);
+  };
+  if (m.ior != 1.5f) out["KHR_materials_ior"] = {{"ior", m.ior}};
+  if (m.specular) {
+    const SpecularExtension& e = *m.specular;
+    nlohmann::json o = {{"specularFactor", e.factor},
+                        {"specularColorFactor", vec3_json(e.color_factor)}};
+    texture(o, "specularTexture", e.texture);
+    texture(o, "specularColorTexture", e.color_texture);
+    out["KHR_materials_specular"] = o;
+  }
+  if (m.clearcoat) {
+    const ClearcoatExtension& e = *m.clearcoat;
+    nlohmann::json o = {{"clearcoatFactor", e.factor},
+                        {"clearcoatRoughnessFactor", e.roughness_factor}};
+    texture(o, "clearcoatTexture", e.texture);
+    texture(o, "clearcoatRoughnessTexture", e.roughness_texture);
+    texture(o, "clearcoatNormalTexture", e.normal_texture);
+    if (e.normal_texture.valid()) o["clearcoatNormalTexture"]["scale"] = e.normal_scale;
+    out["KHR_materials_clearcoat"] = o;
+  }
+  if (m.sheen) {
+    const SheenExtension& e = *m.sheen;
+    nlohmann::json o = {{"sheenColorFactor", vec3_json(e.color_factor)},
+                        {"sheenRoughnessFactor", e.roughness_factor}};
+    texture(o, "sheenColorTexture", e.color_texture);
+    texture(o, "sheenRoughnessTexture", e.roughness_texture);
+    out["KHR_materials_sheen"] = o;
+  }
+  if (m.anisotropy) {
+    const AnisotropyExtension& e = *m.anisotropy;
+    nlohmann::json o = {{"anisotropyStrength", e.strength}, {"anisotropyRotation", e.rotation}};
+    texture(o, "anisotropyTexture", e.texture);
+    out["KHR_materials_anisotropy"] = o;
+  }
+  if (m.iridescence) {
+    const IridescenceExtension& e = *m.iridescence;
+    nlohmann::json o = {{"iridescenceFactor", e.factor},
+                        {"iridescenceIor", e.ior},
+                        {"iridescenceThicknessMinimum", e.thickness_min},
+                        {"iridescenceThicknessMaximum", e.thickness_max}};
+    texture(o, "iridescenceTexture", e.texture);
+    texture(o, "iridescenceThicknessTexture", e.thickness_texture);
+    out["KHR_materials_iridescence"] = o;
+  }
+  if (m.unlit) out["KHR_materials_unlit"] = nlohmann::json::object();
+  return out;
+}
+
+// The same, one short phrase per extension for the text summary.
+std::string material_extensions_text(const Material& m) {
+  std::string s;
+  if (m.unlit) s += ", unlit";
+  if (m.ior != 1.5f) s += fmt::format(", ior {:g}", m.ior);
+  if (m.specular) {
+    const glm::vec3 c = m.specular->color_factor;
+    s += fmt::format(", specular {:g} ({:g}, {:g}, {:g})", m.specular->factor, c.r, c.g, c.b);
+  }
+  if (m.clearcoat)
+    s += fmt::format(", clearcoat {:g} roughness {:g}", m.clearcoat->factor,
+                     m.clearcoat->roughness_factor);
+  if (m.sheen) {
+    const glm::vec3 c = m.sheen->color_factor;
+    s += fmt::format(", sheen ({:g}, {:g}, {:g}) roughness {:g}", c.r, c.g, c.b,
+                     m.sheen->roughness_factor);
+  }
+  if (m.anisotropy)
+    s += fmt::format(", anisotropy {:g} rotation {:g}", m.anisotropy->strength,
+                     m.anisotropy->rotation);
+  if (m.iridescence)
+    s +=
+        fmt::format(", iridescence {:g} ior {:g} {:g}-{:g} nm", m.iridescence->factor,
+                    m.iridescence->ior, m.iridescence->thickness_min, m.iridescence->thickness_max);
+  return s;
+}
+
 void run_info(const InfoOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   const Scene scene = load_scene(opt.input);
@@ -61,8 +156,8 @@ void run_info(const InfoOptions& opt) {
   j["triangles"] = scene.triangle_count();
   j["unique_triangles"] = unique_triangles;
   j["materials"] = scene.materials.size();
-  // Per material: its factors, alpha, sides, textures and how many meshes use it (as
-  // glTF-Transform's `inspect` lists them).
+  // Per material: its factors, alpha, sides, textures, KHR_materials_* extensions and how
+  // many meshes use it (as glTF-Transform's `inspect` lists them).
   std::vector<std::size_t> material_uses(scene.materials.size(), 0);
   std::size_t default_material_uses = 0;
   for (const Mesh& m : scene.meshes) {
@@ -87,6 +182,7 @@ void run_info(const InfoOptions& opt) {
                          {"textures", material_textures(m)},
                          {"meshes", material_uses[i]}};
     if (m.alpha_mode == AlphaMode::kMask) mj["alpha_cutoff"] = m.alpha_cutoff;
+    if (nlohmann::json ext = material_extensions(m); !ext.empty()) mj["extensions"] = ext;
     j["material_list"].push_back(mj);
   }
   j["default_material_meshes"] = default_material_uses;
@@ -145,6 +241,7 @@ void run_info(const InfoOptions& opt) {
       extra += ", blend";
     if (m.double_sided) extra += ", double-sided";
     if (e != glm::vec3(0.0f)) extra += fmt::format(", emissive ({:g}, {:g}, {:g})", e.r, e.g, e.b);
+    extra += material_extensions_text(m);
     const std::vector<std::string> textures = material_textures(m);
     if (!textures.empty()) {
       extra += ", textures:";
@@ -189,7 +286,7 @@ void run_info(const InfoOptions& opt) {
 void register_info_command(CLI::App& app) {
   auto opt = std::make_shared<InfoOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "info", "Summarise a glTF file (.gltf/.glb) or a built-in scene (spheres, furnace, cornell)");
+      "info", "Summarise a glTF file (.gltf/.glb) or a built-in scene (`pbrkit scene list`)");
   cmd->add_option("input", opt->input, "glTF file or built-in scene name")->required();
   cmd->add_flag("--json", opt->json, "Print the summary as JSON");
   cmd->callback([opt] { run_info(*opt); });

@@ -1,5 +1,10 @@
 // The built-in scenes: layouts and materials as documented, cameras that frame them, and
 // the Scene helpers on known geometry.
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "pbrkit/scene/camera.h"
@@ -97,12 +102,143 @@ TEST(BuiltinScenes, CornellBox) {
   EXPECT_LT(std::abs(corner.y), 1.0f);
 }
 
+// The KHR_materials comparison scenes: 3 rows of 6 spheres; the first sphere of each row
+// has no extension (the control), the others all use the scene's extension.
+struct Sphere {
+  glm::vec3 centre;
+  const Mesh* mesh;
+  const Material* material;
+};
+std::vector<std::vector<Sphere>> sphere_rows(const Scene& s) {
+  std::vector<std::vector<Sphere>> rows(3);
+  for (const Instance& inst : s.instances) {
+    const glm::vec3 c(inst.transform[3]);
+    const Mesh& mesh = s.meshes[std::size_t(inst.mesh)];
+    const int row = int(std::lround(1.0f - c.y));  // the first row on top (y = 1)
+    EXPECT_TRUE(row >= 0 && row < 3) << c.y;
+    if (row >= 0 && row < 3) rows[std::size_t(row)].push_back({c, &mesh, &s.material_of(mesh)});
+  }
+  for (auto& row : rows)
+    std::sort(row.begin(), row.end(),
+              [](const Sphere& a, const Sphere& b) { return a.centre.x < b.centre.x; });
+  return rows;
+}
+std::vector<std::vector<Sphere>> sphere_rows(Scene&&) = delete;  // the rows point into it
+
+bool uses(const Material& m, const std::string& extension) {
+  if (extension == "clearcoat") return m.clearcoat.has_value();
+  if (extension == "sheen") return m.sheen.has_value();
+  if (extension == "anisotropy") return m.anisotropy.has_value();
+  if (extension == "iridescence") return m.iridescence.has_value();
+  if (extension == "specular") return m.specular.has_value();
+  if (extension == "ior") return m.ior != 1.5f;
+  return m.unlit;
+}
+
+TEST(BuiltinScenes, ExtensionScenesHaveAControlThenASweepAndAreFramed) {
+  for (const char* name :
+       {"clearcoat", "sheen", "anisotropy", "iridescence", "specular", "ior", "unlit"}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(is_builtin_scene(name));
+    const Scene s = load_scene(name);
+    EXPECT_EQ(s.source, std::string("builtin:") + name);
+    ASSERT_EQ(s.instances.size(), 18u);
+    const auto rows = sphere_rows(s);
+    for (const auto& row : rows) {
+      ASSERT_EQ(row.size(), 6u);
+      for (std::size_t c = 0; c < row.size(); ++c) {
+        EXPECT_NEAR(row[c].centre.x, float(c) - 2.5f, 1e-6f);
+        // unlit alternates lit controls and unlit spheres; the others start with the control.
+        const bool expected = std::string(name) == "unlit" ? c % 2 == 1 : c > 0;
+        EXPECT_EQ(uses(*row[c].material, name), expected) << row[c].material->name;
+        // Tangents (anisotropy needs them) along the sphere's parallels.
+        ASSERT_EQ(row[c].mesh->tangents.size(), row[c].mesh->positions.size());
+      }
+      // Within a row the spheres differ (a sweep), except unlit's lit/unlit pairs.
+      if (std::string(name) != "unlit") {
+        for (std::size_t c = 2; c < row.size(); ++c)
+          EXPECT_NE(row[c].material->name, row[c - 1].material->name);
+      }
+    }
+    // Light geometry: 48 x 24 spheres.
+    EXPECT_EQ(s.triangle_count(), 18u * 2u * 48u * 23u);
+    // The camera sees every sphere completely.
+    const Bounds b = s.world_bounds();
+    ASSERT_EQ(s.cameras.size(), 1u);
+    for (float x : {b.min.x, b.max.x})
+      for (float y : {b.min.y, b.max.y}) {
+        const glm::vec2 ndc = project(s.cameras[0], {x, y, 0.0f});
+        EXPECT_LT(std::abs(ndc.x), 1.0f);
+        EXPECT_LT(std::abs(ndc.y), 1.0f);
+        EXPECT_GT(std::abs(ndc.x), 0.7f);  // and fills the frame's width
+      }
+  }
+}
+
+TEST(BuiltinScenes, ExtensionSweepsCoverTheirRanges) {
+  {
+    const Scene s = load_scene("clearcoat");
+    const auto rows = sphere_rows(s);
+    EXPECT_EQ(rows[0][1].material->clearcoat->factor, 0.0f);
+    EXPECT_EQ(rows[0][5].material->clearcoat->factor, 1.0f);
+    EXPECT_EQ(rows[1][5].material->clearcoat->roughness_factor, 1.0f);
+    EXPECT_EQ(rows[1][5].material->clearcoat->factor, 1.0f);
+    EXPECT_EQ(rows[2][0].material->metallic_factor, 1.0f);  // the coat over a metal
+  }
+  {
+    const Scene s = load_scene("sheen");
+    const auto rows = sphere_rows(s);
+    EXPECT_EQ(rows[0][5].material->sheen->color_factor, glm::vec3(1.0f));
+    EXPECT_EQ(rows[1][1].material->sheen->roughness_factor, 0.0f);
+    EXPECT_EQ(rows[1][5].material->sheen->roughness_factor, 1.0f);
+    EXPECT_LT(rows[0][0].material->base_color_factor.r, 0.1f);  // a dark base
+  }
+  {
+    const Scene s = load_scene("anisotropy");
+    const auto rows = sphere_rows(s);
+    EXPECT_EQ(rows[0][5].material->anisotropy->strength, 1.0f);
+    EXPECT_NEAR(rows[1][3].material->anisotropy->rotation, 1.5707963f, 1e-6f);
+    EXPECT_NEAR(rows[2][5].material->anisotropy->rotation, 3.1415927f, 1e-6f);
+    EXPECT_EQ(rows[0][0].material->metallic_factor, 1.0f);
+  }
+  {
+    const Scene s = load_scene("iridescence");
+    const auto rows = sphere_rows(s);
+    EXPECT_EQ(rows[0][5].material->iridescence->factor, 1.0f);
+    EXPECT_EQ(rows[1][1].material->iridescence->thickness_max, 200.0f);
+    EXPECT_EQ(rows[1][5].material->iridescence->thickness_max, 800.0f);
+  }
+  {
+    const Scene s = load_scene("specular");
+    const auto rows = sphere_rows(s);
+    EXPECT_EQ(rows[0][1].material->specular->factor, 0.0f);
+    EXPECT_EQ(rows[1][5].material->specular->color_factor, glm::vec3(2.0f));  // above 1
+  }
+  {
+    const Scene s = load_scene("ior");
+    const auto rows = sphere_rows(s);
+    for (const auto& row : rows) {
+      EXPECT_EQ(row[0].material->ior, 1.5f);  // the control: no extension
+      EXPECT_EQ(row[1].material->ior, 1.0f);  // exactly 1: no dielectric reflection
+      EXPECT_EQ(row[5].material->ior, 2.5f);
+    }
+  }
+  {
+    const Scene s = load_scene("unlit");
+    const auto rows = sphere_rows(s);
+    for (const auto& row : rows)
+      for (std::size_t c = 0; c < 6; c += 2)
+        EXPECT_EQ(row[c].material->base_color_factor, row[c + 1].material->base_color_factor);
+  }
+}
+
 TEST(BuiltinScenes, UnknownNameListsTheKnownOnes) {
   try {
     builtin_scene("teapot");
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("spheres"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("iridescence"), std::string::npos);
   }
   EXPECT_TRUE(is_builtin_scene("cornell"));
   EXPECT_FALSE(is_builtin_scene("cornell.glb"));

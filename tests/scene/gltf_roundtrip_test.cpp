@@ -40,6 +40,39 @@ void expect_same_material(const Material& a, const Material& b) {
   EXPECT_EQ(a.alpha_mode, b.alpha_mode);
   EXPECT_EQ(a.alpha_cutoff, b.alpha_cutoff);
   EXPECT_EQ(a.double_sided, b.double_sided);
+  // The KHR_materials surface extensions (material_extensions_test.cpp covers their
+  // textures); an unlit material is written with KHR_materials_unlit only.
+  EXPECT_EQ(a.unlit, b.unlit);
+  if (!a.unlit) {
+    EXPECT_EQ(a.ior, b.ior);
+    ASSERT_EQ(a.specular.has_value(), b.specular.has_value());
+    if (a.specular) {
+      EXPECT_EQ(a.specular->factor, b.specular->factor);
+      EXPECT_EQ(a.specular->color_factor, b.specular->color_factor);
+    }
+    ASSERT_EQ(a.clearcoat.has_value(), b.clearcoat.has_value());
+    if (a.clearcoat) {
+      EXPECT_EQ(a.clearcoat->factor, b.clearcoat->factor);
+      EXPECT_EQ(a.clearcoat->roughness_factor, b.clearcoat->roughness_factor);
+    }
+    ASSERT_EQ(a.sheen.has_value(), b.sheen.has_value());
+    if (a.sheen) {
+      EXPECT_EQ(a.sheen->color_factor, b.sheen->color_factor);
+      EXPECT_EQ(a.sheen->roughness_factor, b.sheen->roughness_factor);
+    }
+    ASSERT_EQ(a.anisotropy.has_value(), b.anisotropy.has_value());
+    if (a.anisotropy) {
+      EXPECT_EQ(a.anisotropy->strength, b.anisotropy->strength);
+      EXPECT_EQ(a.anisotropy->rotation, b.anisotropy->rotation);
+    }
+    ASSERT_EQ(a.iridescence.has_value(), b.iridescence.has_value());
+    if (a.iridescence) {
+      EXPECT_EQ(a.iridescence->factor, b.iridescence->factor);
+      EXPECT_EQ(a.iridescence->ior, b.iridescence->ior);
+      EXPECT_EQ(a.iridescence->thickness_min, b.iridescence->thickness_min);
+      EXPECT_EQ(a.iridescence->thickness_max, b.iridescence->thickness_max);
+    }
+  }
   for (auto [ra, rb] : {std::pair{&a.base_color_texture, &b.base_color_texture},
                         std::pair{&a.metallic_roughness_texture, &b.metallic_roughness_texture},
                         std::pair{&a.normal_texture, &b.normal_texture},

@@ -20,8 +20,8 @@ struct LoadOptions {
   SceneLimits limits;
 };
 
-/// Loads a .gltf or .glb file, or a built-in scene when `path_or_name` is "spheres",
-/// "furnace" or "cornell" (or "builtin:<name>"). Throws pbrkit::Error naming the file and,
+/// Loads a .gltf or .glb file, or a built-in scene when `path_or_name` is one of
+/// builtin_scene_names() (or "builtin:<name>"). Throws pbrkit::Error naming the file and,
 /// where possible, the JSON path of the bad element (e.g. "accessors[3].count").
 Scene load_scene(const std::string& path_or_name, const LoadOptions& options = {});
 
@@ -29,7 +29,11 @@ Scene load_scene(const std::string& path_or_name, const LoadOptions& options = {
 /// Error; in extensionsUsed only, a warning).
 std::vector<std::string> supported_gltf_extensions();
 
-/// Names of the built-in scenes.
+/// Names of the built-in scenes: "spheres" (7 x 7 metallic x roughness), "furnace" (a white
+/// diffuse sphere), "cornell" (the Cornell box), and one comparison scene per
+/// KHR_materials_* extension, "clearcoat", "sheen", "anisotropy", "iridescence", "specular",
+/// "ior" and "unlit" (3 rows of 6 spheres: a control sphere without the extension, then a
+/// sweep of one parameter; builtin_scenes.cpp says which).
 std::vector<std::string> builtin_scene_names();
 bool is_builtin_scene(const std::string& name);
 /// Generates a built-in scene (Error for an unknown name, listing the known ones).

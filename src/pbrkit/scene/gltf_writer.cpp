@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <stb_image_write.h>
@@ -81,6 +82,7 @@ class Writer {
   int add_texture(const Texture& t);
   tinygltf::TextureInfo texture_info(const TextureRef& ref);
   void add_material(const Material& m);
+  tinygltf::ExtensionMap material_extensions(const Material& m);
   void add_mesh(const Mesh& m);
 
   const Scene& scene_;
@@ -159,6 +161,104 @@ tinygltf::TextureInfo Writer::texture_info(const TextureRef& ref) {
   return info;
 }
 
+// A textureInfo inside an extension object: {"index", "texCoord", KHR_texture_transform}
+// as texture_info() writes them for the core textures; `scale` for a normalTextureInfo.
+void put_texture(tinygltf::Value::Object& o, const char* name, const tinygltf::TextureInfo& info,
+                 std::optional<float> scale = std::nullopt) {
+  if (info.index < 0) return;
+  tinygltf::Value::Object t;
+  t["index"] = tinygltf::Value(info.index);
+  if (info.texCoord != 0) t["texCoord"] = tinygltf::Value(info.texCoord);
+  if (scale && *scale != 1.0f) t["scale"] = tinygltf::Value(double(*scale));
+  if (!info.extensions.empty()) {
+    tinygltf::Value::Object e(info.extensions.begin(), info.extensions.end());
+    t["extensions"] = tinygltf::Value(e);
+  }
+  o[name] = tinygltf::Value(t);
+}
+
+// A number, left out when it is the extension's default.
+void put_number(tinygltf::Value::Object& o, const char* name, float value, float fallback) {
+  if (value != fallback) o[name] = tinygltf::Value(double(value));
+}
+
+void put_color(tinygltf::Value::Object& o, const char* name, glm::vec3 value, glm::vec3 fallback) {
+  if (value == fallback) return;
+  o[name] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(value.r)),
+                                                   tinygltf::Value(double(value.g)),
+                                                   tinygltf::Value(double(value.b))});
+}
+
+// The KHR_materials_* surface extensions the material uses, each with the values that differ
+// from the README's defaults. KHR_materials_unlit excludes the others (each of their READMEs
+// says so, and the glTF-Validator reports the combination), so an unlit material is
+// written with KHR_materials_unlit only: what a viewer would show of it.
+tinygltf::ExtensionMap Writer::material_extensions(const Material& m) {
+  tinygltf::ExtensionMap out;
+  if (m.unlit) {
+    out["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object{});
+    return out;
+  }
+  if (m.ior != 1.5f) {
+    tinygltf::Value::Object o;
+    o["ior"] = tinygltf::Value(double(m.ior));
+    out["KHR_materials_ior"] = tinygltf::Value(o);
+  }
+  if (m.specular) {
+    const SpecularExtension& e = *m.specular;
+    const SpecularExtension d;
+    tinygltf::Value::Object o;
+    put_number(o, "specularFactor", e.factor, d.factor);
+    put_texture(o, "specularTexture", texture_info(e.texture));
+    put_color(o, "specularColorFactor", e.color_factor, d.color_factor);
+    put_texture(o, "specularColorTexture", texture_info(e.color_texture));
+    out["KHR_materials_specular"] = tinygltf::Value(o);
+  }
+  if (m.clearcoat) {
+    const ClearcoatExtension& e = *m.clearcoat;
+    const ClearcoatExtension d;
+    tinygltf::Value::Object o;
+    put_number(o, "clearcoatFactor", e.factor, d.factor);
+    put_texture(o, "clearcoatTexture", texture_info(e.texture));
+    put_number(o, "clearcoatRoughnessFactor", e.roughness_factor, d.roughness_factor);
+    put_texture(o, "clearcoatRoughnessTexture", texture_info(e.roughness_texture));
+    put_texture(o, "clearcoatNormalTexture", texture_info(e.normal_texture), e.normal_scale);
+    out["KHR_materials_clearcoat"] = tinygltf::Value(o);
+  }
+  if (m.sheen) {
+    const SheenExtension& e = *m.sheen;
+    const SheenExtension d;
+    tinygltf::Value::Object o;
+    put_color(o, "sheenColorFactor", e.color_factor, d.color_factor);
+    put_texture(o, "sheenColorTexture", texture_info(e.color_texture));
+    put_number(o, "sheenRoughnessFactor", e.roughness_factor, d.roughness_factor);
+    put_texture(o, "sheenRoughnessTexture", texture_info(e.roughness_texture));
+    out["KHR_materials_sheen"] = tinygltf::Value(o);
+  }
+  if (m.anisotropy) {
+    const AnisotropyExtension& e = *m.anisotropy;
+    const AnisotropyExtension d;
+    tinygltf::Value::Object o;
+    put_number(o, "anisotropyStrength", e.strength, d.strength);
+    put_number(o, "anisotropyRotation", e.rotation, d.rotation);
+    put_texture(o, "anisotropyTexture", texture_info(e.texture));
+    out["KHR_materials_anisotropy"] = tinygltf::Value(o);
+  }
+  if (m.iridescence) {
+    const IridescenceExtension& e = *m.iridescence;
+    const IridescenceExtension d;
+    tinygltf::Value::Object o;
+    put_number(o, "iridescenceFactor", e.factor, d.factor);
+    put_texture(o, "iridescenceTexture", texture_info(e.texture));
+    put_number(o, "iridescenceIor", e.ior, d.ior);
+    put_number(o, "iridescenceThicknessMinimum", e.thickness_min, d.thickness_min);
+    put_number(o, "iridescenceThicknessMaximum", e.thickness_max, d.thickness_max);
+    put_texture(o, "iridescenceThicknessTexture", texture_info(e.thickness_texture));
+    out["KHR_materials_iridescence"] = tinygltf::Value(o);
+  }
+  return out;
+}
+
 void Writer::add_material(const Material& m) {
   tinygltf::Material g;
   g.name = m.name;
@@ -177,6 +277,7 @@ void Writer::add_material(const Material& m) {
     o["emissiveStrength"] = tinygltf::Value(double(emission.strength));
     g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(o);
   }
+  for (auto& [name, value] : material_extensions(m)) g.extensions[name] = std::move(value);
   const tinygltf::TextureInfo normal = texture_info(m.normal_texture);
   g.normalTexture.index = normal.index;
   g.normalTexture.texCoord = normal.texCoord;
@@ -315,9 +416,19 @@ tinygltf::Model Writer::build() {
   if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
                   [](const Material& m) { return gltf_emission(m).strength != 1.0f; }))
     uses("KHR_materials_emissive_strength");
+  // Each surface extension once, in the order the materials first use them.
+  for (const tinygltf::Material& g : model_.materials)
+    for (const auto& [name, value] : g.extensions)
+      if (name != "KHR_materials_emissive_strength" &&
+          std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), name) ==
+              model_.extensionsUsed.end())
+        uses(name.c_str());
+  // Only the textures written count (an unlit material's extension textures are not).
   auto has_transform = [](const Material& m) {
-    for (const TextureRef* r : m.textures())
-      if (r->valid() && r->transform) return true;
+    const auto slots = m.textures();
+    const std::size_t written = m.unlit ? std::size_t(TextureSlot::kSpecular) : slots.size();
+    for (std::size_t i = 0; i < written; ++i)
+      if (slots[i]->valid() && slots[i]->transform) return true;
     return false;
   };
   if (std::any_of(scene_.materials.begin(), scene_.materials.end(), has_transform))

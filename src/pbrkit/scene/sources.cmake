@@ -8,6 +8,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/gltf/file_access.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/lights.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/loader.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/material_extensions.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/materials.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/meshes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/meshopt.cpp

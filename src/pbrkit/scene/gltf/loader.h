@@ -86,6 +86,18 @@ class Loader {
   void build_materials();
   TextureRef texture_ref(int texture_index, int texcoord, const tinygltf::ExtensionMap& ext,
                          bool srgb, const std::string& where);
+  // material_extensions.cpp: the KHR_materials_* surface extensions (ior, specular,
+  // clearcoat, sheen, anisotropy, iridescence, unlit) of one material, read from the JSON
+  // check_json kept (tinygltf drops extension values that are not objects, and empty
+  // objects inside them, so it cannot tell a wrong type from an absent value).
+  void read_material_extensions(const json& extensions, const std::string& where, Material& m);
+  float finite_float(const json& v, const std::string& path) const;
+  float extension_factor(const json& ext, const char* name, float fallback, float lo, float hi,
+                         const std::string& where);
+  glm::vec3 extension_color(const json& ext, const char* name, glm::vec3 fallback, float hi,
+                            const std::string& where);
+  TextureRef extension_texture(const json& ext, const char* name, bool srgb,
+                               const std::string& where, float* scale = nullptr);
   // textures.cpp: images decoded once per colour space, with their samplers.
   int texture_for(int texture_index, bool srgb, const std::string& where);
 
@@ -106,6 +118,7 @@ class Loader {
   std::string json_text_;
   tinygltf::Model model_;
   Scene scene_;
+  std::vector<json> material_extensions_;  // materials[i].extensions (or {}), from check_json
   std::map<std::pair<int, bool>, int> texture_cache_;
   std::size_t texture_bytes_ = 0;
   std::size_t triangles_ = 0;

@@ -1,5 +1,6 @@
 // Materials (glTF 2.0 section 3.9, metallic-roughness) with KHR_materials_emissive_strength,
 // and the texture references they hold (texture coordinate set, KHR_texture_transform).
+// The KHR_materials_* surface extensions are read in material_extensions.cpp.
 #include <cmath>
 
 #include "pbrkit/scene/gltf/loader.h"
@@ -101,6 +102,8 @@ void Loader::build_materials() {
     m.emissive_texture =
         texture_ref(g.emissiveTexture.index, g.emissiveTexture.texCoord,
                     g.emissiveTexture.extensions, true, where + ".emissiveTexture");
+    read_material_extensions(
+        i < material_extensions_.size() ? material_extensions_[i] : json::object(), where, m);
     scene_.materials.push_back(std::move(m));
   }
 }

@@ -196,8 +196,16 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
   }
   const Material& mat =
       mesh.material >= 0 ? scene_.materials[std::size_t(mesh.material)] : Scene::default_material();
-  if (mesh.tangents.empty() && mat.normal_texture.valid())
-    generate_tangents(mesh, mat.normal_texture.texcoord);
+  // A tangent frame for the normal maps (base and clearcoat) and for anisotropy, whose
+  // README requires one (computed as for normal maps when TANGENT is absent).
+  if (mesh.tangents.empty()) {
+    const TextureRef* uv_source = mat.normal_texture.valid() ? &mat.normal_texture : nullptr;
+    if (!uv_source && mat.clearcoat && mat.clearcoat->normal_texture.valid())
+      uv_source = &mat.clearcoat->normal_texture;
+    if (!uv_source && mat.anisotropy && mat.anisotropy->texture.valid())
+      uv_source = &mat.anisotropy->texture;
+    if (uv_source || mat.anisotropy) generate_tangents(mesh, uv_source ? uv_source->texcoord : 0);
+  }
   scene_.meshes.push_back(std::move(mesh));
   out.push_back(int(scene_.meshes.size()) - 1);
 }

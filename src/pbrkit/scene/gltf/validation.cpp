@@ -17,9 +17,19 @@ namespace gltf {
 namespace {
 
 // Extensions this loader implements; any other one in extensionsRequired is an error.
-const std::set<std::string> kSupportedExtensions = {
-    "KHR_materials_emissive_strength", "KHR_texture_transform",      "KHR_lights_punctual",
-    "KHR_mesh_quantization",           "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
+const std::set<std::string> kSupportedExtensions = {"KHR_materials_emissive_strength",
+                                                    "KHR_materials_ior",
+                                                    "KHR_materials_specular",
+                                                    "KHR_materials_clearcoat",
+                                                    "KHR_materials_sheen",
+                                                    "KHR_materials_anisotropy",
+                                                    "KHR_materials_iridescence",
+                                                    "KHR_materials_unlit",
+                                                    "KHR_texture_transform",
+                                                    "KHR_lights_punctual",
+                                                    "KHR_mesh_quantization",
+                                                    "KHR_draco_mesh_compression",
+                                                    "EXT_meshopt_compression"};
 
 }  // namespace
 
@@ -90,6 +100,14 @@ void Loader::check_json(const json& root) {
         std::find(scene_.extensions_required.begin(), scene_.extensions_required.end(), e) ==
             scene_.extensions_required.end())
       warning(fmt::format("optional extension '{}' is not supported and is ignored", e));
+  // Each material's extensions object as the file has it, for material_extensions.cpp.
+  material_extensions_.clear();
+  if (root.contains("materials"))
+    for (const json& material : root["materials"]) {
+      const auto it = material.find("extensions");
+      material_extensions_.push_back(it != material.end() && it->is_object() ? *it
+                                                                             : json::object());
+    }
   // Node count for the cycle checks and `info`.
   if (root.contains("nodes")) scene_.node_count = root["nodes"].size();
 }
