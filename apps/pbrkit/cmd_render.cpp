@@ -30,7 +30,7 @@ void register_render_command(CLI::App& app) {
   auto options = std::make_shared<RenderCommandOptions>();
   auto renderer = std::make_shared<std::string>("path");
   cmd->add_option("scene", options->scene,
-                  "a .gltf/.glb file or a built-in scene: spheres, furnace, cornell")
+                  "a .gltf/.glb file or a built-in scene: " + builtin_scene_list())
       ->capture_default_str();
   cmd->add_option("--renderer", *renderer, "path (Monte Carlo path tracer) or gl (OpenGL)")
       ->check(CLI::IsMember({"path", "gl"}))

@@ -28,7 +28,7 @@ void register_scene_command(CLI::App& app) {
 
   auto opt = std::make_shared<SceneWriteOptions>();
   CLI::App* write = cmd->add_subcommand("write", "Write a built-in scene as binary glTF");
-  write->add_option("name", opt->name, "spheres, furnace or cornell")->required();
+  write->add_option("name", opt->name, "the built-in scene: " + builtin_scene_list())->required();
   write->add_option("output", opt->output, "Output .glb path")->required();
   write->callback([opt] {
     const Scene scene = builtin_scene(opt->name);

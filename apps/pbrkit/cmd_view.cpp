@@ -34,7 +34,7 @@ void register_view_command(CLI::App& app) {
       "environment, exposure, tone mapper, model, compensation, IBL, lights and material "
       "overrides; F12/P screenshot (PNG + EXR), R reload, Esc quit. Needs an X display.");
   cmd->add_option("scene", o->scene,
-                  "a .gltf/.glb file or a built-in scene: spheres, furnace, cornell")
+                  "a .gltf/.glb file or a built-in scene: " + builtin_scene_list())
       ->capture_default_str();
   cmd->add_option("--env", o->env, "environment map (.exr/.hdr); default: the built-in city.exr");
   cmd->add_flag("--no-env", o->no_env, "no environment light");

@@ -1,7 +1,11 @@
 #pragma once
 // The pbrkit CLI: one file per subcommand (cmd_<name>.cpp), each a thin shell that parses
 // options and calls the library. Each file defines one register_<name>_command().
+#include <string>
+
 #include <CLI/CLI.hpp>
+
+#include "pbrkit/scene/load.h"
 
 namespace pbrkit::cli {
 
@@ -10,6 +14,13 @@ namespace pbrkit::cli {
 struct ExitRequest {
   int code;
 };
+
+/// The built-in scenes' names, comma-separated, for --help texts.
+inline std::string builtin_scene_list() {
+  std::string s;
+  for (const std::string& name : builtin_scene_names()) s += (s.empty() ? "" : ", ") + name;
+  return s;
+}
 
 void register_brdf_command(CLI::App& app);
 void register_scene_command(CLI::App& app);

@@ -30,11 +30,14 @@ Brdf::Brdf(const BaseLayer& layer, const BrdfOptions& options)
       metallic_(saturate(layer.metallic)),
       roughness_(std::clamp(layer.roughness, kMinRoughness, 1.0f)),
       alpha_(roughness_ * roughness_),
-      F0_d_(dielectric_f0(std::max(layer.ior, 1.0f), glm::max(layer.specular_color, 0.0f))),
+      // ior 0 is KHR_materials_ior's special value (F0 = 1, the specular-glossiness mode);
+      // anything else below 1 is treated as 1.
+      F0_d_(dielectric_f0(layer.ior == 0.0f ? 0.0f : std::max(layer.ior, 1.0f),
+                          glm::max(layer.specular_color, 0.0f))),
       // ior 1 is no interface at all: no dielectric specular, not even Schlick's grazing
       // term (KHR_materials_ior: "ior 1.0 means no dielectric specular"; the exact Fresnel
       // of an index-matched interface is 0 at every angle).
-      F90_d_(layer.ior > 1.0f ? 1.0f : 0.0f),
+      F90_d_(layer.ior > 1.0f || layer.ior == 0.0f ? 1.0f : 0.0f),
       spec_weight_(saturate(layer.specular)),
       iridescence_(saturate(layer.iridescence)),
       film_ior_(std::max(layer.iridescence_ior, 1.0f)),
