@@ -4,5 +4,6 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/energy.cpp
   ${CMAKE_CURRENT_LIST_DIR}/brdf.cpp
   ${CMAKE_CURRENT_LIST_DIR}/bsdf.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/color.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/color.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/iridescence.cpp)
 target_sources(pbrkit PRIVATE ${CMAKE_CURRENT_LIST_DIR}/brdf_plots.cpp)
