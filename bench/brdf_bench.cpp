@@ -1,11 +1,13 @@
 // Cost of one call of Brdf::eval / sample / pdf (core/brdf.h) for both G models, with
-// and without multiple-scattering compensation. Directions, random numbers and materials
+// and without multiple-scattering compensation, and of the layered Bsdf (core/bsdf.h) with
+// each KHR_materials_* lobe. Directions, random numbers and materials
 // are generated before timing, so the figures are of the BRDF, not of the RNG.
 #include <benchmark/benchmark.h>
 
 #include <vector>
 
 #include "pbrkit/core/brdf.h"
+#include "pbrkit/core/bsdf.h"
 #include "pbrkit/core/sampling.h"
 
 namespace pbrkit {
@@ -93,6 +95,94 @@ void BM_Construct(benchmark::State& state) {
   }
   state.SetItemsProcessed(state.iterations());
 }
+
+// ---- The layered material (core/bsdf.h): each extension alone and all together, with the
+// default options (reference, compensated), bound once per call as the path tracer does. ----
+
+enum class Layer { kNone, kAnisotropy, kIridescence, kClearcoat, kSheen, kAll };
+
+struct LayeredInputs {
+  std::vector<Bsdf> bsdfs;
+  explicit LayeredInputs(Layer layer) {
+    Pcg32 rng(7);
+    for (std::size_t m = 0; m < kMaterials; ++m) {
+      SurfaceParams p;
+      p.base.base_color = glm::vec3(rng.next_float(), rng.next_float(), rng.next_float());
+      p.base.metallic = rng.next_float();
+      p.base.roughness = rng.next_float();
+      const bool all = layer == Layer::kAll;
+      if (all || layer == Layer::kAnisotropy) p.base.anisotropy = rng.next_float();
+      if (all || layer == Layer::kIridescence) {
+        p.base.iridescence = 1.0f;
+        p.base.iridescence_thickness = 100.0f + 400.0f * rng.next_float();
+      }
+      if (all || layer == Layer::kClearcoat) {
+        p.coat.weight = 1.0f;
+        p.coat.roughness = rng.next_float();
+      }
+      if (all || layer == Layer::kSheen) {
+        p.sheen.color = glm::vec3(rng.next_float());
+        p.sheen.roughness = rng.next_float();
+      }
+      bsdfs.emplace_back(p);
+    }
+  }
+};
+
+template <Layer kLayer>
+const LayeredInputs& layered_inputs() {
+  static const LayeredInputs in(kLayer);
+  return in;
+}
+
+template <Layer kLayer>
+void BM_LayeredEval(benchmark::State& state) {
+  const Inputs& in = inputs(BrdfModel::kReference, true);
+  const LayeredInputs& li = layered_inputs<kLayer>();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(li.bsdfs[i & (kMaterials - 1)].eval(in.wo[i], in.wi[i]));
+    i = (i + 1) & (kCount - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+template <Layer kLayer>
+void BM_LayeredSample(benchmark::State& state) {
+  const Inputs& in = inputs(BrdfModel::kReference, true);
+  const LayeredInputs& li = layered_inputs<kLayer>();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(
+        li.bsdfs[i & (kMaterials - 1)].sample(in.wo[i], in.u_lobe[i], in.u[i]));
+    i = (i + 1) & (kCount - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+template <Layer kLayer>
+void BM_LayeredPdf(benchmark::State& state) {
+  const Inputs& in = inputs(BrdfModel::kReference, true);
+  const LayeredInputs& li = layered_inputs<kLayer>();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(li.bsdfs[i & (kMaterials - 1)].pdf(in.wo[i], in.wi[i]));
+    i = (i + 1) & (kCount - 1);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+#define PBRKIT_LAYERED(layer, name)                                        \
+  BENCHMARK(BM_LayeredEval<Layer::layer>)->Name("layered/eval/" name);     \
+  BENCHMARK(BM_LayeredSample<Layer::layer>)->Name("layered/sample/" name); \
+  BENCHMARK(BM_LayeredPdf<Layer::layer>)->Name("layered/pdf/" name)
+PBRKIT_LAYERED(kNone, "base");
+PBRKIT_LAYERED(kAnisotropy, "anisotropy");
+PBRKIT_LAYERED(kIridescence, "iridescence");
+PBRKIT_LAYERED(kClearcoat, "clearcoat");
+PBRKIT_LAYERED(kSheen, "sheen");
+PBRKIT_LAYERED(kAll, "all");
+#undef PBRKIT_LAYERED
 
 constexpr BrdfModel kRef = BrdfModel::kReference;
 constexpr BrdfModel kClassic = BrdfModel::kClassic;
