@@ -119,6 +119,14 @@ void Renderer::set_scene(const Scene& scene) {
   state_->scene.upload(scene);
 }
 
+void Renderer::set_materials(const std::vector<Material>& materials) {
+  std::vector<Material>& current = state_->scene.materials;
+  if (materials.size() != current.size())
+    fail("OpenGL: set_materials with {} materials for a scene of {}", materials.size(),
+         current.size());
+  current = materials;
+}
+
 void Renderer::set_environment(const Environment* env) {
   state_->environment.set_environment(env);
 }
