@@ -2,6 +2,7 @@
 // many random inputs must match the C++ Brdf::eval to 1e-4 relative, for both G models,
 // with and without multiple-scattering compensation. This is how we know the OpenGL
 // renderer and the path tracer render one material model.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -9,9 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include "brdf_conditioning.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/brdf.h"
-#include "pbrkit/core/energy.h"
 #include "pbrkit/gl/brdf_eval.h"
 
 namespace pbrkit::gl {
@@ -46,43 +47,6 @@ std::vector<BrdfCase> random_cases(unsigned seed, int count) {
   return cases;
 }
 
-// With compensation the multiple-scattering lobe Fms (1 - E_o)(1 - E_i) / (pi (1 - E_avg))
-// and the compensated diffuse lobe divide differences of numbers close to 1: at low
-// roughness E is 0.99999, so one float rounding of E (6e-8) is a 1% change of 1 - E.
-// Both implementations round E differently in the last bit (texture fetch, mix), so the
-// comparison allows, on top of the 1e-4 relative, the propagated rounding of those lobes
-// (a first-order bound with 4 ulp of 1 per table value); it is 0 without compensation.
-double conditioning_bound(const BrdfCase& c, const BrdfOptions& options) {
-  if (!options.multiscatter) return 0.0;
-  const double eps = 4.0 * 5.96e-8;
-  const Brdf brdf(c.base_color, c.metallic, c.roughness, options);
-  const EnergyTable& table = EnergyTable::get(direct_geometry(options.model));
-  const double r = brdf.roughness();
-  const double one_minus_Eo = std::abs(1.0 - table.E(c.wo.z, float(r)));
-  const double one_minus_Ei = std::abs(1.0 - table.E(c.wi.z, float(r)));
-  const double one_minus_Eavg = std::max(1.0 - double(table.E_avg(float(r))), 1e-6);
-  const glm::vec3 Fms = multiscatter_fresnel(brdf.F0(), table.E_avg(float(r)));
-  const double fms = std::max({Fms.r, Fms.g, Fms.b});
-  const double ms = fms * (one_minus_Eo + eps) * (one_minus_Ei + eps) / (3.14159 * one_minus_Eavg);
-  const double ms_bound =
-      ms * (eps / (one_minus_Eo + eps) + eps / (one_minus_Ei + eps) + eps / one_minus_Eavg);
-  // The diffuse lobe: lambert (1 - Es_o)(1 - Es_i) / (1 - Es_avg), the same structure.
-  const glm::vec3 Es_o = brdf.specular_albedo(c.wo.z), Es_i = brdf.specular_albedo(c.wi.z);
-  const double lambert =
-      (1.0 - c.metallic) * std::max({c.base_color.r, c.base_color.g, c.base_color.b}) / 3.14159;
-  double diffuse_bound = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    const double a = std::abs(1.0 - Es_o[k]) + eps, b = std::abs(1.0 - Es_i[k]) + eps;
-    const glm::vec2 ab_avg = table.AB_avg(float(r));
-    const double es_avg =
-        brdf.F0()[k] * ab_avg.x + ab_avg.y + Fms[k] * (1.0 - (ab_avg.x + ab_avg.y));
-    const double c_avg = std::max(1.0 - es_avg, 1e-6);
-    diffuse_bound =
-        std::max(diffuse_bound, lambert * a * b / c_avg * (eps / a + eps / b + eps / c_avg));
-  }
-  return ms_bound + diffuse_bound;
-}
-
 void expect_glsl_matches_cpp(const BrdfOptions& options, unsigned seed) {
   testing::context();
   const std::vector<BrdfCase> cases = random_cases(seed, 4000);
@@ -92,7 +56,7 @@ void expect_glsl_matches_cpp(const BrdfOptions& options, unsigned seed) {
   std::size_t worst_index = 0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const BrdfCase& c = cases[i];
-    const Brdf brdf(c.base_color, c.metallic, c.roughness, options);
+    const Brdf brdf(c.layer(), options);
     const glm::vec3 cpu = brdf.eval(c.wo, c.wi);
     ASSERT_TRUE(std::isfinite(gpu[i].r) && std::isfinite(gpu[i].g) && std::isfinite(gpu[i].b))
         << "case " << i;
@@ -100,7 +64,7 @@ void expect_glsl_matches_cpp(const BrdfOptions& options, unsigned seed) {
     double d = 0.0;
     for (int k = 0; k < 3; ++k) d = std::max(d, std::abs(double(gpu[i][k]) - cpu[k]));
     // In units of the allowed error: <= 1 passes.
-    const double ratio = d / (1e-4 * scale + conditioning_bound(c, options));
+    const double ratio = d / (1e-4 * scale + testing::conditioning_bound(c, options));
     worst_plain = std::max(worst_plain, d / scale);
     if (ratio > worst) {
       worst = ratio;
@@ -111,7 +75,7 @@ void expect_glsl_matches_cpp(const BrdfOptions& options, unsigned seed) {
   EXPECT_LE(worst, 1.0) << "worst case " << worst_index << ": roughness " << w.roughness
                         << ", metallic " << w.metallic << ", wo.z " << w.wo.z << ", wi.z " << w.wi.z
                         << ", gpu " << gpu[worst_index].r << ", cpu "
-                        << Brdf(w.base_color, w.metallic, w.roughness, options).eval(w.wo, w.wi).r;
+                        << Brdf(w.layer(), options).eval(w.wo, w.wi).r;
   if (!options.multiscatter) {
     EXPECT_LT(worst_plain, 1e-4);
   }

@@ -32,6 +32,9 @@ class Renderer {
 
   /// Uploads meshes, materials and textures (replacing any previous scene).
   void set_scene(const Scene& scene);
+  /// Replaces the scene's materials (same count and order; textures stay) without
+  /// uploading anything: what the viewer's material overrides change per frame.
+  void set_materials(const std::vector<Material>& materials);
   /// The sharp background: the equirect map (nullptr: none; background colour black).
   void set_environment(const Environment* env);
   /// The IBL maps (nullptr: no image-based lighting).

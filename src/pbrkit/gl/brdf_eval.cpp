@@ -8,19 +8,22 @@
 
 namespace pbrkit::gl {
 
+void append_brdf_case(const BrdfCase& c, std::vector<glm::vec4>& out) {
+  out.emplace_back(c.wo, 0.0f);
+  out.emplace_back(c.wi, 0.0f);
+  out.emplace_back(c.base_color, c.metallic);
+  out.emplace_back(c.roughness, c.ior, c.specular, c.anisotropy);
+  out.emplace_back(c.specular_color, c.iridescence);
+  out.emplace_back(c.iridescence_ior, c.iridescence_thickness, 0.0f, 0.0f);
+}
+
 std::vector<glm::vec3> eval_brdf_glsl(const std::vector<BrdfCase>& cases,
                                       const BrdfOptions& options, FresnelMode fresnel) {
   if (cases.empty()) return {};
   const Program program = Program::compute("brdf_test.glsl");
-  // std430 layout of brdf_test.glsl's BrdfCase: four vec4.
   std::vector<glm::vec4> input;
-  input.reserve(cases.size() * 4);
-  for (const BrdfCase& c : cases) {
-    input.emplace_back(c.wo, 0.0f);
-    input.emplace_back(c.wi, 0.0f);
-    input.emplace_back(c.base_color, c.metallic);
-    input.emplace_back(c.roughness, 0.0f, 0.0f, 0.0f);
-  }
+  input.reserve(cases.size() * 6);
+  for (const BrdfCase& c : cases) append_brdf_case(c, input);
   const GeometryModel geometry = direct_geometry(options.model);
   const GLuint energy = create_energy_texture(geometry);
   program.use();

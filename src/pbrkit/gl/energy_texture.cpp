@@ -6,6 +6,7 @@
 #include <epoxy/gl.h>
 
 #include "pbrkit/core/energy.h"
+#include "pbrkit/core/sheen.h"
 
 namespace pbrkit::gl {
 
@@ -46,6 +47,22 @@ unsigned create_energy_texture(GeometryModel model) {
   glCreateTextures(GL_TEXTURE_2D, 1, &texture);
   glTextureStorage2D(texture, 1, GL_RG32F, kMu, kRough + 1);
   glTextureSubImage2D(texture, 0, 0, 0, kMu, kRough + 1, GL_RG, GL_FLOAT, texels.data());
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
+unsigned create_sheen_lut_texture() {
+  // The placeholder's E is one constant; read it back from the C++ table, so the GLSL
+  // follows whatever sheen.h says.
+  const float e = SheenTable::get().E(0.5f, 0.5f);
+  const float texel[4] = {e, e, e, 1.0f};
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, 1, GL_RGBA32F, 1, 1);
+  glTextureSubImage2D(texture, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, texel);
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

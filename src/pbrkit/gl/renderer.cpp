@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "pbrkit/core/math.h"
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/energy_texture.h"
 #include "pbrkit/gl/gpu_scene.h"
@@ -34,6 +35,43 @@ glm::vec2 env_rotation_cs(float rotation_deg) {
   return {std::cos(a), std::sin(a)};
 }
 
+// The texture unit of Material::textures()'s slot t (pbr_fragment.glsl's bindings): the
+// core slots on 0..4, the extensions' on 9..18 (5..8 hold the energy tables and cubes).
+// The extensions' factors (their READMEs' defaults when the material has none, which the
+// permutation then does not read).
+void set_extension_uniforms(const Program& p, const Material& m) {
+  p.set("uIor", m.ior);
+  const SpecularExtension spec = m.specular.value_or(SpecularExtension{});
+  p.set("uSpecularFactor", spec.factor);
+  p.set("uSpecularColorFactor", spec.color_factor);
+  if (m.clearcoat) {
+    p.set("uClearcoatFactor", m.clearcoat->factor);
+    p.set("uClearcoatRoughnessFactor", m.clearcoat->roughness_factor);
+    p.set("uClearcoatNormalScale", m.clearcoat->normal_scale);
+  }
+  if (m.sheen) {
+    p.set("uSheenColorFactor", m.sheen->color_factor);
+    p.set("uSheenRoughnessFactor", m.sheen->roughness_factor);
+  }
+  if (m.anisotropy) {
+    p.set("uAnisotropyStrength", m.anisotropy->strength);
+    p.set("uAnisotropyRotation",
+          glm::vec2(std::cos(m.anisotropy->rotation), std::sin(m.anisotropy->rotation)));
+  }
+  if (m.iridescence) {
+    p.set("uIridescenceFactor", m.iridescence->factor);
+    p.set("uIridescenceIor", m.iridescence->ior);
+    p.set("uIridescenceThickness",
+          glm::vec2(m.iridescence->thickness_min, m.iridescence->thickness_max));
+  }
+}
+
+GLuint texture_unit(int t) {
+  return GLuint(t < 5 ? t : t + 4);
+}
+// The other units of pbr_fragment.glsl.
+constexpr GLuint kCoatEnergyUnit = 19, kSheenCubeUnit = 20, kSheenLutUnit = 21;
+
 }  // namespace
 
 // The parts a frame is made of, each in its own file; the members are made in this order
@@ -45,6 +83,7 @@ struct Renderer::State {
   GpuScene scene;
   GpuEnvironment environment;
   GLuint white_texture = 0;
+  GLuint sheen_lut = 0;  // core/sheen.h's placeholder E until the baker's LUT lands
   GLuint empty_vao = 0;  // the background's full-screen triangle has no attributes
   RenderTargets targets;
   GpuTimer timer;
@@ -57,7 +96,14 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {
   glTextureStorage2D(s.white_texture, 1, GL_RGBA32F, 1, 1);
   const float white[4] = {1, 1, 1, 1};
   glTextureSubImage2D(s.white_texture, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, white);
+  s.sheen_lut = create_sheen_lut_texture();
   glCreateVertexArrays(1, &s.empty_vao);
+  // pbr_fragment.glsl binds samplers up to unit kSheenLutUnit.
+  GLint units = 0;
+  glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
+  if (units <= GLint(kSheenLutUnit))
+    fail("OpenGL: {} fragment texture units, the surface shader needs {}", units,
+         kSheenLutUnit + 1);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 }
 
@@ -65,11 +111,20 @@ Renderer::~Renderer() {
   State& s = *state_;
   glDeleteTextures(3, s.energy.data());
   glDeleteTextures(1, &s.white_texture);
+  glDeleteTextures(1, &s.sheen_lut);
   glDeleteVertexArrays(1, &s.empty_vao);
 }
 
 void Renderer::set_scene(const Scene& scene) {
   state_->scene.upload(scene);
+}
+
+void Renderer::set_materials(const std::vector<Material>& materials) {
+  std::vector<Material>& current = state_->scene.materials;
+  if (materials.size() != current.size())
+    fail("OpenGL: set_materials with {} materials for a scene of {}", materials.size(),
+         current.size());
+  current = materials;
 }
 
 void Renderer::set_environment(const Environment* env) {
@@ -125,6 +180,10 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   glBindTextureUnit(6, s.energy[std::size_t(ibl)]);
   glBindTextureUnit(7, s.environment.specular_cube);
   glBindTextureUnit(8, s.environment.irradiance_cube);
+  glBindTextureUnit(kCoatEnergyUnit, s.energy[std::size_t(GeometryModel::kReference)]);
+  // Until the baker's Charlie maps land, the sheen's IBL reads the GGX cube.
+  glBindTextureUnit(kSheenCubeUnit, s.environment.specular_cube);
+  glBindTextureUnit(kSheenLutUnit, s.sheen_lut);
 
   // The frame's uniforms, set once per frame on each program the frame uses.
   std::vector<GLuint> prepared;
@@ -137,6 +196,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uRoughnessOverride", settings.roughness_override);
     glProgramUniform3fv(p.id(), p.location("uSH"), 9, &s.environment.ibl_params.sh[0].x);
     p.set("uSpecularLevels", s.environment.specular_levels);
+    p.set("uSheenLevels", s.environment.specular_levels);
     p.set("uIblRotation", env_rotation_cs(rotation_delta));
     p.set("uIblScale", ibl_scale);
     for (int k = 0; k < int(lights.size()); ++k) {
@@ -170,11 +230,17 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     SurfaceFeatures features = frame;
     features.alpha_mode = mesh.alpha_mode;
     features.colors = mesh.has_colors;
-    for (int t = 0; t < 5; ++t) {
+    for (int t = 0; t < kTextureSlotCount; ++t) {
       const TextureRef& ref = *refs[std::size_t(t)];
       if (ref.valid() && std::size_t(ref.texture) < s.scene.textures.size())
         features.textures |= 1u << t;
     }
+    features.unlit = m.unlit;
+    features.specular = m.specular.has_value() || m.ior != 1.5f;
+    features.anisotropy = m.anisotropy.has_value();
+    features.iridescence = m.iridescence.has_value() && m.iridescence->factor > 0.0f;
+    features.clearcoat = m.clearcoat.has_value() && m.clearcoat->factor > 0.0f;
+    features.sheen = m.sheen.has_value() && max3(m.sheen->color_factor) > 0.0f;
     const Program& p = s.programs.surface(features);
     prepare(p);
     p.use();
@@ -187,14 +253,15 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uNormalScale", m.normal_scale);
     p.set("uOcclusionStrength", m.occlusion_strength);
     p.set("uAlphaCutoff", m.alpha_cutoff);
-    for (int t = 0; t < 5; ++t) {
+    set_extension_uniforms(p, m);
+    for (int t = 0; t < kTextureSlotCount; ++t) {
       const TextureRef& ref = *refs[std::size_t(t)];
       const bool valid = (features.textures >> t) & 1u;
-      const int k = t;
-      p.set(indexed("uTexcoordSet", k).c_str(), ref.texcoord);
-      p.set(indexed("uTextureTransform", k).c_str(),
+      if (t >= 5 && !valid) continue;  // an extension's unused slot is not sampled
+      p.set(indexed("uTexcoordSet", t).c_str(), ref.texcoord);
+      p.set(indexed("uTextureTransform", t).c_str(),
             ref.transform ? ref.transform->matrix() : glm::mat3(1.0f));
-      glBindTextureUnit(GLuint(t),
+      glBindTextureUnit(texture_unit(t),
                         valid ? s.scene.textures[std::size_t(ref.texture)] : s.white_texture);
     }
     // glTF: single-sided materials cull back faces; a mirroring transform flips winding.

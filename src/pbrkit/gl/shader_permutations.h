@@ -17,7 +17,7 @@ namespace pbrkit::gl {
 // Compile-time features of the surface program (pbr_fragment.glsl says why they are not
 // uniforms: on llvmpipe an unused branch still costs its texture fetches).
 struct SurfaceFeatures {
-  unsigned textures = 0;  ///< bit t: texture t bound (baseColor, MR, normal, occlusion, emissive)
+  unsigned textures = 0;  ///< bit t: texture slot t bound (scene.h's TextureSlot, 15 slots)
   bool colors = false;    ///< the mesh has COLOR_0
   int alpha_mode = 0;     ///< 0 opaque, 1 mask, 2 blend
   bool ibl = false;
@@ -26,15 +26,31 @@ struct SurfaceFeatures {
   int geometry = 0;  ///< GeometryModel for punctual lights
   int fresnel = 0;   ///< 0 Schlick, 1 spherical Gaussian
   int light_count = 0;
+  // The KHR_materials_* extensions the material uses (pbr_fragment.glsl's MATERIAL_*).
+  bool specular = false;  ///< KHR_materials_ior / _specular (ior != 1.5 or the extension)
+  bool anisotropy = false;
+  bool iridescence = false;
+  bool clearcoat = false;
+  bool sheen = false;
+  bool unlit = false;
 
-  std::uint32_t key() const {
-    return textures | unsigned(alpha_mode) << 5 | unsigned(ibl) << 7 |
-           unsigned(irradiance_sh) << 8 | unsigned(multiscatter) << 9 | unsigned(geometry) << 10 |
-           unsigned(fresnel) << 12 | unsigned(light_count) << 13 | unsigned(colors) << 18;
+  std::uint64_t key() const {
+    return std::uint64_t(textures) | std::uint64_t(alpha_mode) << 15 | std::uint64_t(ibl) << 17 |
+           std::uint64_t(irradiance_sh) << 18 | std::uint64_t(multiscatter) << 19 |
+           std::uint64_t(geometry) << 20 | std::uint64_t(fresnel) << 22 |
+           std::uint64_t(light_count) << 23 | std::uint64_t(colors) << 28 |
+           std::uint64_t(specular) << 29 | std::uint64_t(anisotropy) << 30 |
+           std::uint64_t(iridescence) << 31 | std::uint64_t(clearcoat) << 32 |
+           std::uint64_t(sheen) << 33 | std::uint64_t(unlit) << 34;
   }
   std::string defines() const {
     std::string d;
-    for (int t = 0; t < 5; ++t)
+    d += fmt::format(
+        "#define MATERIAL_SPECULAR {}\n#define MATERIAL_ANISOTROPY {}\n"
+        "#define MATERIAL_IRIDESCENCE {}\n#define MATERIAL_CLEARCOAT {}\n"
+        "#define MATERIAL_SHEEN {}\n#define MATERIAL_UNLIT {}\n",
+        int(specular), int(anisotropy), int(iridescence), int(clearcoat), int(sheen), int(unlit));
+    for (int t = 0; t < 15; ++t)
       d += fmt::format("#define HAS_TEXTURE_{} {}\n", t, (textures >> t) & 1u);
     d += fmt::format("#define HAS_COLOR_0 {}\n", int(colors));
     d += fmt::format(
@@ -60,7 +76,7 @@ class ShaderPermutations {
   const Program& display(ToneMapper mapper);
 
  private:
-  std::unordered_map<std::uint32_t, Program> surface_;  // by SurfaceFeatures::key
+  std::unordered_map<std::uint64_t, Program> surface_;  // by SurfaceFeatures::key
   std::array<Program, 3> background_;                   // by background MODE
   std::array<Program, 4> display_;                      // by ToneMapper, compiled on first use
 };

@@ -17,6 +17,7 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/program.cpp
   ${_pbrkit_gl_dir}/shaders.cpp
   ${_pbrkit_gl_dir}/brdf_eval.cpp
+  ${_pbrkit_gl_dir}/bsdf_eval.cpp
   ${_pbrkit_gl_dir}/compute_eval.cpp
   ${_pbrkit_gl_dir}/display_eval.cpp
   ${_pbrkit_gl_dir}/iridescence_eval.cpp

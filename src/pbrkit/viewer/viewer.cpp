@@ -78,8 +78,87 @@ struct ViewerState {
   DisplaySettings display;
   bool override_metallic = false, override_roughness = false;
   float metallic = 1.0f, roughness = 0.5f;
+  // The KHR_materials extensions' factors, each an override of every material when on
+  // (issue 11); applied through Renderer::set_materials when a control changes.
+  struct Extensions {
+    bool ior_on = false, specular_on = false, clearcoat_on = false, sheen_on = false;
+    bool anisotropy_on = false, iridescence_on = false;
+    float ior = 1.5f, specular = 1.0f;
+    float clearcoat = 1.0f, clearcoat_roughness = 0.1f;
+    glm::vec3 sheen_color{0.5f};
+    float sheen_roughness = 0.5f;
+    float anisotropy = 0.5f, anisotropy_rotation_deg = 0.0f;
+    float iridescence = 1.0f, iridescence_thickness = 400.0f;
+  } ext;
   Orbit orbit;
 };
+
+// The scene's materials with the panel's extension overrides.
+std::vector<Material> overridden_materials(const ViewerState& s) {
+  std::vector<Material> materials = s.scene.materials;
+  const ViewerState::Extensions& e = s.ext;
+  for (Material& m : materials) {
+    if (e.ior_on) m.ior = e.ior;
+    if (e.specular_on) {
+      if (!m.specular) m.specular.emplace();
+      m.specular->factor = e.specular;
+    }
+    if (e.clearcoat_on) {
+      if (!m.clearcoat) m.clearcoat.emplace();
+      m.clearcoat->factor = e.clearcoat;
+      m.clearcoat->roughness_factor = e.clearcoat_roughness;
+    }
+    if (e.sheen_on) {
+      if (!m.sheen) m.sheen.emplace();
+      m.sheen->color_factor = e.sheen_color;
+      m.sheen->roughness_factor = e.sheen_roughness;
+    }
+    if (e.anisotropy_on) {
+      if (!m.anisotropy) m.anisotropy.emplace();
+      m.anisotropy->strength = e.anisotropy;
+      m.anisotropy->rotation = glm::radians(e.anisotropy_rotation_deg);
+    }
+    if (e.iridescence_on) {
+      if (!m.iridescence) m.iridescence.emplace();
+      m.iridescence->factor = e.iridescence;
+      m.iridescence->thickness_max = e.iridescence_thickness;
+    }
+  }
+  return materials;
+}
+
+// The extension controls; true when one changed.
+bool draw_extension_controls(ViewerState& s) {
+  ViewerState::Extensions& e = s.ext;
+  bool changed = false;
+  changed |= ImGui::Checkbox("override ior", &e.ior_on);
+  if (e.ior_on) changed |= ImGui::SliderFloat("ior", &e.ior, 1.0f, 3.0f);
+  changed |= ImGui::Checkbox("override specular", &e.specular_on);
+  if (e.specular_on) changed |= ImGui::SliderFloat("specular", &e.specular, 0.0f, 1.0f);
+  changed |= ImGui::Checkbox("override clearcoat", &e.clearcoat_on);
+  if (e.clearcoat_on) {
+    changed |= ImGui::SliderFloat("clearcoat", &e.clearcoat, 0.0f, 1.0f);
+    changed |= ImGui::SliderFloat("clearcoat roughness", &e.clearcoat_roughness, 0.0f, 1.0f);
+  }
+  changed |= ImGui::Checkbox("override sheen", &e.sheen_on);
+  if (e.sheen_on) {
+    changed |= ImGui::ColorEdit3("sheen colour", &e.sheen_color.x);
+    changed |= ImGui::SliderFloat("sheen roughness", &e.sheen_roughness, 0.0f, 1.0f);
+  }
+  changed |= ImGui::Checkbox("override anisotropy", &e.anisotropy_on);
+  if (e.anisotropy_on) {
+    changed |= ImGui::SliderFloat("anisotropy", &e.anisotropy, 0.0f, 1.0f);
+    changed |= ImGui::SliderFloat("anisotropy rotation", &e.anisotropy_rotation_deg, -180.0f,
+                                  180.0f, "%.0f deg");
+  }
+  changed |= ImGui::Checkbox("override iridescence", &e.iridescence_on);
+  if (e.iridescence_on) {
+    changed |= ImGui::SliderFloat("iridescence", &e.iridescence, 0.0f, 1.0f);
+    changed |=
+        ImGui::SliderFloat("film thickness", &e.iridescence_thickness, 0.0f, 1200.0f, "%.0f nm");
+  }
+  return changed;
+}
 
 void load_environment(ViewerState& s, gl::Renderer& renderer) {
   s.env.reset();
@@ -96,6 +175,7 @@ void load_environment(ViewerState& s, gl::Renderer& renderer) {
 void load_scene_into(ViewerState& s, gl::Renderer& renderer) {
   s.scene = load_scene(s.options.scene);
   renderer.set_scene(s.scene);
+  renderer.set_materials(overridden_materials(s));  // the panel's overrides survive a reload
   s.settings.light_enabled.assign(s.scene.lights.size(), true);
 }
 
@@ -187,6 +267,7 @@ void draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
   if (s.override_metallic) ImGui::SliderFloat("metallic", &s.metallic, 0.0f, 1.0f);
   ImGui::Checkbox("override roughness", &s.override_roughness);
   if (s.override_roughness) ImGui::SliderFloat("roughness", &s.roughness, 0.0f, 1.0f);
+  if (draw_extension_controls(s)) renderer.set_materials(overridden_materials(s));
   ImGui::TextUnformatted("drag: orbit, right drag: pan, wheel: zoom");
   ImGui::TextUnformatted("F12/P: screenshot, R: reload, Esc: quit");
   ImGui::End();

@@ -3,8 +3,11 @@
 // the OpenGL renderer and the path tracer evaluate one BRDF. tests/gl/brdf_glsl_test.cpp
 // checks Brdf::eval against brdf_eval below to 1e-4 relative.
 //
-// Directions are in the local shading frame (n = +Z), wo towards the viewer, wi towards
-// the light. alpha = roughness^2 (Burley 2012 / Karis 2013).
+// Directions are in the local shading frame (n = +Z, +X the anisotropy direction), wo
+// towards the viewer, wi towards the light. alpha = roughness^2 (Burley 2012 / Karis 2013).
+// BRDF_IRIDESCENCE (defined or not): compile the thin-film Fresnel in (a material without
+// KHR_materials_iridescence pays nothing for it).
+
 
 const float kPi = 3.14159265358979323846;
 const float kInvPi = 0.31830988618379067154;
@@ -18,6 +21,9 @@ const int FRESNEL_SCHLICK = 0;
 const int FRESNEL_SG = 1;  // UE4's spherical-Gaussian Schlick (real-time path only)
 
 float saturate(float x) { return clamp(x, 0.0, 1.0); }
+
+// (After kPi and saturate, which the thin-film code uses.)
+#include "iridescence.glsl"
 
 // GGX D for a local-frame half vector: 1 / (pi alpha^2 ((hx^2 + hy^2) / alpha^2 + hz^2)^2).
 float DistributionGGX(vec3 h, float alpha) {
@@ -113,90 +119,222 @@ vec2 energy_AB_avg(sampler2D table, float roughness) {
   return mix(a0, a1, y - float(j0));
 }
 
-// pbrkit::Brdf.
+float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
+
+// ---- Anisotropic GGX (microfacet.h; KHR_materials_anisotropy): alpha_x along the local
+// +X (the anisotropy direction), alpha_y along +Y.
+
+// D(h) = 1 / (pi ax ay (hx^2/ax^2 + hy^2/ay^2 + hz^2)^2).
+float DistributionGGXAniso(vec3 h, float ax, float ay) {
+  if (h.z <= 0.0) return 0.0;
+  float x = h.x / ax, y = h.y / ay;
+  float e = x * x + y * y + h.z * h.z;
+  return 1.0 / (kPi * ax * ay * e * e);
+}
+
+// Smith's Lambda (Heitz 2014, eq. 86); only for w.z > 0.
+float SmithLambdaGGXAniso(vec3 w, float ax, float ay) {
+  float x = ax * w.x, y = ay * w.y;
+  return 0.5 * (-1.0 + sqrt(1.0 + (x * x + y * y) / (w.z * w.z)));
+}
+
+// pbrkit::dielectric_f0: min(((ior - 1) / (ior + 1))^2 specularColor, 1); 0.04 exactly for
+// ior 1.5.
+vec3 dielectric_f0(float ior, vec3 specular_color) {
+  float r = (ior - 1.0) / (ior + 1.0);
+  float r2 = ior == 1.5 ? 0.04 : r * r;
+  return min(r2 * specular_color, vec3(1.0));
+}
+
+// pbrkit::BaseLayer: the base layer's inputs after textures.
+struct BaseLayer {
+  vec3 base_color;
+  float metallic;
+  float roughness;
+  float ior;             // KHR_materials_ior
+  float specular;        // KHR_materials_specular
+  vec3 specular_color;   // KHR_materials_specular
+  float anisotropy;      // KHR_materials_anisotropy strength, along the local +X
+  float iridescence;     // KHR_materials_iridescence
+  float iridescence_ior;
+  float iridescence_thickness;  // nm
+};
+
+// BaseLayer{base_color, metallic, roughness} with every extension at its default.
+BaseLayer base_layer(vec3 base_color, float metallic, float roughness) {
+  return BaseLayer(base_color, metallic, roughness, 1.5, 1.0, vec3(1.0), 0.0, 0.0, 1.3, 0.0);
+}
+
+// pbrkit::Brdf (with BoundBrdf's wo-independent state).
 struct Brdf {
   vec3 base_color;
   float metallic;
   float roughness;
   float alpha;
-  vec3 F0;
+  float alpha_x;
+  float alpha_y;
+  vec3 F0;    // mix(s F0_d, baseColor, metallic)
+  vec3 F0_d;  // the dielectric's F0 (ior, specular colour)
+  float spec_weight;
+  float iridescence;
+  float film_ior;
+  float film_thickness;
+  bool reference;  // the model: geometry == GEOMETRY_REFERENCE
   int geometry;
   bool multiscatter;
   int fresnel;
   float E_avg;
-  vec3 Fms;
-  vec3 Es_avg;
+  vec3 Fms;     // the whole specular's Fms
+  vec3 Fms_d;   // reference: the dielectric's (weighted)
+  vec3 Es_avg;  // classic: per channel; reference: the dielectric's
 };
 
-// Brdf::Brdf. `table` is the EnergyTable of `geometry` (the direct-lighting G).
-Brdf make_brdf(vec3 base_color, float metallic, float roughness, int geometry, bool multiscatter,
-               int fresnel, sampler2D table) {
+// Brdf::Brdf. `table` is the EnergyTable of `geometry` (the direct-lighting G); the model
+// is `reference` for GEOMETRY_REFERENCE, `classic` otherwise.
+Brdf make_brdf(BaseLayer layer, int geometry, bool multiscatter, int fresnel, sampler2D table) {
   Brdf b;
-  b.base_color = clamp(base_color, 0.0, 1.0);
-  b.metallic = saturate(metallic);
-  b.roughness = clamp(roughness, kMinRoughness, 1.0);
+  b.base_color = clamp(layer.base_color, 0.0, 1.0);
+  b.metallic = saturate(layer.metallic);
+  b.roughness = clamp(layer.roughness, kMinRoughness, 1.0);
   b.alpha = b.roughness * b.roughness;
-  // F0 = mix(0.04, baseColor, metallic) (MODEL.md).
-  b.F0 = mix(vec3(0.04), b.base_color, b.metallic);
+  b.F0_d = dielectric_f0(max(layer.ior, 1.0), max(layer.specular_color, 0.0));
+  b.spec_weight = saturate(layer.specular);
+  b.iridescence = saturate(layer.iridescence);
+  b.film_ior = max(layer.iridescence_ior, 1.0);
+  b.film_thickness = max(layer.iridescence_thickness, 0.0);
+  b.reference = geometry == GEOMETRY_REFERENCE;
   b.geometry = geometry;
   b.multiscatter = multiscatter;
   b.fresnel = fresnel;
+  // KHR_materials_anisotropy: alpha_t = mix(alpha, 1, anisotropy^2), alpha_b = alpha.
+  float aniso = saturate(layer.anisotropy);
+  b.alpha_x = mix(b.alpha, 1.0, aniso * aniso);
+  b.alpha_y = b.alpha;
+  // F0 = mix(0.04, baseColor, metallic) (MODEL.md), the 0.04 from ior, specular colour, weight.
+  b.F0 = mix(b.spec_weight * b.F0_d, b.base_color, b.metallic);
   b.E_avg = 1.0;
   b.Fms = vec3(0.0);
+  b.Fms_d = vec3(0.0);
   b.Es_avg = vec3(0.0);
   if (multiscatter) {
     vec2 ab_avg = energy_AB_avg(table, b.roughness);
     b.E_avg = ab_avg.x + ab_avg.y;
-    b.Fms = multiscatter_fresnel(b.F0, b.E_avg);
-    b.Es_avg = b.F0 * ab_avg.x + ab_avg.y + b.Fms * (1.0 - b.E_avg);
+    if (b.reference) {
+      b.Fms_d = b.spec_weight * multiscatter_fresnel(b.F0_d, b.E_avg);
+      b.Fms = (1.0 - b.metallic) * b.Fms_d + b.metallic * multiscatter_fresnel(b.base_color, b.E_avg);
+      b.Es_avg = b.spec_weight * (b.F0_d * ab_avg.x + ab_avg.y) + b.Fms_d * (1.0 - b.E_avg);
+    } else {
+      b.Fms = multiscatter_fresnel(b.F0, b.E_avg);
+      b.Es_avg = b.F0 * ab_avg.x + ab_avg.y + b.Fms * (1.0 - b.E_avg);
+    }
   }
   return b;
+}
+
+// The old signature: the base layer without extensions.
+Brdf make_brdf(vec3 base_color, float metallic, float roughness, int geometry, bool multiscatter,
+               int fresnel, sampler2D table) {
+  return make_brdf(base_layer(base_color, metallic, roughness), geometry, multiscatter, fresnel,
+                   table);
+}
+
+// Schlick's weight (1 - c)^5, or UE4's spherical-Gaussian fit of it (FRESNEL_SG).
+float fresnel_weight(Brdf b, float c) {
+  if (b.fresnel == FRESNEL_SG) return exp2((-5.55473 * c - 6.98316) * c);
+  float m = 1.0 - c, m2 = m * m;
+  return m2 * m2 * m;
 }
 
 vec3 brdf_fresnel(Brdf b, float cosTheta) {
   return b.fresnel == FRESNEL_SG ? fresnelSchlickSG(cosTheta, b.F0) : fresnelSchlick(cosTheta, b.F0);
 }
 
-// Brdf::specular_albedo: F0 A + B (+ Fms (1 - E) with compensation).
+// Brdf::dielectric_albedo: the dielectric's specular with F90 = 1, weighted.
+vec3 brdf_dielectric_albedo(Brdf b, vec2 ab) { return b.spec_weight * (b.F0_d * ab.x + ab.y); }
+
+// Brdf::specular_albedo: (1 - m) s (F0_d A + B) + m (baseColor A + B) for reference,
+// F0 A + B for classic (+ Fms (1 - E) with compensation).
 vec3 brdf_specular_albedo(Brdf b, sampler2D table, float mu) {
   vec2 ab = energy_AB(table, mu, b.roughness);
-  vec3 Es = b.F0 * ab.x + ab.y;
+  float b_weight = b.reference ? (1.0 - b.metallic) * b.spec_weight + b.metallic : 1.0;
+  vec3 Es = b.F0 * ab.x + ab.y * b_weight;
   if (b.multiscatter) Es += b.Fms * (1.0 - (ab.x + ab.y));
   return Es;
 }
 
-// Cook-Torrance: D G F / (4 (n.l)(n.v)).
-vec3 brdf_eval_specular(Brdf b, vec3 wo, vec3 wi) {
-  vec3 h = normalize(wo + wi);
-  float VdotH = max(dot(wo, h), 0.0);
-  vec3 F = brdf_fresnel(b, VdotH);
-  float D = DistributionGGX(h, b.alpha);
-  float G = GeometryG(b.geometry, wo, wi, b.roughness);
-  return D * G * F / (4.0 * wo.z * wi.z);
+// BoundBrdf::specular_fresnel: the specular lobe's Fresnel at v.h and, in diffuse_weight,
+// the diffuse lobe's Fresnel weight without compensation.
+vec3 brdf_specular_fresnel(Brdf b, float WOdotH, out vec3 diffuse_weight) {
+  float c = max(WOdotH, 0.0);
+  float w5 = fresnel_weight(b, c);
+  if (!b.reference) {
+    vec3 F = b.F0 + (1.0 - b.F0) * w5;
+#ifdef BRDF_IRIDESCENCE
+    if (b.iridescence > 0.0)
+      F = mix(F, iridescence_fresnel(c, b.film_ior, b.film_thickness, b.F0), b.iridescence);
+#endif
+    diffuse_weight = 1.0 - F;
+    return F;
+  }
+  // glTF Appendix B: the dielectric's Fresnel (F90 = 1, weighted by specular) and the
+  // metal's, mixed by metallic; the diffuse sits under the dielectric's only.
+  vec3 Fd = b.F0_d + (1.0 - b.F0_d) * w5;
+  vec3 Fm = b.base_color + (1.0 - b.base_color) * w5;
+#ifdef BRDF_IRIDESCENCE
+  if (b.iridescence > 0.0) {
+    Fd = mix(Fd, iridescence_fresnel(c, b.film_ior, b.film_thickness, b.F0_d), b.iridescence);
+    Fm = mix(Fm, iridescence_fresnel(c, b.film_ior, b.film_thickness, b.base_color),
+             b.iridescence);
+  }
+#endif
+  Fd *= b.spec_weight;
+  diffuse_weight = vec3(1.0 - max3(Fd));
+  return (1.0 - b.metallic) * Fd + b.metallic * Fm;
 }
 
-vec3 brdf_eval_diffuse_and_ms(Brdf b, sampler2D table, vec3 wo, vec3 wi) {
+// BoundBrdf::eval_diffuse_and_ms.
+vec3 brdf_eval_diffuse_and_ms(Brdf b, sampler2D table, vec3 wo, vec3 wi, vec3 diffuse_weight) {
   vec3 lambert = (1.0 - b.metallic) * b.base_color * kInvPi;
-  if (!b.multiscatter) {
-    // kd = (1 - F(v.h)) (1 - metallic) (MODEL.md / LearnOpenGL).
-    vec3 h = normalize(wo + wi);
-    vec3 F = brdf_fresnel(b, max(dot(wo, h), 0.0));
-    return (1.0 - F) * lambert;
-  }
-  // Diffuse weighted by what the specular lobe (single + multiple) does not reflect.
-  vec3 Es_o = brdf_specular_albedo(b, table, wo.z), Es_i = brdf_specular_albedo(b, table, wi.z);
-  vec3 diffuse = lambert * (1.0 - Es_o) * (1.0 - Es_i) / max(1.0 - b.Es_avg, vec3(1e-6));
-  // Kulla & Conty 2017: f_ms = Fms (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)).
-  vec2 ab_o = energy_AB(table, wo.z, b.roughness), ab_i = energy_AB(table, wi.z, b.roughness);
+  if (!b.multiscatter) return diffuse_weight * lambert;
+  vec2 ab_o = energy_AB(table, max(wo.z, 0.0), b.roughness);
+  vec2 ab_i = energy_AB(table, wi.z, b.roughness);
   float E_o = ab_o.x + ab_o.y, E_i = ab_i.x + ab_i.y;
+  vec3 diffuse;
+  if (b.reference) {
+    // Weighted reciprocally by what the dielectric's specular (single + multiple) does not
+    // reflect: (1 - max3(Es(o)))(1 - max3(Es(i))) / (1 - max3(Es_avg)).
+    vec3 Es_o = brdf_dielectric_albedo(b, ab_o) + b.Fms_d * (1.0 - E_o);
+    float diffuse_o = (1.0 - max3(Es_o)) / max(1.0 - max3(b.Es_avg), 1e-6);
+    vec3 Es_i = brdf_dielectric_albedo(b, ab_i) + b.Fms_d * (1.0 - E_i);
+    diffuse = lambert * (diffuse_o * (1.0 - max3(Es_i)));
+  } else {
+    vec3 Es_o = brdf_specular_albedo(b, table, wo.z), Es_i = brdf_specular_albedo(b, table, wi.z);
+    diffuse = lambert * (1.0 - Es_o) * (1.0 - Es_i) / max(1.0 - b.Es_avg, vec3(1e-6));
+  }
+  // Kulla & Conty 2017: f_ms = Fms (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)).
   vec3 ms = b.Fms * ((1.0 - E_o) * (1.0 - E_i) / (kPi * max(1.0 - b.E_avg, 1e-6)));
   return diffuse + ms;
 }
 
-// Brdf::eval: f(wo, wi) without the cosine; zero unless both are above the surface.
+// BoundBrdf::eval: f(wo, wi) without the cosine; zero unless both are above the surface.
 vec3 brdf_eval(Brdf b, sampler2D table, vec3 wo, vec3 wi) {
   if (wo.z <= 0.0 || wi.z <= 0.0) return vec3(0.0);
-  return brdf_eval_specular(b, wo, wi) + brdf_eval_diffuse_and_ms(b, table, wo, wi);
+  vec3 h = normalize(wo + wi);
+  float WOdotH = dot(wo, h);
+  float D = DistributionGGXAniso(h, b.alpha_x, b.alpha_y);
+  vec3 diffuse_weight;
+  vec3 F = brdf_specular_fresnel(b, WOdotH, diffuse_weight);
+  float G;
+  if (b.geometry == GEOMETRY_REFERENCE) {
+    // Height-correlated Smith (Heitz 2014, eq. 99).
+    G = 1.0 / (1.0 + SmithLambdaGGXAniso(wo, b.alpha_x, b.alpha_y) +
+               SmithLambdaGGXAniso(wi, b.alpha_x, b.alpha_y));
+  } else {
+    // The seeds' GeometrySmith: Schlick-GGX with k_direct.
+    G = GeometrySchlickGGX(max(wo.z, 0.0), k_direct(b.roughness)) *
+        GeometrySchlickGGX(wi.z, k_direct(b.roughness));
+  }
+  return D * G * F / (4.0 * wo.z * wi.z) + brdf_eval_diffuse_and_ms(b, table, wo, wi, diffuse_weight);
 }
 
 // pbrkit::Frame's constructor (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").

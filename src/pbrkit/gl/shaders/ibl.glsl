@@ -19,25 +19,86 @@ vec3 eval_sh_irradiance(vec3 sh[9], vec3 n) {
 float roughness_lod(float roughness, int levels) { return roughness * float(levels - 1); }
 
 // Specular and diffuse IBL for one shading point. `prefiltered` is the specular cube at
-// R and the roughness's mip, `irradiance` E(n) (not divided by pi). `ibl_table` is the
-// EnergyTable of the IBL G (k = alpha/2 for classic), the split-sum LUT.
+// R (the bent reflection for an anisotropic base) and the roughness's mip, `irradiance` E(n)
+// (not divided by pi). `ibl_table` is the EnergyTable of the IBL G (k = alpha/2 for
+// classic), the split-sum LUT, and `b` was made with it.
+//
+// reference (glTF Appendix B, the split sum of each Fresnel term):
+//   specular = prefiltered ((1 - m) s (F0_d A + B) + m (baseColor A + B))
+//   diffuse  = (1 - m) baseColor E(n)/pi (1 - max3(s F_d(n.v)))             uncompensated
+//   diffuse  = (1 - m) baseColor E(n)/pi (1 - max3(Es_d(n.v)))               compensated,
+//              + Fms (1 - E(n.v)) E(n)/pi
+// where Es_d is the dielectric's full specular albedo of Brdf::eval_diffuse_and_ms: the
+// cosine-weighted integral of its (1 - max3(Es_d(o)))(1 - max3(Es_d(i))) / (1 - max3(Es_d_avg))
+// is (1 - max3(Es_d(o))) (Fdez-Aguera 2019's form), so a white furnace returns 1.
+// KHR_materials_iridescence (the Khronos Sample Viewer's approach): the thin-film Fresnel
+// at n.v times the directional albedo A + B replaces each split-sum Fresnel term by the
+// iridescence factor; the compensated diffuse keeps the plain dielectric's weight, as the
+// C++ Brdf does.
 vec3 ibl_shading(Brdf b, sampler2D ibl_table, float NdotV, vec3 prefiltered, vec3 irradiance) {
   float mu = max(NdotV, 1e-4);
   vec2 ab = energy_AB(ibl_table, mu, b.roughness);
-  vec3 FssEss = b.F0 * ab.x + ab.y;  // single-scattering specular albedo
   vec3 lambert = (1.0 - b.metallic) * b.base_color;
-  if (!b.multiscatter) {
-    // kd = (1 - F)(1 - metallic) with F at n.v (the split-sum's n = v assumption).
-    vec3 kd = 1.0 - brdf_fresnel(b, mu);
-    return prefiltered * FssEss + kd * lambert * irradiance * kInvPi;
-  }
-  // Compensated: the multiple-scattering lobe integrates to Fms (1 - E(mu_o)) against the
-  // cosine-weighted irradiance, and the diffuse lobe to (1 - Es(mu_o)) of it (the same
-  // normalisations as Brdf::eval_diffuse_and_ms), so a white furnace returns 1.
-  vec2 ab_avg = energy_AB_avg(ibl_table, b.roughness);
-  float E_avg = ab_avg.x + ab_avg.y;
-  vec3 Fms = multiscatter_fresnel(b.F0, E_avg);
   float E = ab.x + ab.y;
-  vec3 Es = FssEss + Fms * (1.0 - E);
-  return prefiltered * FssEss + (Fms * (1.0 - E) + lambert * (1.0 - Es)) * irradiance * kInvPi;
+  if (!b.reference) {
+    vec3 FssEss = b.F0 * ab.x + ab.y;  // single-scattering specular albedo
+#ifdef BRDF_IRIDESCENCE
+    vec3 F_irid = iridescence_fresnel(mu, b.film_ior, b.film_thickness, b.F0);
+    FssEss = mix(FssEss, F_irid * E, b.iridescence);
+#endif
+    if (!b.multiscatter) {
+      // kd = (1 - F)(1 - metallic) with F at n.v (the split-sum's n = v assumption).
+      vec3 kd = 1.0 - brdf_fresnel(b, mu);
+#ifdef BRDF_IRIDESCENCE
+      kd = 1.0 - mix(brdf_fresnel(b, mu), F_irid, b.iridescence);
+#endif
+      return prefiltered * FssEss + kd * lambert * irradiance * kInvPi;
+    }
+    // Compensated: the multiple-scattering lobe integrates to Fms (1 - E(mu_o)) against
+    // the cosine-weighted irradiance, and the diffuse lobe to (1 - Es(mu_o)) of it.
+    vec2 ab_avg = energy_AB_avg(ibl_table, b.roughness);
+    float E_avg = ab_avg.x + ab_avg.y;
+    vec3 Fms = multiscatter_fresnel(b.F0, E_avg);
+    vec3 Es = b.F0 * ab.x + ab.y + Fms * (1.0 - E);
+    return prefiltered * FssEss + (Fms * (1.0 - E) + lambert * (1.0 - Es)) * irradiance * kInvPi;
+  }
+  vec3 Ed = brdf_dielectric_albedo(b, ab);
+  vec3 Em = b.base_color * ab.x + ab.y;
+  vec3 Fd = b.F0_d + (1.0 - b.F0_d) * fresnel_weight(b, mu);
+#ifdef BRDF_IRIDESCENCE
+  vec3 Fd_irid = iridescence_fresnel(mu, b.film_ior, b.film_thickness, b.F0_d);
+  Ed = mix(Ed, b.spec_weight * Fd_irid * E, b.iridescence);
+  Em = mix(Em, iridescence_fresnel(mu, b.film_ior, b.film_thickness, b.base_color) * E,
+           b.iridescence);
+  Fd = mix(Fd, Fd_irid, b.iridescence);
+#endif
+  vec3 specular = prefiltered * ((1.0 - b.metallic) * Ed + b.metallic * Em);
+  if (!b.multiscatter) return specular + lambert * (1.0 - max3(b.spec_weight * Fd)) * irradiance * kInvPi;
+  // b.Fms, b.Fms_d, b.E_avg are the IBL table's (make_brdf was given it).
+  vec3 Es_d = brdf_dielectric_albedo(b, ab) + b.Fms_d * (1.0 - E);
+  return specular + (b.Fms * (1.0 - E) + lambert * (1.0 - max3(Es_d))) * irradiance * kInvPi;
+}
+
+// KHR_materials_anisotropy's IBL (the Khronos Sample Viewer's getIBLRadianceAnisotropy):
+// the reflection about a normal bent towards the plane across the anisotropy, more the
+// more anisotropic and the smoother; `direction` is the lobe's bitangent (the direction
+// across the anisotropy), world space; `roughness` the perceptual roughness.
+vec3 anisotropic_reflection(vec3 n, vec3 v, vec3 direction, float anisotropy, float roughness) {
+  vec3 anisotropic_tangent = cross(direction, v);
+  vec3 anisotropic_normal = cross(anisotropic_tangent, direction);
+  float bend = 1.0 - anisotropy * (1.0 - roughness);
+  float bend4 = bend * bend * bend * bend;
+  vec3 bent_normal = normalize(mix(anisotropic_normal, n, bend4));
+  return reflect(-v, bent_normal);
+}
+
+// KHR_materials_clearcoat's IBL: the coat's GGX lobe (ior 1.5, F0 0.04) as its own split
+// sum at the coat's roughness, `prefiltered` taken along the coat normal's reflection;
+// `coat_table` is the reference (height-correlated Smith) EnergyTable, the coat's G.
+// Returns the coat's radiance; the layers under it are scaled by 1 - clearcoat F_c(n_c.v).
+vec3 coat_ibl(float weight, float roughness, sampler2D coat_table, float NcdotV,
+              vec3 prefiltered) {
+  float mu = max(NcdotV, 1e-4);
+  vec2 ab = energy_AB(coat_table, mu, clamp(roughness, kMinRoughness, 1.0));
+  return weight * prefiltered * (0.04 * ab.x + ab.y);
 }

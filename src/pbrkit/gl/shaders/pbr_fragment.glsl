@@ -12,6 +12,29 @@
 // and interpolates every varying of every small triangle); ALPHA_MODE 0 opaque, 1 mask,
 // 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1; GEOMETRY (G for lights) and FRESNEL as
 // in brdf.glsl; LIGHT_COUNT punctual lights.
+// The KHR_materials_* extensions (issue 11), each its own permutation feature with its
+// texture slots (Material::textures(): HAS_TEXTURE_5..14): MATERIAL_SPECULAR (ior and
+// specular), MATERIAL_ANISOTROPY, MATERIAL_IRIDESCENCE, MATERIAL_CLEARCOAT, MATERIAL_SHEEN,
+// MATERIAL_UNLIT. Every input is computed as the path tracer's shade_inputs
+// (pt/shading.cpp) computes it.
+#ifndef MATERIAL_SPECULAR
+#define MATERIAL_SPECULAR 0
+#define MATERIAL_ANISOTROPY 0
+#define MATERIAL_IRIDESCENCE 0
+#define MATERIAL_CLEARCOAT 0
+#define MATERIAL_SHEEN 0
+#define MATERIAL_UNLIT 0
+#define HAS_TEXTURE_5 0
+#define HAS_TEXTURE_6 0
+#define HAS_TEXTURE_7 0
+#define HAS_TEXTURE_8 0
+#define HAS_TEXTURE_9 0
+#define HAS_TEXTURE_10 0
+#define HAS_TEXTURE_11 0
+#define HAS_TEXTURE_12 0
+#define HAS_TEXTURE_13 0
+#define HAS_TEXTURE_14 0
+#endif
 #ifndef HAS_TEXTURE_0
 #define HAS_TEXTURE_0 0
 #define HAS_TEXTURE_1 0
@@ -27,7 +50,11 @@
 #define FRESNEL 0
 #define LIGHT_COUNT 0
 #endif
+#if MATERIAL_IRIDESCENCE
+#define BRDF_IRIDESCENCE 1
+#endif
 #include "ibl.glsl"
+#include "bsdf.glsl"
 
 in vec3 vPosition;
 in vec3 vNormal;
@@ -50,20 +77,52 @@ uniform vec3 uEmissive;  // factor x KHR_materials_emissive_strength
 uniform float uNormalScale;
 uniform float uOcclusionStrength;
 uniform float uAlphaCutoff;
-// Per texture: which TEXCOORD set, the KHR_texture_transform matrix.
-uniform int uTexcoordSet[5];
-uniform mat3 uTextureTransform[5];
+// Per texture slot (scene.h's TextureSlot): which TEXCOORD set, the KHR_texture_transform
+// matrix.
+uniform int uTexcoordSet[15];
+uniform mat3 uTextureTransform[15];
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
 layout(binding = 1) uniform sampler2D uMetallicRoughnessTexture;
 layout(binding = 2) uniform sampler2D uNormalTexture;
 layout(binding = 3) uniform sampler2D uOcclusionTexture;
 layout(binding = 4) uniform sampler2D uEmissiveTexture;
+// The extensions' factors (the READMEs' defaults when absent) and textures: slot t >= 5 on
+// unit 4 + t (renderer.cpp's texture_unit).
+uniform float uIor;                  // KHR_materials_ior
+uniform float uSpecularFactor;       // KHR_materials_specular
+uniform vec3 uSpecularColorFactor;
+uniform float uClearcoatFactor;      // KHR_materials_clearcoat
+uniform float uClearcoatRoughnessFactor;
+uniform float uClearcoatNormalScale;
+uniform vec3 uSheenColorFactor;      // KHR_materials_sheen
+uniform float uSheenRoughnessFactor;
+uniform float uAnisotropyStrength;   // KHR_materials_anisotropy
+uniform vec2 uAnisotropyRotation;    // (cos, sin) of anisotropyRotation
+uniform float uIridescenceFactor;    // KHR_materials_iridescence
+uniform float uIridescenceIor;
+uniform vec2 uIridescenceThickness;  // (minimum, maximum), nm
+layout(binding = 9) uniform sampler2D uSpecularTexture;
+layout(binding = 10) uniform sampler2D uSpecularColorTexture;
+layout(binding = 11) uniform sampler2D uClearcoatTexture;
+layout(binding = 12) uniform sampler2D uClearcoatRoughnessTexture;
+layout(binding = 13) uniform sampler2D uClearcoatNormalTexture;
+layout(binding = 14) uniform sampler2D uSheenColorTexture;
+layout(binding = 15) uniform sampler2D uSheenRoughnessTexture;
+layout(binding = 16) uniform sampler2D uAnisotropyTexture;
+layout(binding = 17) uniform sampler2D uIridescenceTexture;
+layout(binding = 18) uniform sampler2D uIridescenceThicknessTexture;
 
 // Model.
 layout(binding = 5) uniform sampler2D uEnergyDirect;  // EnergyTable of the direct G
 layout(binding = 6) uniform sampler2D uEnergyIBL;     // EnergyTable of the IBL G (the LUT)
 uniform float uMetallicOverride;   // < 0: none
 uniform float uRoughnessOverride;  // < 0: none
+layout(binding = 19) uniform sampler2D uEnergyCoat;  // EnergyTable of the reference G (the coat's)
+// The sheen's IBL and albedo: the baker's Charlie-prefiltered cube and sheen LUT when they
+// land; until then the GGX specular cube and core/sheen.h's placeholder E.
+layout(binding = 20) uniform samplerCube uSheenCube;
+layout(binding = 21) uniform sampler2D uSheenLut;
+uniform int uSheenLevels;
 
 // Lights (KHR_lights_punctual), world space.
 const int kMaxLights = 16;
@@ -87,6 +146,32 @@ vec2 texcoord(int i) {
   return (uTextureTransform[i] * vec3(uv, 1.0)).xy;
 }
 
+// pt/shading.cpp's map_normal: the tangent-space normal map `tex` around `n` (scale on x, y),
+// the tangent re-orthogonalised against n; n without tangents or when degenerate.
+vec3 map_normal(sampler2D tex, int slot, float scale, vec3 n) {
+  vec3 t = vTangent.xyz - n * dot(n, vTangent.xyz);
+  float tl = length(t);
+  if (!(tl > 0.0)) return n;
+  t /= tl;
+  vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
+  vec3 c = texture(tex, texcoord(slot)).xyz * 2.0 - 1.0;
+  c.xy *= scale;
+  vec3 mapped = t * c.x + b * c.y + n * c.z;
+  float ml = length(mapped);
+  return ml > 0.0 ? mapped / ml : n;
+}
+
+// The sheen's image-based lighting (the Khronos Sample Viewer's getIBLRadianceCharlie):
+// sheenColor times the Charlie-prefiltered environment along R at the sheen roughness's
+// mip, times the sheen's directional albedo E(n.v). The hook the baker's maps fill: today
+// uSheenCube is the GGX cube and E core/sheen.h's placeholder.
+vec3 sheen_ibl(vec3 n, vec3 v, vec3 sheen_color, float sheen_roughness) {
+  vec3 r = reflect(-v, n);
+  vec3 light = textureLod(uSheenCube, world_to_env(r, uIblRotation),
+                          roughness_lod(sheen_roughness, uSheenLevels)).rgb;
+  return light * sheen_color * sheen_E(uSheenLut, dot(n, v), sheen_roughness);
+}
+
 // KHR_lights_punctual's recommended range window clamp(1 - (d/range)^4, 0, 1) over d^2
 // (as the Khronos sample viewer and the path tracer's lights.cpp).
 float range_attenuation(float d, float range) {
@@ -106,6 +191,15 @@ void main() {
 #if ALPHA_MODE == 1
   if (base_color.a < uAlphaCutoff) discard;
 #endif
+  vec3 emissive = uEmissive;
+#if HAS_TEXTURE_4
+  emissive *= texture(uEmissiveTexture, texcoord(4)).rgb;
+#endif
+#if MATERIAL_UNLIT
+  // KHR_materials_unlit: the base colour as is, from every direction (the path tracer's
+  // integrator adds it to the emission and reflects nothing).
+  outColor = vec4(base_color.rgb + emissive, ALPHA_MODE == 2 ? base_color.a : 1.0);
+#else
   float metallic = uMetallicFactor, roughness = uRoughnessFactor;
 #if HAS_TEXTURE_1
   vec4 mr = texture(uMetallicRoughnessTexture, texcoord(1));
@@ -123,23 +217,106 @@ void main() {
   // the (planar) position, turned towards the viewer.
   vec3 ng = cross(dFdx(vPosition), dFdy(vPosition));
   if (dot(ng, v) < 0.0) ng = -ng;
-  vec3 n = normalize(vNormal);
-  float side = dot(n, ng) < 0.0 ? -1.0 : 1.0;
+  vec3 n_geom = normalize(vNormal);  // the interpolated normal (the PT's hit.ns)
+  float side = dot(n_geom, ng) < 0.0 ? -1.0 : 1.0;
+  vec3 n = n_geom;
 #if HAS_TEXTURE_2
-  if (dot(vTangent.xyz, vTangent.xyz) > 0.0) {
-    vec3 t = normalize(vTangent.xyz - n * dot(n, vTangent.xyz));
-    vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
-    vec3 tn = texture(uNormalTexture, texcoord(2)).xyz * 2.0 - 1.0;
-    tn.xy *= uNormalScale;
-    n = normalize(mat3(t, b, n) * tn);
-  }
+  if (dot(vTangent.xyz, vTangent.xyz) > 0.0) n = map_normal(uNormalTexture, 2, uNormalScale, n_geom);
 #endif
   n *= side;
+
+  BaseLayer layer = base_layer(base_color.rgb, metallic, roughness);
+#if MATERIAL_SPECULAR
+  layer.ior = uIor;
+  layer.specular = uSpecularFactor;
+  layer.specular_color = uSpecularColorFactor;
+#if HAS_TEXTURE_5
+  layer.specular *= texture(uSpecularTexture, texcoord(5)).a;
+#endif
+#if HAS_TEXTURE_6
+  layer.specular_color *= texture(uSpecularColorTexture, texcoord(6)).rgb;
+#endif
+#endif
   mat3 frame = frame_from_normal(n);
+#if MATERIAL_ANISOTROPY
+  // pt/shading.cpp's anisotropy_direction: the texture's RG direction ((1, 0) without it)
+  // rotated by anisotropyRotation in the tangent frame, made normal to the shading normal;
+  // the local frame's +X.
+  vec3 aniso_t = vec3(0.0);
+  if (vTangent != vec4(0.0)) {
+    vec2 d = vec2(1.0, 0.0);
+    float strength = uAnisotropyStrength;
+#if HAS_TEXTURE_12
+    vec3 at = texture(uAnisotropyTexture, texcoord(12)).rgb;
+    d = at.rg * 2.0 - 1.0;
+    strength *= at.b;
+#endif
+    vec2 cs = uAnisotropyRotation;
+    d = vec2(cs.x * d.x - cs.y * d.y, cs.y * d.x + cs.x * d.y);
+    vec3 t = vTangent.xyz;
+    vec3 b = cross(n_geom, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
+    vec3 dir = t * d.x + b * d.y;
+    dir -= n * dot(n, dir);
+    float l = length(dir);
+    if (l > 1e-6) {
+      aniso_t = dir / l;
+      frame = mat3(aniso_t, cross(n, aniso_t), n);
+      layer.anisotropy = strength;
+    }
+  }
+#endif
+#if MATERIAL_IRIDESCENCE
+  layer.iridescence = uIridescenceFactor;
+  layer.iridescence_ior = uIridescenceIor;
+#if HAS_TEXTURE_13
+  layer.iridescence *= texture(uIridescenceTexture, texcoord(13)).r;
+#endif
+  float thickness_g = 1.0;  // without a thickness texture the film is the maximum thick
+#if HAS_TEXTURE_14
+  thickness_g = texture(uIridescenceThicknessTexture, texcoord(14)).g;
+#endif
+  layer.iridescence_thickness = mix(uIridescenceThickness.x, uIridescenceThickness.y, thickness_g);
+#endif
   vec3 wo = to_local(frame, v);
 
-  Brdf brdf = make_brdf(base_color.rgb, metallic, roughness, GEOMETRY, MULTISCATTER != 0, FRESNEL,
-                        uEnergyDirect);
+#if MATERIAL_SHEEN
+  vec3 sheen_color = uSheenColorFactor;
+  float sheen_roughness = uSheenRoughnessFactor;
+#if HAS_TEXTURE_10
+  sheen_color *= texture(uSheenColorTexture, texcoord(10)).rgb;
+#endif
+#if HAS_TEXTURE_11
+  sheen_roughness *= texture(uSheenRoughnessTexture, texcoord(11)).a;
+#endif
+#else
+  vec3 sheen_color = vec3(0.0);
+  float sheen_roughness = 0.0;
+#endif
+#if MATERIAL_CLEARCOAT
+  float coat_weight = uClearcoatFactor;
+  float coat_roughness = uClearcoatRoughnessFactor;
+#if HAS_TEXTURE_7
+  coat_weight *= texture(uClearcoatTexture, texcoord(7)).r;
+#endif
+#if HAS_TEXTURE_8
+  coat_roughness *= texture(uClearcoatRoughnessTexture, texcoord(8)).g;
+#endif
+  // The coat's own normal map; none means the interpolated normal, not the base's map.
+  vec3 n_coat = n_geom;
+#if HAS_TEXTURE_9
+  if (coat_weight > 0.0) n_coat = map_normal(uClearcoatNormalTexture, 9, uClearcoatNormalScale, n_geom);
+#endif
+  n_coat *= side;
+#else
+  float coat_weight = 0.0, coat_roughness = 0.0;
+  vec3 n_coat = n;
+#endif
+
+  Brdf brdf = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyDirect);
+#if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
+  Bsdf bsdf = make_bsdf(brdf, coat_weight, coat_roughness, to_local(frame, n_coat), sheen_color,
+                        sheen_roughness, uEnergyCoat);
+#endif
   vec3 color = vec3(0.0);
   for (int i = 0; i < LIGHT_COUNT && i < kMaxLights; ++i) {
     vec3 l;
@@ -160,7 +337,11 @@ void main() {
     }
     vec3 wi = to_local(frame, l);
     if (wi.z <= 0.0) continue;
+#if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
+    color += bsdf_eval(bsdf, uEnergyDirect, uEnergyCoat, uSheenLut, wo, wi) * radiance * wi.z;
+#else
     color += brdf_eval(brdf, uEnergyDirect, wo, wi) * radiance * wi.z;
+#endif
   }
 
 #if IBL
@@ -170,6 +351,12 @@ void main() {
     ao = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(3)).r - 1.0);
 #endif
     vec3 r = reflect(-v, n);
+#if MATERIAL_ANISOTROPY
+    // The bent reflection; the Sample Viewer bends about the direction across the
+    // anisotropy (its anisotropicB).
+    if (layer.anisotropy > 0.0)
+      r = anisotropic_reflection(n, v, cross(n, aniso_t), saturate(layer.anisotropy), brdf.roughness);
+#endif
     vec3 prefiltered = textureLod(uSpecularCube, world_to_env(r, uIblRotation),
                                   roughness_lod(brdf.roughness, uSpecularLevels)).rgb;
     vec3 n_env = world_to_env(n, uIblRotation);
@@ -178,16 +365,33 @@ void main() {
 #else
     vec3 irradiance = textureLod(uIrradianceCube, n_env, 0.0).rgb;
 #endif
-    Brdf ibl = make_brdf(base_color.rgb, metallic, roughness, GEOMETRY, MULTISCATTER != 0, FRESNEL,
-                         uEnergyIBL);
-    color += ao * uIblScale * ibl_shading(ibl, uEnergyIBL, dot(n, v), prefiltered, irradiance);
+    Brdf ibl = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
+    vec3 indirect = ibl_shading(ibl, uEnergyIBL, dot(n, v), prefiltered, irradiance);
+#if MATERIAL_SHEEN
+    {
+      // The base under the sheen, scaled by the sheen's albedo at n.v (the README's
+      // simplified albedo scaling; bsdf.h's min form with the light's side left out).
+      float sr = clamp(sheen_roughness, kMinSheenRoughness, 1.0);
+      vec3 sc = clamp(sheen_color, 0.0, 1.0);
+      indirect = sheen_ibl(n, v, sc, sr) + (1.0 - max3(sc) * sheen_E(uSheenLut, dot(n, v), sr)) * indirect;
+    }
+#endif
+#if MATERIAL_CLEARCOAT
+    {
+      float cw = saturate(coat_weight);
+      float ncv = dot(n_coat, v);
+      float cr = clamp(coat_roughness, kMinRoughness, 1.0);
+      vec3 coat_prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, n_coat), uIblRotation),
+                                         roughness_lod(cr, uSpecularLevels)).rgb;
+      indirect = coat_ibl(cw, cr, uEnergyCoat, ncv, coat_prefiltered) +
+                 (1.0 - cw * coat_fresnel(abs(ncv))) * indirect;
+    }
+#endif
+    color += ao * uIblScale * indirect;
   }
 #endif
 
-  vec3 emissive = uEmissive;
-#if HAS_TEXTURE_4
-  emissive *= texture(uEmissiveTexture, texcoord(4)).rgb;
-#endif
   color += emissive;
   outColor = vec4(color, ALPHA_MODE == 2 ? base_color.a : 1.0);
+#endif
 }
