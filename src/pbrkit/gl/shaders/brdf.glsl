@@ -175,6 +175,8 @@ struct Brdf {
   float alpha_y;
   vec3 F0;    // mix(s F0_d, baseColor, metallic)
   vec3 F0_d;  // the dielectric's F0 (ior, specular colour)
+  float F90_d;  // the dielectric's F90: 1, or 0 for ior 1 (no interface)
+  float table_roughness;  // the albedo tables' roughness: sqrt(sqrt(alpha_x alpha_y))
   float spec_weight;
   float iridescence;
   float film_ior;
@@ -197,7 +199,10 @@ Brdf make_brdf(BaseLayer layer, int geometry, bool multiscatter, int fresnel, sa
   b.metallic = saturate(layer.metallic);
   b.roughness = clamp(layer.roughness, kMinRoughness, 1.0);
   b.alpha = b.roughness * b.roughness;
-  b.F0_d = dielectric_f0(max(layer.ior, 1.0), max(layer.specular_color, 0.0));
+  // ior 0: KHR_materials_ior's F0 = 1 mode; other values below 1 count as 1.
+  b.F0_d = dielectric_f0(layer.ior == 0.0 ? 0.0 : max(layer.ior, 1.0),
+                         max(layer.specular_color, 0.0));
+  b.F90_d = layer.ior > 1.0 || layer.ior == 0.0 ? 1.0 : 0.0;
   b.spec_weight = saturate(layer.specular);
   b.iridescence = saturate(layer.iridescence);
   b.film_ior = max(layer.iridescence_ior, 1.0);
@@ -210,6 +215,7 @@ Brdf make_brdf(BaseLayer layer, int geometry, bool multiscatter, int fresnel, sa
   float aniso = saturate(layer.anisotropy);
   b.alpha_x = mix(b.alpha, 1.0, aniso * aniso);
   b.alpha_y = b.alpha;
+  b.table_roughness = aniso > 0.0 ? sqrt(sqrt(b.alpha_x * b.alpha_y)) : b.roughness;
   // F0 = mix(0.04, baseColor, metallic) (MODEL.md), the 0.04 from ior, specular colour, weight.
   b.F0 = mix(b.spec_weight * b.F0_d, b.base_color, b.metallic);
   b.E_avg = 1.0;
@@ -217,12 +223,12 @@ Brdf make_brdf(BaseLayer layer, int geometry, bool multiscatter, int fresnel, sa
   b.Fms_d = vec3(0.0);
   b.Es_avg = vec3(0.0);
   if (multiscatter) {
-    vec2 ab_avg = energy_AB_avg(table, b.roughness);
+    vec2 ab_avg = energy_AB_avg(table, b.table_roughness);
     b.E_avg = ab_avg.x + ab_avg.y;
     if (b.reference) {
-      b.Fms_d = b.spec_weight * multiscatter_fresnel(b.F0_d, b.E_avg);
+      b.Fms_d = b.spec_weight * b.F90_d * multiscatter_fresnel(b.F0_d, b.E_avg);
       b.Fms = (1.0 - b.metallic) * b.Fms_d + b.metallic * multiscatter_fresnel(b.base_color, b.E_avg);
-      b.Es_avg = b.spec_weight * (b.F0_d * ab_avg.x + ab_avg.y) + b.Fms_d * (1.0 - b.E_avg);
+      b.Es_avg = b.spec_weight * (b.F0_d * ab_avg.x + b.F90_d * ab_avg.y) + b.Fms_d * (1.0 - b.E_avg);
     } else {
       b.Fms = multiscatter_fresnel(b.F0, b.E_avg);
       b.Es_avg = b.F0 * ab_avg.x + ab_avg.y + b.Fms * (1.0 - b.E_avg);
@@ -250,13 +256,15 @@ vec3 brdf_fresnel(Brdf b, float cosTheta) {
 }
 
 // Brdf::dielectric_albedo: the dielectric's specular with F90 = 1, weighted.
-vec3 brdf_dielectric_albedo(Brdf b, vec2 ab) { return b.spec_weight * (b.F0_d * ab.x + ab.y); }
+vec3 brdf_dielectric_albedo(Brdf b, vec2 ab) {
+  return b.spec_weight * (b.F0_d * ab.x + b.F90_d * ab.y);
+}
 
 // Brdf::specular_albedo: (1 - m) s (F0_d A + B) + m (baseColor A + B) for reference,
 // F0 A + B for classic (+ Fms (1 - E) with compensation).
 vec3 brdf_specular_albedo(Brdf b, sampler2D table, float mu) {
-  vec2 ab = energy_AB(table, mu, b.roughness);
-  float b_weight = b.reference ? (1.0 - b.metallic) * b.spec_weight + b.metallic : 1.0;
+  vec2 ab = energy_AB(table, mu, b.table_roughness);
+  float b_weight = b.reference ? (1.0 - b.metallic) * b.spec_weight * b.F90_d + b.metallic : 1.0;
   vec3 Es = b.F0 * ab.x + ab.y * b_weight;
   if (b.multiscatter) Es += b.Fms * (1.0 - (ab.x + ab.y));
   return Es;
@@ -278,7 +286,7 @@ vec3 brdf_specular_fresnel(Brdf b, float WOdotH, out vec3 diffuse_weight) {
   }
   // glTF Appendix B: the dielectric's Fresnel (F90 = 1, weighted by specular) and the
   // metal's, mixed by metallic; the diffuse sits under the dielectric's only.
-  vec3 Fd = b.F0_d + (1.0 - b.F0_d) * w5;
+  vec3 Fd = b.F0_d + (b.F90_d - b.F0_d) * w5;
   vec3 Fm = b.base_color + (1.0 - b.base_color) * w5;
 #ifdef BRDF_IRIDESCENCE
   if (b.iridescence > 0.0) {
@@ -296,8 +304,8 @@ vec3 brdf_specular_fresnel(Brdf b, float WOdotH, out vec3 diffuse_weight) {
 vec3 brdf_eval_diffuse_and_ms(Brdf b, sampler2D table, vec3 wo, vec3 wi, vec3 diffuse_weight) {
   vec3 lambert = (1.0 - b.metallic) * b.base_color * kInvPi;
   if (!b.multiscatter) return diffuse_weight * lambert;
-  vec2 ab_o = energy_AB(table, max(wo.z, 0.0), b.roughness);
-  vec2 ab_i = energy_AB(table, wi.z, b.roughness);
+  vec2 ab_o = energy_AB(table, max(wo.z, 0.0), b.table_roughness);
+  vec2 ab_i = energy_AB(table, wi.z, b.table_roughness);
   float E_o = ab_o.x + ab_o.y, E_i = ab_i.x + ab_i.y;
   vec3 diffuse;
   if (b.reference) {

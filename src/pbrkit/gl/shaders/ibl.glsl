@@ -37,7 +37,7 @@ float roughness_lod(float roughness, int levels) { return roughness * float(leve
 // C++ Brdf does.
 vec3 ibl_shading(Brdf b, sampler2D ibl_table, float NdotV, vec3 prefiltered, vec3 irradiance) {
   float mu = max(NdotV, 1e-4);
-  vec2 ab = energy_AB(ibl_table, mu, b.roughness);
+  vec2 ab = energy_AB(ibl_table, mu, b.table_roughness);
   vec3 lambert = (1.0 - b.metallic) * b.base_color;
   float E = ab.x + ab.y;
   if (!b.reference) {
@@ -56,7 +56,7 @@ vec3 ibl_shading(Brdf b, sampler2D ibl_table, float NdotV, vec3 prefiltered, vec
     }
     // Compensated: the multiple-scattering lobe integrates to Fms (1 - E(mu_o)) against
     // the cosine-weighted irradiance, and the diffuse lobe to (1 - Es(mu_o)) of it.
-    vec2 ab_avg = energy_AB_avg(ibl_table, b.roughness);
+    vec2 ab_avg = energy_AB_avg(ibl_table, b.table_roughness);
     float E_avg = ab_avg.x + ab_avg.y;
     vec3 Fms = multiscatter_fresnel(b.F0, E_avg);
     vec3 Es = b.F0 * ab.x + ab.y + Fms * (1.0 - E);
@@ -64,7 +64,7 @@ vec3 ibl_shading(Brdf b, sampler2D ibl_table, float NdotV, vec3 prefiltered, vec
   }
   vec3 Ed = brdf_dielectric_albedo(b, ab);
   vec3 Em = b.base_color * ab.x + ab.y;
-  vec3 Fd = b.F0_d + (1.0 - b.F0_d) * fresnel_weight(b, mu);
+  vec3 Fd = b.F0_d + (b.F90_d - b.F0_d) * fresnel_weight(b, mu);
 #ifdef BRDF_IRIDESCENCE
   vec3 Fd_irid = iridescence_fresnel(mu, b.film_ior, b.film_thickness, b.F0_d);
   Ed = mix(Ed, b.spec_weight * Fd_irid * E, b.iridescence);
