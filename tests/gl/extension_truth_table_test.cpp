@@ -108,14 +108,19 @@ TEST_P(ExtensionTruthTable, SplitSumWithinMeasuredBound) {
 }
 
 // Bounds: measured on the 2-core Debian 12 machine with llvmpipe (the tables in
-// docs/SPLIT_SUM_ERRORS.md), plus room for the path tracer's noise at 32 spp.
-INSTANTIATE_TEST_SUITE_P(
-    Scenes, ExtensionTruthTable,
-    ::testing::Values(TruthCase{"clearcoat", 0.5, 1.0}, TruthCase{"sheen", 0.5, 1.0},
-                      TruthCase{"anisotropy", 0.5, 1.0}, TruthCase{"iridescence", 0.5, 1.0},
-                      TruthCase{"specular", 0.5, 1.0}, TruthCase{"ior", 0.5, 1.0},
-                      TruthCase{"unlit", 0.5, 1.0}),
-    [](const auto& info) { return std::string(info.param.scene); });
+// docs/SPLIT_SUM_ERRORS.md: mean |error| / largest), about 1.5x for the path tracer's noise
+// at 32 spp (about 1% per sphere) and the bake's sampling. Anisotropy's split sum is the
+// Sample Viewer's bent-reflection approximation of a lobe the path tracer integrates
+// exactly: it is 20-100% bright on strongly anisotropic spheres (measured 0.33 / 1.02).
+INSTANTIATE_TEST_SUITE_P(Scenes, ExtensionTruthTable,
+                         ::testing::Values(TruthCase{"clearcoat", 0.06, 0.15},    // 0.035 / 0.081
+                                           TruthCase{"sheen", 0.5, 1.0},          // measured below
+                                           TruthCase{"anisotropy", 0.5, 1.5},     // 0.33 / 1.02
+                                           TruthCase{"iridescence", 0.06, 0.18},  // 0.038 / 0.114
+                                           TruthCase{"specular", 0.045, 0.12},    // 0.026 / 0.077
+                                           TruthCase{"ior", 0.03, 0.08},          // 0.017 / 0.045
+                                           TruthCase{"unlit", 0.03, 0.06}),       // 0.018 / 0.036
+                         [](const auto& info) { return std::string(info.param.scene); });
 
 }  // namespace
 }  // namespace pbrkit::gl
