@@ -43,13 +43,13 @@ float charlie_pdf(glm::vec3 h, float roughness);
 
 /// Directional albedo of the sheen lobe with sheenColor = 1:
 ///   E(mu, r) = int D_Charlie(h) V_Charlie(v, l) (n.l) dl over the upper hemisphere,
-/// n.v = mu. Tabulated once at first use (thread-safe; about 20 ms on one core) and looked up
-/// bilinearly. It is both the albedo scaling of the base (1 - max3(sheenColor) E(n.v)) and
-/// the split-sum scale of the sheen IBL (ibl/sheen_lut.h).
+/// n.v = mu. Tabulated once at first use (thread-safe; about 20 ms on 2 cores, 30 on one) and
+/// looked up bilinearly. It is both the albedo scaling of the base (1 - max3(sheenColor) E(n.v))
+/// and the split-sum scale of the sheen IBL (ibl/sheen_lut.h).
 class SheenTable {
  public:
   static constexpr int kMuSize = 64;         ///< mu nodes: mu_i = (i / (kMuSize - 1))^2
-  static constexpr int kRoughnessSize = 32;  ///< roughness nodes, uniform over [0.07, 1]
+  static constexpr int kRoughnessSize = 48;  ///< r_j = 0.07 + 0.93 (j / 47)^2
   static constexpr int kSamples = 32;        ///< quadrature nodes per axis of integrate_E
 
   static const SheenTable& get() {
@@ -57,8 +57,8 @@ class SheenTable {
     return t ? *t : build();
   }
 
-  /// E(mu, roughness), bilinear in (sqrt(mu), roughness); mu in [0, 1], roughness clamped to
-  /// [kMinSheenRoughness, 1].
+  /// E(mu, roughness), bilinear in (sqrt(mu), sqrt(roughness - 0.07)); mu in [0, 1], roughness
+  /// clamped to [kMinSheenRoughness, 1].
   float E(float mu, float roughness) const;
 
   /// One entry computed directly with a `samples` x `samples` midpoint product quadrature in

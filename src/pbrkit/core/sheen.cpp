@@ -104,7 +104,8 @@ SheenTable::SheenTable() : e_(std::size_t(kMuSize) * kRoughnessSize) {
   pbrkit::parallel_for(0, kMuSize * kRoughnessSize, [&](int k) {
     const int i = k % kMuSize, j = k / kMuSize;
     const float s = float(i) / float(kMuSize - 1);
-    const float r = glm::mix(kMinSheenRoughness, 1.0f, float(j) / float(kRoughnessSize - 1));
+    const float t = float(j) / float(kRoughnessSize - 1);
+    const float r = glm::mix(kMinSheenRoughness, 1.0f, t * t);
     e_[std::size_t(k)] = integrate_E(s * s, r, kSamples);
   });
 }
@@ -117,8 +118,10 @@ const SheenTable& SheenTable::build() {
 
 float SheenTable::E(float mu, float roughness) const {
   const float x = std::sqrt(std::clamp(mu, 0.0f, 1.0f)) * float(kMuSize - 1);
-  const float y = (clamp_sheen_roughness(roughness) - kMinSheenRoughness) /
-                  (1.0f - kMinSheenRoughness) * float(kRoughnessSize - 1);
+  // Roughness nodes r_j = 0.07 + 0.93 t_j^2, t_j uniform: E bends most at small roughness.
+  const float y = std::sqrt((clamp_sheen_roughness(roughness) - kMinSheenRoughness) /
+                            (1.0f - kMinSheenRoughness)) *
+                  float(kRoughnessSize - 1);
   const int i0 = std::min(int(x), kMuSize - 2), j0 = std::min(int(y), kRoughnessSize - 2);
   const float fx = x - float(i0), fy = y - float(j0);
   auto at = [&](int i, int j) { return e_[std::size_t(j) * kMuSize + i]; };
