@@ -69,10 +69,10 @@ std::optional<BakeOptionsProblem> find_bake_options_problem(const BakeOptions& o
   if (o.lut_size < 1 || o.lut_size > 4096)
     return BakeOptionsProblem{&BakeOptions::lut_size, "lut_size",
                               fmt::format("must be in 1..4096, got {}", o.lut_size)};
-  if (!is_power_of_two(o.sheen_face_size) || o.sheen_face_size > kMaxFaceSize)
+  if (!is_power_of_two(o.sheen_grid_size) || o.sheen_grid_size > kMaxFaceSize)
     return BakeOptionsProblem{
-        &BakeOptions::sheen_face_size, "sheen_face_size",
-        fmt::format("must be a power of two in 1..{}, got {}", kMaxFaceSize, o.sheen_face_size)};
+        &BakeOptions::sheen_grid_size, "sheen_grid_size",
+        fmt::format("must be a power of two in 1..{}, got {}", kMaxFaceSize, o.sheen_grid_size)};
   if (!is_power_of_two(o.sheen_source_size) || o.sheen_source_size > kMaxFaceSize)
     return BakeOptionsProblem{
         &BakeOptions::sheen_source_size, "sheen_source_size",

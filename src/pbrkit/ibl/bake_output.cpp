@@ -236,6 +236,7 @@ std::vector<std::string> write_bake_outputs(const fs::path& dir, const BakeResul
   for (int level = 0; level < sheen_levels; ++level)
     sheen_details.push_back({{"level", level},
                              {"size", result.sheen.size(level)},
+                             {"grid_size", sheen_grid_size(o, level)},
                              {"sheen_roughness", mip_roughness(level, sheen_levels, o.mapping)}});
   m["sheen"] = {
       {"file", "sheen.ktx2"},
@@ -244,16 +245,16 @@ std::vector<std::string> write_bake_outputs(const fs::path& dir, const BakeResul
       {"levels", sheen_levels},
       {"roughness_mapping", roughness_mapping_name(o.mapping)},
       {"roughness_formula",
-       "sheenRoughness = level / (levels - 1) with this chain's own levels; r = "
-       "max(sheenRoughness, "
-       "0.07)"},
+       "sheenRoughness = level / (levels - 1), the specular chain's levels and sizes; "
+       "r = max(sheenRoughness, 0.07)"},
       {"integral",
        "int L(l) D_Charlie(h) n.l dl / int D_Charlie(h) n.l dl, n = v = R (KHR_materials_sheen, "
        "Estevez & Kulla 2017); a constant environment gives the constant"},
       {"method",
-       fmt::format("direct quadrature over the {} px source level (texel centres, exact solid "
-                   "angles)",
-                   result.environment.size(sheen_source_level(result.environment, o)))},
+       fmt::format("direct quadrature over a source level of at most {} px ({} for roughness >= "
+                   "0.4; texel centres, exact solid angles) on a grid of at most {} px, "
+                   "bilinearly upsampled to larger levels",
+                   o.sheen_source_size, std::max(o.sheen_source_size / 2, 8), o.sheen_grid_size)},
       {"level_details", sheen_details},
       {"exr", "sheen_mip<level>.exr (cross, half)"}};
   m["sheen_lut"] = {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <map>
 #include <mutex>
 
 #include "pbrkit/core/math.h"
@@ -18,17 +19,16 @@
 
 namespace pbrkit {
 
-int sheen_face_size(const BakeOptions& options) {
-  return std::min(options.sheen_face_size, options.face_size);
+int sheen_grid_size(const BakeOptions& options, int level) {
+  return std::min(options.face_size >> level, options.sheen_grid_size);
 }
 
-int sheen_levels(const BakeOptions& options) {
-  return specular_levels(sheen_face_size(options), 1);
-}
-
-int sheen_source_level(const Cubemap& source, const BakeOptions& options) {
+int sheen_source_level(const Cubemap& source, const BakeOptions& options, float roughness) {
+  // Rough kernels (>= 0.4: at least ~60 degrees wide) read a level half as fine.
+  const int max_size =
+      roughness >= 0.4f ? std::max(options.sheen_source_size / 2, 8) : options.sheen_source_size;
   int level = 0;
-  while (level + 1 < source.levels() && source.size(level) > options.sheen_source_size) ++level;
+  while (level + 1 < source.levels() && source.size(level) > max_size) ++level;
   return level;
 }
 
@@ -66,20 +66,28 @@ glm::vec3 sheen_quadrature(const detail::QuadratureSource& q, const SheenKernel&
 Cubemap prefilter_sheen(const Cubemap& source, const BakeOptions& options,
                         const ProgressCallback& progress) {
   if (source.mips.empty()) fail("prefilter_sheen: the source cube is empty");
-  const int top = sheen_face_size(options);
-  const int levels = sheen_levels(options);
-  const detail::QuadratureSource q =
-      detail::flatten_level(source, sheen_source_level(source, options));
-  Cubemap out;
+  // The GGX chain's sizes and levels (so one lod formula serves both chains); level m is
+  // computed on a grid of sheen_grid_size(options, m) px and, where the level is larger,
+  // bilinearly upsampled from it.
+  const int levels = specular_levels(options.face_size, options.min_face_size);
+  std::map<int, detail::QuadratureSource> flat;  // by source level
+  std::vector<const detail::QuadratureSource*> texels;
   std::vector<SheenKernel> kernels;
+  Cubemap grid;  // level m: the computed grid
   struct Row {
     int level, face, y;
   };
   std::vector<Row> rows;
   for (int m = 0; m < levels; ++m) {
-    const int size = top >> m;
-    out.mips.push_back(make_rgba_faces(size));
-    kernels.emplace_back(mip_roughness(m, levels, options.mapping));
+    const float roughness = mip_roughness(m, levels, options.mapping);
+    const int src_level = sheen_source_level(source, options, roughness);
+    auto it = flat.find(src_level);
+    if (it == flat.end())
+      it = flat.emplace(src_level, detail::flatten_level(source, src_level)).first;
+    texels.push_back(&it->second);
+    kernels.emplace_back(roughness);
+    const int size = sheen_grid_size(options, m);
+    grid.mips.push_back(make_rgba_faces(size));
     for (int face = 0; face < 6; ++face)
       for (int y = 0; y < size; ++y) rows.push_back({m, face, y});
   }
@@ -88,13 +96,13 @@ Cubemap prefilter_sheen(const Cubemap& source, const BakeOptions& options,
   pbrkit::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size()), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
       const Row row = rows[i];
-      const int size = top >> row.level;
-      const SheenKernel& kernel = kernels[std::size_t(row.level)];
-      Image& img = out.mips[std::size_t(row.level)][std::size_t(row.face)];
+      const int size = grid.size(row.level);
+      const std::size_t m = std::size_t(row.level);
+      Image& img = grid.mips[m][std::size_t(row.face)];
       for (int x = 0; x < size; ++x) {
         const glm::vec3 R = cube_direction(
             row.face, {(float(x) + 0.5f) / float(size), (float(row.y) + 0.5f) / float(size)});
-        img.set_rgb(x, row.y, sheen_quadrature(q, kernel, R));
+        img.set_rgb(x, row.y, sheen_quadrature(*texels[m], kernels[m], R));
       }
     }
     const std::size_t n = done.fetch_add(range.size()) + range.size();
@@ -102,6 +110,27 @@ Cubemap prefilter_sheen(const Cubemap& source, const BakeOptions& options,
     std::unique_lock lock(progress_mutex, std::try_to_lock);
     if (progress && lock.owns_lock()) progress(double(n) / double(rows.size()), "sheen");
   });
+  Cubemap out;
+  for (int m = 0; m < levels; ++m) {
+    const int size = options.face_size >> m;
+    if (size == grid.size(m)) {
+      out.mips.push_back(std::move(grid.mips[std::size_t(m)]));
+      continue;
+    }
+    // Upsampled: each texel the bilinear lookup of the grid level in its direction.
+    Cubemap one;
+    one.mips.push_back(grid.mips[std::size_t(m)]);
+    out.mips.push_back(make_rgba_faces(size));
+    auto& faces = out.mips.back();
+    pbrkit::parallel_for(0, 6 * size, [&](int k) {
+      const int face = k / size, y = k % size;
+      for (int x = 0; x < size; ++x)
+        faces[std::size_t(face)].set_rgb(
+            x, y,
+            sample_cubemap(one, cube_direction(face, {(float(x) + 0.5f) / float(size),
+                                                      (float(y) + 0.5f) / float(size)})));
+    });
+  }
   return out;
 }
 

@@ -4,12 +4,14 @@
 // the sheen lobe of KHR_materials_sheen (core/sheen.h), with n = v = R. Level m holds
 //   int L(l) D_Charlie(h) (n.l) dl / int D_Charlie(h) (n.l) dl,   h = (R + l) / |R + l|,
 // for the sheen roughness mip_roughness(m, levels): a constant environment stays that
-// constant. The lobe of l is a wide ring around R (D_Charlie peaks at grazing half vectors),
-// so the chain is small (BakeOptions::sheen_face_size) and every level, 0 included, is
-// filtered, by direct quadrature over a small source level (BakeOptions::sheen_source_size):
-// importance sampling with sample_charlie and filtered importance sampling (as the GGX
-// chain) was measured 33% off a brute-force reference at 256 samples per texel on the
-// studio map at roughness 0.07 (the ring of l crosses the softboxes with a few samples
+// constant. The lobe of l is a ring tens of degrees wide around R at every roughness
+// (D_Charlie peaks at grazing half vectors), so every level, 0 included, is filtered, on a
+// small grid (BakeOptions::sheen_grid_size) upsampled to the level's size (the GGX chain's;
+// a halving chain of small faces, 32 px down to 1 px, left the rough levels at 1-2 px and
+// 54-84% off in a lookup), by direct quadrature over a small source level
+// (BakeOptions::sheen_source_size): importance sampling with sample_charlie and filtered importance
+// sampling (as the GGX chain) was measured 33% off a brute-force reference at 256 samples per texel
+// on the studio map at roughness 0.07 (the ring of l crosses the softboxes with a few samples
 // each), and needed 4096 to come within 1%; the quadrature is exact up to the
 // texel-centre rule. The scale of the split sum is the sheen LUT (ibl/sheen_lut.h).
 #include <vector>
@@ -22,16 +24,13 @@
 
 namespace pbrkit {
 
-/// Face size of mip 0 of the sheen chain: min(options.sheen_face_size, options.face_size).
-int sheen_face_size(const BakeOptions& options);
-/// Number of levels of the sheen chain: from sheen_face_size() down to 1 px (6 for the
-/// default 32 px, as many as the default GGX chain; shaders take the count from the
-/// texture or the manifest, not from the GGX chain).
-int sheen_levels(const BakeOptions& options);
+/// Face size of the grid level `level` of the sheen chain is computed on:
+/// min(options.face_size >> level, options.sheen_grid_size).
+int sheen_grid_size(const BakeOptions& options, int level);
 
-/// The level of `source` the quadrature reads: the finest with faces of at most
-/// options.sheen_source_size px (or the coarsest level).
-int sheen_source_level(const Cubemap& source, const BakeOptions& options);
+/// The level of `source` the quadrature for `roughness` reads: the finest with faces of at
+/// most options.sheen_source_size px, half that (at least 8) for roughness >= 0.4.
+int sheen_source_level(const Cubemap& source, const BakeOptions& options, float roughness);
 
 /// The prefilter kernel D_Charlie(h) max(0, R.l) as a function of c = R.l alone (n = v = R:
 /// sin^2(theta_h) = (1 - c) / 2), without its constant factor, tabulated over c in [0, 1].
@@ -46,10 +45,10 @@ struct SheenKernel {
 glm::vec3 sheen_quadrature(const detail::QuadratureSource& q, const SheenKernel& kernel,
                            glm::vec3 R);
 
-/// The sheen chain of `source` (which needs its full mip chain): sheen_levels(options)
-/// levels of sheen_face_size(options) >> m px, level m for the sheen roughness
-/// mip_roughness(m, levels, options.mapping), by direct quadrature over the source level
-/// sheen_source_level() (every level reads the same one).
+/// The sheen chain of `source` (which needs its full mip chain): the GGX chain's levels and
+/// sizes (specular_levels(face_size, min_face_size), face_size >> m px), level m for the
+/// sheen roughness mip_roughness(m, levels, options.mapping), by direct quadrature over
+/// sheen_source_level() on a sheen_grid_size() px grid, bilinearly upsampled to the level.
 Cubemap prefilter_sheen(const Cubemap& source, const BakeOptions& options,
                         const ProgressCallback& progress = {});
 
