@@ -65,6 +65,7 @@ void BM_BakeStudio(benchmark::State& state) {
     sum.irradiance_s += t.irradiance_s, sum.irradiance_cpu_s += t.irradiance_cpu_s;
     sum.sh_s += t.sh_s, sum.sh_cpu_s += t.sh_cpu_s;
     sum.lut_s += t.lut_s, sum.lut_cpu_s += t.lut_cpu_s;
+    sum.sheen_s += t.sheen_s, sum.sheen_cpu_s += t.sheen_cpu_s;
   }
   const double n = double(state.iterations());
   state.counters["cube_s"] = sum.cube_s / n;
@@ -77,6 +78,8 @@ void BM_BakeStudio(benchmark::State& state) {
   state.counters["irradiance_cpu_s"] = sum.irradiance_cpu_s / n;
   state.counters["sh_cpu_s"] = sum.sh_cpu_s / n;
   state.counters["lut_2models_cpu_s"] = (sum.lut_cpu_s + other_lut_cpu) / n;
+  state.counters["sheen_s"] = sum.sheen_s / n;  // sheen chain + sheen LUT
+  state.counters["sheen_cpu_s"] = sum.sheen_cpu_s / n;
   runs()[threads] = {run.wall_s / n, run.cpu_s / n};
 }
 BENCHMARK(BM_BakeStudio)

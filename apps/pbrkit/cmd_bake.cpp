@@ -123,11 +123,12 @@ void run_bake(const BakeCommandOptions& o) {
   const BakeTimings& t = result.timings;
   std::fprintf(stderr,
                "bake: load %.2f s, cube %.2f s, specular %.2f s (%d levels, %d px), irradiance "
-               "%.2f s, SH %.3f s, LUTs %.2f s, write %.2f s; total %.2f s\n"
+               "%.2f s, SH %.3f s, LUTs %.2f s, sheen %.2f s (%d levels, %d px), write %.2f s; "
+               "total %.2f s\n"
                "bake: wrote %zu files to %s\n",
                load_s, t.cube_s, t.specular_s, result.specular.levels(), options.face_size,
-               t.irradiance_s, t.sh_s, record.lut_both_s, write_s, total_s, files.size(),
-               o.output.c_str());
+               t.irradiance_s, t.sh_s, record.lut_both_s, t.sheen_s, result.sheen.levels(),
+               result.sheen.size(0), write_s, total_s, files.size(), o.output.c_str());
 }
 
 }  // namespace

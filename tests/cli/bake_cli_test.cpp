@@ -44,12 +44,27 @@ TEST(BakeCli, ConstantEnvironmentProducesEveryOutput) {
   ASSERT_EQ(code, 0) << log;
   EXPECT_NE(log.find("validation"), std::string::npos) << log;
   EXPECT_NE(log.find("total"), std::string::npos) << log;
-  for (const char* f :
-       {"specular.ktx2", "irradiance.ktx2", "brdf_lut_reference.ktx2",
-        "brdf_lut_reference_f32.ktx2", "brdf_lut_reference.exr", "brdf_lut_classic.ktx2",
-        "brdf_lut_classic_f32.ktx2", "brdf_lut_classic.exr", "specular_mip0.exr",
-        "specular_mip2.exr", "irradiance.exr", "preview_specular_mip0.png",
-        "preview_irradiance.png", "manifest.json"})
+  for (const char* f : {"specular.ktx2",
+                        "irradiance.ktx2",
+                        "brdf_lut_reference.ktx2",
+                        "brdf_lut_reference_f32.ktx2",
+                        "brdf_lut_reference.exr",
+                        "brdf_lut_classic.ktx2",
+                        "brdf_lut_classic_f32.ktx2",
+                        "brdf_lut_classic.exr",
+                        "specular_mip0.exr",
+                        "specular_mip2.exr",
+                        "irradiance.exr",
+                        "preview_specular_mip0.png",
+                        "preview_irradiance.png",
+                        "manifest.json",
+                        "sheen.ktx2",
+                        "sheen_lut.ktx2",
+                        "sheen_lut_f32.ktx2",
+                        "sheen_lut.exr",
+                        "sheen_mip0.exr",
+                        "preview_sheen_mip0.png",
+                        "preview_sheen_lut.png"})
     EXPECT_TRUE(fs::exists(dir / "out" / f)) << f;
   // No staging folder or temporary files are left behind.
   for (const auto& e : fs::directory_iterator(dir / "out"))
@@ -87,6 +102,21 @@ TEST(BakeCli, ConstantEnvironmentProducesEveryOutput) {
   EXPECT_NEAR(m["sh9"]["coefficients"][0][1].get<double>() * 0.282095, kPi * L.y, 2e-3);
   EXPECT_NEAR(m["sh9"]["coefficients"][3][1].get<double>(), 0.0, 1e-3);
   EXPECT_TRUE(m["timings_s"].contains("total"));
+  EXPECT_TRUE(m["timings_s"].contains("sheen"));
+  // The sheen chain: every level the constant L (normalised Charlie prefilter); the manifest
+  // lists each level; the LUT's KTX2 reads back.
+  const Cubemap sheen = cubemap_from_ktx2(read_ktx2(dir / "out" / "sheen.ktx2"));
+  ASSERT_EQ(sheen.levels(), m["sheen"]["levels"].get<int>());
+  ASSERT_EQ(m["sheen"]["level_details"].size(), std::size_t(sheen.levels()));
+  for (int l = 0; l < sheen.levels(); ++l)
+    for (const Image& f : sheen.mips[l])
+      for (int c = 0; c < 3; ++c) ASSERT_NEAR(f.rgb(0, 0)[c] / L[c], 1.0f, 2e-3f);
+  const Image sheen_lut = image_from_ktx2(read_ktx2(dir / "out" / "sheen_lut_f32.ktx2"));
+  EXPECT_EQ(sheen_lut.width, m["sheen_lut"]["size"].get<int>());
+  for (int i = 0; i < sheen_lut.width; ++i) {
+    EXPECT_GT(sheen_lut.pixel(i, i)[0], 0.0f);
+    EXPECT_LE(sheen_lut.pixel(i, i)[0], 1.0f);
+  }
   EXPECT_EQ(m["validation"].size(), 2u);
 }
 

@@ -40,6 +40,12 @@ struct BakeOptions {
   /// every level of roughness >= 0.25 (0.4 and up), within 0.1% of a brute-force
   /// reference on the peaky studio.exr, where importance sampling missed by up to 3%.
   double quadrature_budget = 0x1p32;
+  /// Sheen chain (ibl/sheen_prefilter.h; the GGX chain's sizes and levels): the largest
+  /// face its quadrature computes (larger levels are upsampled from it), and the largest
+  /// source level it reads. The Charlie lobe of l is a ring tens of degrees wide around R at
+  /// every roughness, so small grids suffice (see docs/MODEL.md, "Sheen maps").
+  int sheen_grid_size = 32;
+  int sheen_source_size = 32;
 };
 
 /// A field of BakeOptions whose value the bake cannot use.
@@ -50,8 +56,9 @@ struct BakeOptionsProblem {
 };
 
 /// The first field of `options` out of its range (face_size, min_face_size, samples,
-/// irradiance_size, lut_size, in that order), or none. A caller that filled the fields from
-/// elsewhere (command-line flags, a file) can report the problem under its own names.
+/// irradiance_size, lut_size, sheen_grid_size, sheen_source_size, in that order), or none. A caller
+/// that filled the fields from elsewhere (command-line flags, a file) can report the problem under
+/// its own names.
 std::optional<BakeOptionsProblem> find_bake_options_problem(const BakeOptions& options);
 
 /// Throws pbrkit::Error "BakeOptions::<field> <message>" for the first problem that
@@ -65,6 +72,7 @@ struct BakeTimings {
   double cube_s = 0, specular_s = 0, irradiance_s = 0, sh_s = 0, lut_s = 0, total_s = 0;
   double cube_cpu_s = 0, specular_cpu_s = 0, irradiance_cpu_s = 0, sh_cpu_s = 0, lut_cpu_s = 0,
          total_cpu_s = 0;
+  double sheen_s = 0, sheen_cpu_s = 0;  ///< the sheen chain and the sheen LUT
 };
 
 /// Everything the bake computes (see bake_environment()).
@@ -74,6 +82,12 @@ struct BakeResult {
   Cubemap irradiance;   ///< diffuse irradiance E(n) (not divided by pi), RGB
   SH9 sh;               ///< irradiance SH (see SH9)
   Image lut;            ///< RGBA over (x: n.v, y: roughness): A, B, E = A+B, E_avg(roughness)
+  /// Charlie-prefiltered sheen chain, level i at sheen roughness mip_roughness(i, levels)
+  /// (ibl/sheen_prefilter.h); the same sizes and levels as `specular`.
+  Cubemap sheen;
+  /// RGBA over (x: n.v, y: sheen roughness): DG = E_sheen, E_sheen_avg(r), 0, 1
+  /// (ibl/sheen_lut.h), lut_size x lut_size.
+  Image sheen_lut;
   BakeTimings timings;
 };
 

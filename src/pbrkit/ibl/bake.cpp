@@ -14,6 +14,8 @@
 #include "pbrkit/ibl/environment_cube.h"
 #include "pbrkit/ibl/irradiance_cube.h"
 #include "pbrkit/ibl/prefilter.h"
+#include "pbrkit/ibl/sheen_lut.h"
+#include "pbrkit/ibl/sheen_prefilter.h"
 #include "pbrkit/ibl/spherical_harmonics.h"
 #include "pbrkit/util/error.h"
 
@@ -67,6 +69,14 @@ std::optional<BakeOptionsProblem> find_bake_options_problem(const BakeOptions& o
   if (o.lut_size < 1 || o.lut_size > 4096)
     return BakeOptionsProblem{&BakeOptions::lut_size, "lut_size",
                               fmt::format("must be in 1..4096, got {}", o.lut_size)};
+  if (!is_power_of_two(o.sheen_grid_size) || o.sheen_grid_size > kMaxFaceSize)
+    return BakeOptionsProblem{
+        &BakeOptions::sheen_grid_size, "sheen_grid_size",
+        fmt::format("must be a power of two in 1..{}, got {}", kMaxFaceSize, o.sheen_grid_size)};
+  if (!is_power_of_two(o.sheen_source_size) || o.sheen_source_size > kMaxFaceSize)
+    return BakeOptionsProblem{
+        &BakeOptions::sheen_source_size, "sheen_source_size",
+        fmt::format("must be a power of two in 1..{}, got {}", kMaxFaceSize, o.sheen_source_size)};
   return std::nullopt;
 }
 
@@ -111,6 +121,11 @@ BakeResult bake_environment(const Environment& env, const BakeOptions& options,
   t = StageTimer();
   result.lut = compute_brdf_lut(options.model, options.lut_size);
   t.stop(result.timings.lut_s, result.timings.lut_cpu_s);
+
+  t = StageTimer();
+  result.sheen = prefilter_sheen(result.environment, options, stage(0.9, 1.0));
+  result.sheen_lut = compute_sheen_lut(options.lut_size);
+  t.stop(result.timings.sheen_s, result.timings.sheen_cpu_s);
   if (progress) progress(1.0, "done");
 
   all.stop(result.timings.total_s, result.timings.total_cpu_s);

@@ -9,6 +9,7 @@
 #include "pbrkit/ibl/ktx2.h"
 #include "pbrkit/ibl/prefilter.h"
 #include "pbrkit/ibl/roughness_mapping.h"
+#include "pbrkit/ibl/sheen_prefilter.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/util/atomic_file.h"
 #include "pbrkit/util/error.h"
@@ -128,6 +129,23 @@ std::vector<std::string> write_bake_outputs(const fs::path& dir, const BakeResul
       write_png(stage.path(fmt::format("preview_specular_mip{}.png", level)),
                 display_image(cross, options.preview));
   }
+  // The sheen chain and LUT (ibl/sheen_prefilter.h, ibl/sheen_lut.h), written like the
+  // specular chain and the BRDF LUTs.
+  ktx(ktx2_from_cubemap(result.sheen, cube_format), "sheen.ktx2");
+  ktx(ktx2_from_image(result.sheen_lut, Ktx2Format::kRgba16Float), "sheen_lut.ktx2");
+  ktx(ktx2_from_image(result.sheen_lut, Ktx2Format::kRgba32Float), "sheen_lut_f32.ktx2");
+  write_exr(stage.path("sheen_lut.exr"), result.sheen_lut, ExrPixelType::kFloat);
+  if (options.previews)
+    write_png(stage.path("preview_sheen_lut.png"), rgb_channels(result.sheen_lut));
+  const int sheen_levels = result.sheen.levels();
+  for (int level = 0; level < sheen_levels; ++level) {
+    const Image cross = rgb_channels(cube_cross(result.sheen.mips[level]));
+    if (options.exr)
+      write_exr(stage.path(fmt::format("sheen_mip{}.exr", level)), cross, ExrPixelType::kHalf);
+    if (options.previews)
+      write_png(stage.path(fmt::format("preview_sheen_mip{}.png", level)),
+                display_image(cross, options.preview));
+  }
   {
     const Image cross = rgb_channels(cube_cross(result.irradiance.mips[0]));
     if (options.exr) write_exr(stage.path("irradiance.exr"), cross, ExrPixelType::kHalf);
@@ -214,6 +232,45 @@ std::vector<std::string> write_bake_outputs(const fs::path& dir, const BakeResul
        {{"G", "Schlick-GGX Smith product, k = alpha / 2"},
         {"files", {"brdf_lut_classic.ktx2", "brdf_lut_classic_f32.ktx2", "brdf_lut_classic.exr"}}}},
       {"formats", "*.ktx2 R16G16B16A16_SFLOAT, *_f32.ktx2 R32G32B32A32_SFLOAT, *.exr float32"}};
+  nlohmann::json sheen_details = nlohmann::json::array();
+  for (int level = 0; level < sheen_levels; ++level)
+    sheen_details.push_back({{"level", level},
+                             {"size", result.sheen.size(level)},
+                             {"grid_size", sheen_grid_size(o, level)},
+                             {"sheen_roughness", mip_roughness(level, sheen_levels, o.mapping)}});
+  m["sheen"] = {
+      {"file", "sheen.ktx2"},
+      {"format", options.float32 ? "R32G32B32A32_SFLOAT" : "R16G16B16A16_SFLOAT"},
+      {"face_size", result.sheen.size(0)},
+      {"levels", sheen_levels},
+      {"roughness_mapping", roughness_mapping_name(o.mapping)},
+      {"roughness_formula",
+       "sheenRoughness = level / (levels - 1), the specular chain's levels and sizes; "
+       "r = max(sheenRoughness, 0.07)"},
+      {"integral",
+       "int L(l) D_Charlie(h) n.l dl / int D_Charlie(h) n.l dl, n = v = R (KHR_materials_sheen, "
+       "Estevez & Kulla 2017); a constant environment gives the constant"},
+      {"method",
+       fmt::format("direct quadrature over a source level of at most {} px ({} for roughness >= "
+                   "0.4; texel centres, exact solid angles) on a grid of at most {} px, "
+                   "bilinearly upsampled to larger levels",
+                   o.sheen_source_size, std::max(o.sheen_source_size / 2, 8), o.sheen_grid_size)},
+      {"level_details", sheen_details},
+      {"exr", "sheen_mip<level>.exr (cross, half)"}};
+  m["sheen_lut"] = {
+      {"size", result.sheen_lut.width},
+      {"axes",
+       "x: n.v = (x + 0.5) / size; y: sheenRoughness = (y + 0.5) / size (row 0 smoothest), "
+       "clamped to >= 0.07"},
+      {"channels",
+       "R = DG = E_sheen(n.v, r) = int D_Charlie V_Charlie n.l dl (the split-sum scale of the "
+       "sheen IBL AND the albedo scaling's E: one integral with the README's Charlie V), "
+       "G = E_sheen_avg(r) = 2 int E_sheen mu dmu, B = 0, A = 1"},
+      {"usage",
+       "sheen_ibl = sheenColor * sheen(R, sheenRoughness) * lut.R; base *= 1 - max3(sheenColor) "
+       "* lut.R"},
+      {"files", {"sheen_lut.ktx2", "sheen_lut_f32.ktx2", "sheen_lut.exr"}},
+      {"formats", "*.ktx2 R16G16B16A16_SFLOAT, *_f32.ktx2 R32G32B32A32_SFLOAT, *.exr float32"}};
   const BakeTimings& t = result.timings;
   m["timings_s"] = {
       {"cube", t.cube_s},
@@ -221,7 +278,8 @@ std::vector<std::string> write_bake_outputs(const fs::path& dir, const BakeResul
       {"irradiance", t.irradiance_s},
       {"sh", t.sh_s},
       {"lut_both_models", record.lut_both_s},
-      {"total", t.cube_s + t.specular_s + t.irradiance_s + t.sh_s + record.lut_both_s}};
+      {"sheen", t.sheen_s},
+      {"total", t.cube_s + t.specular_s + t.irradiance_s + t.sh_s + record.lut_both_s + t.sheen_s}};
   if (!record.validation.empty()) {
     nlohmann::json v = nlohmann::json::array();
     for (const PrefilterError& e : record.validation)
