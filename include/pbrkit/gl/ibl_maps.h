@@ -12,6 +12,7 @@ namespace pbrkit::gl {
 struct IblMaps {
   Cubemap specular;
   Cubemap irradiance;
+  Cubemap sheen;  ///< Charlie-prefiltered (KHR_materials_sheen); empty: the GGX cube stands in
   SH9 sh{};
   float rotation_deg = 0.0f;
   float intensity = 1.0f;

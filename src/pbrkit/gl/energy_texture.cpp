@@ -55,14 +55,20 @@ unsigned create_energy_texture(GeometryModel model) {
 }
 
 unsigned create_sheen_lut_texture() {
-  // The placeholder's E is one constant; read it back from the C++ table, so the GLSL
-  // follows whatever sheen.h says.
-  const float e = SheenTable::get().E(0.5f, 0.5f);
-  const float texel[4] = {e, e, e, 1.0f};
+  // SheenTable's nodes, read back through E at each node (bilinear interpolation at a node
+  // is the node's value), so the GLSL interpolates the C++ table's own numbers.
+  const int nx = SheenTable::kMuSize, ny = SheenTable::kRoughnessSize;
+  std::vector<float> texels(std::size_t(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const float t = float(i) / float(nx - 1), u = float(j) / float(ny - 1);
+      texels[std::size_t(j) * nx + i] =
+          SheenTable::get().E(t * t, kMinSheenRoughness + (1.0f - kMinSheenRoughness) * u * u);
+    }
   GLuint texture = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, GL_RGBA32F, 1, 1);
-  glTextureSubImage2D(texture, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, texel);
+  glTextureStorage2D(texture, 1, GL_R32F, nx, ny);
+  glTextureSubImage2D(texture, 0, 0, 0, nx, ny, GL_RED, GL_FLOAT, texels.data());
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

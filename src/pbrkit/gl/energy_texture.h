@@ -11,9 +11,9 @@ namespace pbrkit::gl {
 /// holds (A_avg, B_avg) at x = j. The caller owns the texture name.
 unsigned create_energy_texture(GeometryModel model);
 
-/// The sheen's directional albedo E(mu, roughness) for sheen.glsl's sheen_E, in R: a 1x1
-/// texture holding core/sheen.h's PLACEHOLDER constant (SheenTable::E) until the baker's
-/// sheen LUT replaces it. The caller owns the texture name.
+/// The sheen's directional albedo table (core/sheen.h SheenTable) for sheen.glsl's sheen_E:
+/// a 64 x 48 GL_R32F texture of the table's nodes (nearest filtering; the shader
+/// interpolates by hand). The caller owns the texture name.
 unsigned create_sheen_lut_texture();
 
 }  // namespace pbrkit::gl

@@ -146,11 +146,13 @@ const Material& GpuScene::material_of(const GpuMesh& mesh) const {
 GpuEnvironment::GpuEnvironment() {
   specular_cube = upload_cube(nullptr);
   irradiance_cube = upload_cube(nullptr);
+  sheen_cube = upload_cube(nullptr);
 }
 
 GpuEnvironment::~GpuEnvironment() {
   glDeleteTextures(1, &specular_cube);
   glDeleteTextures(1, &irradiance_cube);
+  glDeleteTextures(1, &sheen_cube);
   if (env_texture) glDeleteTextures(1, &env_texture);
 }
 
@@ -176,10 +178,15 @@ void GpuEnvironment::set_environment(const Environment* env) {
 void GpuEnvironment::set_ibl(const IblMaps* maps) {
   glDeleteTextures(1, &specular_cube);
   glDeleteTextures(1, &irradiance_cube);
+  glDeleteTextures(1, &sheen_cube);
   has_ibl = maps != nullptr && !maps->specular.mips.empty();
   specular_cube = upload_cube(has_ibl ? &maps->specular : nullptr);
   irradiance_cube = upload_cube(has_ibl ? &maps->irradiance : nullptr);
   specular_levels = has_ibl ? maps->specular.levels() : 1;
+  // Maps without the sheen chain (made before it existed) light sheen with the GGX cube.
+  const bool sheen = has_ibl && !maps->sheen.mips.empty();
+  sheen_cube = upload_cube(sheen ? &maps->sheen : has_ibl ? &maps->specular : nullptr);
+  sheen_levels = sheen ? maps->sheen.levels() : specular_levels;
   if (has_ibl) {
     ibl_params.sh = maps->sh;
     ibl_params.rotation_deg = maps->rotation_deg;

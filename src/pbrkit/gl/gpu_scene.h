@@ -56,7 +56,9 @@ struct GpuEnvironment {
   float env_rotation = 0.0f, env_intensity = 1.0f;
   bool has_env = false;
   GLuint specular_cube = 0, irradiance_cube = 0;
+  GLuint sheen_cube = 0;  ///< the Charlie-prefiltered chain (IblMaps::sheen)
   int specular_levels = 1;
+  int sheen_levels = 1;
   bool has_ibl = false;
   IblMaps ibl_params;  // rotation, intensity and SH (cubes are on the GPU)
 

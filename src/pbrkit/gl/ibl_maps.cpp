@@ -9,6 +9,7 @@ IblMaps ibl_maps_from_bake(BakeResult bake, const Environment& env) {
   IblMaps maps;
   maps.specular = std::move(bake.specular);
   maps.irradiance = std::move(bake.irradiance);
+  maps.sheen = std::move(bake.sheen);
   maps.sh = bake.sh;
   maps.rotation_deg = env.rotation_deg;
   maps.intensity = env.intensity;

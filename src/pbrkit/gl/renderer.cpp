@@ -83,7 +83,7 @@ struct Renderer::State {
   GpuScene scene;
   GpuEnvironment environment;
   GLuint white_texture = 0;
-  GLuint sheen_lut = 0;  // core/sheen.h's placeholder E until the baker's LUT lands
+  GLuint sheen_lut = 0;  // core/sheen.h's SheenTable
   GLuint empty_vao = 0;  // the background's full-screen triangle has no attributes
   RenderTargets targets;
   GpuTimer timer;
@@ -181,8 +181,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   glBindTextureUnit(7, s.environment.specular_cube);
   glBindTextureUnit(8, s.environment.irradiance_cube);
   glBindTextureUnit(kCoatEnergyUnit, s.energy[std::size_t(GeometryModel::kReference)]);
-  // Until the baker's Charlie maps land, the sheen's IBL reads the GGX cube.
-  glBindTextureUnit(kSheenCubeUnit, s.environment.specular_cube);
+  glBindTextureUnit(kSheenCubeUnit, s.environment.sheen_cube);
   glBindTextureUnit(kSheenLutUnit, s.sheen_lut);
 
   // The frame's uniforms, set once per frame on each program the frame uses.
@@ -196,7 +195,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uRoughnessOverride", settings.roughness_override);
     glProgramUniform3fv(p.id(), p.location("uSH"), 9, &s.environment.ibl_params.sh[0].x);
     p.set("uSpecularLevels", s.environment.specular_levels);
-    p.set("uSheenLevels", s.environment.specular_levels);
+    p.set("uSheenLevels", s.environment.sheen_levels);
     p.set("uIblRotation", env_rotation_cs(rotation_delta));
     p.set("uIblScale", ibl_scale);
     for (int k = 0; k < int(lights.size()); ++k) {

@@ -163,8 +163,10 @@ vec3 map_normal(sampler2D tex, int slot, float scale, vec3 n) {
 
 // The sheen's image-based lighting (the Khronos Sample Viewer's getIBLRadianceCharlie):
 // sheenColor times the Charlie-prefiltered environment along R at the sheen roughness's
-// mip, times the sheen's directional albedo E(n.v). The hook the baker's maps fill: today
-// uSheenCube is the GGX cube and E core/sheen.h's placeholder.
+// mip, times the sheen's directional albedo E(n.v):
+// uSheenCube is the baker's Charlie-prefiltered chain (ibl/sheen_prefilter.h; its levels
+// follow the GGX chain's roughness mapping) and E the sheen's albedo table, which is also
+// the split sum's DG term for the README's Charlie visibility (ibl/sheen_lut.h).
 vec3 sheen_ibl(vec3 n, vec3 v, vec3 sheen_color, float sheen_roughness) {
   vec3 r = reflect(-v, n);
   vec3 light = textureLod(uSheenCube, world_to_env(r, uIblRotation),

@@ -1,15 +1,8 @@
 // KHR_materials_sheen's Charlie sheen (Estevez & Kulla 2017) in GLSL, mirroring
-// include/pbrkit/core/sheen.h. That header is a PLACEHOLDER on this branch (branch
-// sheen-bake brings the real one, with a baked E table and Charlie-prefiltered cubes): D
-// is the README's, V is Ashikhmin & Premoze's 1 / (4 (n.l + n.v - n.l n.v)) and E a
-// constant 0.1. SHEEN_VISIBILITY_README 1 selects the README's Charlie visibility below
-// (1 / ((1 + Lambda(v) + Lambda(l)) 4 n.v n.l) with the l(x, alphaG) fit), which the real
-// sheen.h's VisibilityCharlie must then match; tests/gl/bsdf_glsl_test.cpp compares
-// against the C++ either way.
-#ifndef SHEEN_VISIBILITY_README
-#define SHEEN_VISIBILITY_README 0
-#endif
-
+// src/pbrkit/core/sheen.cpp line by line: the README's D and Charlie visibility (alphaG =
+// sheenRoughness as the README writes it, clamped to >= 0.07) and SheenTable::E read from
+// the table uploaded by gl/energy_texture.cpp. tests/gl/bsdf_glsl_test.cpp compares the
+// layered evaluation with the C++.
 const float kMinSheenRoughness = 0.07;  // pbrkit::kMinSheenRoughness
 
 // DistributionCharlie: (2 + 1/r) sin(theta_h)^(1/r) / (2 pi).
@@ -31,28 +24,34 @@ float charlie_l(float x, float alphaG) {
   return a / (1.0 + b * pow(x, c)) + d * x + e;
 }
 
+// SheenLambda.
 float charlie_lambda(float cos_theta, float alphaG) {
-  return abs(cos_theta) < 0.5 ? exp(charlie_l(cos_theta, alphaG))
-                              : exp(2.0 * charlie_l(0.5, alphaG) - charlie_l(1.0 - cos_theta, alphaG));
+  float c = min(abs(cos_theta), 1.0);
+  return c < 0.5 ? exp(charlie_l(c, alphaG)) : exp(2.0 * charlie_l(0.5, alphaG) - charlie_l(1.0 - c, alphaG));
 }
 
 // VisibilityCharlie (includes 1 / (4 n.v n.l)).
 float V_Charlie(float NdotV, float NdotL, float roughness) {
   if (NdotV <= 0.0 || NdotL <= 0.0) return 0.0;
-#if SHEEN_VISIBILITY_README
-  float r = max(roughness, kMinSheenRoughness);
-  float alphaG = r * r;
+  float alphaG = clamp(roughness, kMinSheenRoughness, 1.0);
   return 1.0 / ((1.0 + charlie_lambda(NdotV, alphaG) + charlie_lambda(NdotL, alphaG)) *
                 (4.0 * NdotV * NdotL));
-#else
-  return 1.0 / (4.0 * (NdotL + NdotV - NdotL * NdotV));
-#endif
 }
 
-// SheenTable::E(mu, roughness): the sheen's directional albedo, read from `sheen_lut` at
-// (mu, roughness) in R. The renderer binds a 1x1 texture holding the placeholder's 0.1
-// until the baker's sheen LUT lands (then this must interpolate as the C++ table does,
-// as energy_AB does for the EnergyTable).
+// SheenTable::E(mu, roughness), interpolated by hand exactly as the C++ table does: nodes
+// at mu_i = (i / 63)^2 (x) and r_j = 0.07 + 0.93 (j / 47)^2 (y), R channel.
+const int kSheenMuSize = 64;
+const int kSheenRoughnessSize = 48;
 float sheen_E(sampler2D sheen_lut, float mu, float roughness) {
-  return textureLod(sheen_lut, vec2(clamp(mu, 0.0, 1.0), clamp(roughness, 0.0, 1.0)), 0.0).r;
+  float x = sqrt(clamp(mu, 0.0, 1.0)) * float(kSheenMuSize - 1);
+  float r = clamp(roughness, kMinSheenRoughness, 1.0);
+  float y = sqrt((r - kMinSheenRoughness) / (1.0 - kMinSheenRoughness)) * float(kSheenRoughnessSize - 1);
+  int i0 = min(int(x), kSheenMuSize - 2);
+  int j0 = min(int(y), kSheenRoughnessSize - 2);
+  float fx = x - float(i0), fy = y - float(j0);
+  float e00 = texelFetch(sheen_lut, ivec2(i0, j0), 0).r;
+  float e10 = texelFetch(sheen_lut, ivec2(i0 + 1, j0), 0).r;
+  float e01 = texelFetch(sheen_lut, ivec2(i0, j0 + 1), 0).r;
+  float e11 = texelFetch(sheen_lut, ivec2(i0 + 1, j0 + 1), 0).r;
+  return mix(mix(e00, e10, fx), mix(e01, e11, fx), fy);
 }
