@@ -78,18 +78,10 @@ TEST_P(ExtensionTruthTable, SplitSumWithinMeasuredBound) {
   double worst = 0.0, sum = 0.0;
   int counted = 0;
   for (std::size_t i = 0; i < centres.size(); ++i) {
-    double sa = 0.0, sb = 0.0;
-    int n = 0;
-    for (int y = 0; y < kHeight; ++y)
-      for (int x = 0; x < kWidth; ++x) {
-        const auto mu = testing::sphere_hit_cosine(
-            testing::pixel_ray(camera, x, y, kWidth, kHeight), centres[i], radii[i]);
-        if (!mu || *mu < 0.2f) continue;
-        const glm::vec3 a = gl.rgb(x, y), b = truth.rgb(x, y);
-        sa += a.r + a.g + a.b;
-        sb += b.r + b.g + b.b;
-        ++n;
-      }
+    const testing::SphereSums sums =
+        testing::sphere_sums(gl, truth, camera, centres[i], radii[i], 0.2f);
+    const double sa = sums.a, sb = sums.b;
+    const int n = sums.pixels;
     const Material& m = scene.material_of(scene.meshes[std::size_t(scene.instances[i].mesh)]);
     if (n < 50 || !(sb > 0.0)) {
       std::printf("  %-28s (too few pixels: %d)\n", m.name.c_str(), n);

@@ -31,4 +31,25 @@ inline std::optional<float> sphere_hit_cosine(const Ray& ray, glm::vec3 centre, 
   return -glm::dot(n, ray.direction);
 }
 
+/// The sums of R+G+B over the pixels of two same-sized images where the sphere is seen
+/// with n.v >= min_mu, and their count: per-sphere means of a render against a reference.
+struct SphereSums {
+  double a = 0.0, b = 0.0;
+  int pixels = 0;
+};
+inline SphereSums sphere_sums(const Image& a, const Image& b, const Camera& camera,
+                              glm::vec3 centre, float radius, float min_mu) {
+  SphereSums s;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const auto mu = sphere_hit_cosine(pixel_ray(camera, x, y, a.width, a.height), centre, radius);
+      if (!mu || *mu < min_mu) continue;
+      const glm::vec3 pa = a.rgb(x, y), pb = b.rgb(x, y);
+      s.a += pa.r + pa.g + pa.b;
+      s.b += pb.r + pb.g + pb.b;
+      ++s.pixels;
+    }
+  return s;
+}
+
 }  // namespace pbrkit::gl::testing

@@ -161,16 +161,8 @@ TEST(GlVersusPathTracer, SplitSumSpheresWithinMeasuredBound) {
   for (int row = 0; row < 7; ++row)
     for (int col = 0; col < 7; ++col) {
       const glm::vec3 centre = kSpread * glm::vec3(float(col - 3), float(row - 3), 0.0f);
-      double sa = 0.0, sb = 0.0;
-      for (int y = 0; y < kSize; ++y)
-        for (int x = 0; x < kSize; ++x) {
-          const auto mu = testing::sphere_hit_cosine(testing::pixel_ray(camera, x, y, kSize, kSize),
-                                                     centre, 0.4f);
-          if (!mu || *mu < 0.2f) continue;
-          const glm::vec3 a = gl.rgb(x, y), b = truth.rgb(x, y);
-          sa += a.r + a.g + a.b;
-          sb += b.r + b.g + b.b;
-        }
+      const testing::SphereSums sums = testing::sphere_sums(gl, truth, camera, centre, 0.4f, 0.2f);
+      const double sa = sums.a, sb = sums.b;
       errors[row][col] = (sa - sb) / sb;
     }
   std::printf("relative error of the per-sphere mean, GL split sum vs path tracer (1 bounce)\n");
