@@ -63,6 +63,9 @@ void BM_GlFrameSpheresIblTwoLights(benchmark::State& state) {
   const Camera camera = select_camera(scene, std::nullopt, float(width) / float(height));
   gl::RenderSettings settings;  // SH irradiance, reference model
   settings.msaa = int(state.range(2));
+  // A fourth argument 0: no compensation (the default before issue 11, to compare like
+  // with like across that change).
+  if (state.range(3) == 0) settings.brdf.multiscatter = false;
   // Warm-up: llvmpipe compiles the shaders' machine code at the first draw.
   renderer.render(camera, width, height, settings);
   glFinish();
@@ -79,10 +82,11 @@ void BM_GlFrameSpheresIblTwoLights(benchmark::State& state) {
 }
 // width, height, MSAA samples (4 is the renderer's default).
 BENCHMARK(BM_GlFrameSpheresIblTwoLights)
-    ->ArgNames({"w", "h", "msaa"})
-    ->Args({1280, 720, 4})
-    ->Args({1280, 720, 1})
-    ->Args({320, 180, 4})
+    ->ArgNames({"w", "h", "msaa", "ms"})
+    ->Args({1280, 720, 4, 1})
+    ->Args({1280, 720, 1, 1})
+    ->Args({1280, 720, 1, 0})
+    ->Args({320, 180, 4, 1})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(3.0);

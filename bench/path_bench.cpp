@@ -51,6 +51,9 @@ void BM_PathTraceSpheres(benchmark::State& state) {
   s.noise_threshold = 0.0f;  // no adaptive stopping (the library's default is on)
   s.max_bounces = 8;
   s.threads = threads;
+  // A fourth argument 0 turns compensation off (the default before issue 11, to compare
+  // like with like across that change).
+  if (state.range(3) == 0) s.brdf.multiscatter = false;
   double samples = 0, rays = 0, seconds = 0, build = 0, bvh = 0, cpu = 0;
   for (auto _ : state) {
     const double cpu0 = process_cpu_seconds();
@@ -79,19 +82,25 @@ void BM_PathTraceSpheres(benchmark::State& state) {
 // scaling pair at lower spp.
 BENCHMARK(BM_PathTraceSpheres)
     ->Name("Spheres/threads:2/256x256/256spp")
-    ->Args({2, 256, 256})
+    ->Args({2, 256, 256, 1})
     ->UseManualTime()
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 BENCHMARK(BM_PathTraceSpheres)
     ->Name("Spheres/threads:1/256x256/32spp")
-    ->Args({1, 256, 32})
+    ->Args({1, 256, 32, 1})
     ->UseManualTime()
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 BENCHMARK(BM_PathTraceSpheres)
     ->Name("Spheres/threads:2/256x256/32spp")
-    ->Args({2, 256, 32})
+    ->Args({2, 256, 32, 1})
+    ->UseManualTime()
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
+BENCHMARK(BM_PathTraceSpheres)
+    ->Name("Spheres/threads:2/256x256/256spp/no-multiscatter")
+    ->Args({2, 256, 256, 0})
     ->UseManualTime()
     ->Iterations(1)
     ->Unit(benchmark::kSecond);

@@ -189,6 +189,11 @@ struct Brdf {
   vec3 Fms;     // the whole specular's Fms
   vec3 Fms_d;   // reference: the dielectric's (weighted)
   vec3 Es_avg;  // classic: per channel; reference: the dielectric's
+  // BoundBrdf's state at wo (brdf_at), with compensation: E(mu_o), the reference diffuse
+  // lobe's factor at wo, classic's Es(mu_o).
+  float E_o;
+  float diffuse_o;
+  vec3 Es_o;
 };
 
 // Brdf::Brdf. `table` is the EnergyTable of `geometry` (the direct-lighting G); the model
@@ -222,6 +227,9 @@ Brdf make_brdf(BaseLayer layer, int geometry, bool multiscatter, int fresnel, sa
   b.Fms = vec3(0.0);
   b.Fms_d = vec3(0.0);
   b.Es_avg = vec3(0.0);
+  b.E_o = 0.0;
+  b.diffuse_o = 1.0;
+  b.Es_o = vec3(0.0);
   if (multiscatter) {
     vec2 ab_avg = energy_AB_avg(table, b.table_roughness);
     b.E_avg = ab_avg.x + ab_avg.y;
@@ -270,6 +278,23 @@ vec3 brdf_specular_albedo(Brdf b, sampler2D table, float mu) {
   return Es;
 }
 
+// Brdf::at / BoundBrdf's constructor: what the compensation needs at wo, computed once per
+// shading point (every light's brdf_eval reuses it; on llvmpipe each table lookup is four
+// fetches). Every Brdf must be bound before brdf_eval.
+Brdf brdf_at(Brdf b, sampler2D table, vec3 wo) {
+  if (!b.multiscatter) return b;
+  vec2 ab_o = energy_AB(table, max(wo.z, 0.0), b.table_roughness);
+  b.E_o = ab_o.x + ab_o.y;
+  if (b.reference) {
+    // The diffuse lobe under the dielectric's specular (single + multiple scattering).
+    vec3 Es_o = brdf_dielectric_albedo(b, ab_o) + b.Fms_d * (1.0 - b.E_o);
+    b.diffuse_o = (1.0 - max3(Es_o)) / max(1.0 - max3(b.Es_avg), 1e-6);
+  } else {
+    b.Es_o = brdf_specular_albedo(b, table, wo.z);
+  }
+  return b;
+}
+
 // BoundBrdf::specular_fresnel: the specular lobe's Fresnel at v.h and, in diffuse_weight,
 // the diffuse lobe's Fresnel weight without compensation.
 vec3 brdf_specular_fresnel(Brdf b, float WOdotH, out vec3 diffuse_weight) {
@@ -304,23 +329,20 @@ vec3 brdf_specular_fresnel(Brdf b, float WOdotH, out vec3 diffuse_weight) {
 vec3 brdf_eval_diffuse_and_ms(Brdf b, sampler2D table, vec3 wo, vec3 wi, vec3 diffuse_weight) {
   vec3 lambert = (1.0 - b.metallic) * b.base_color * kInvPi;
   if (!b.multiscatter) return diffuse_weight * lambert;
-  vec2 ab_o = energy_AB(table, max(wo.z, 0.0), b.table_roughness);
   vec2 ab_i = energy_AB(table, wi.z, b.table_roughness);
-  float E_o = ab_o.x + ab_o.y, E_i = ab_i.x + ab_i.y;
+  float E_i = ab_i.x + ab_i.y;
   vec3 diffuse;
   if (b.reference) {
     // Weighted reciprocally by what the dielectric's specular (single + multiple) does not
     // reflect: (1 - max3(Es(o)))(1 - max3(Es(i))) / (1 - max3(Es_avg)).
-    vec3 Es_o = brdf_dielectric_albedo(b, ab_o) + b.Fms_d * (1.0 - E_o);
-    float diffuse_o = (1.0 - max3(Es_o)) / max(1.0 - max3(b.Es_avg), 1e-6);
     vec3 Es_i = brdf_dielectric_albedo(b, ab_i) + b.Fms_d * (1.0 - E_i);
-    diffuse = lambert * (diffuse_o * (1.0 - max3(Es_i)));
+    diffuse = lambert * (b.diffuse_o * (1.0 - max3(Es_i)));
   } else {
-    vec3 Es_o = brdf_specular_albedo(b, table, wo.z), Es_i = brdf_specular_albedo(b, table, wi.z);
-    diffuse = lambert * (1.0 - Es_o) * (1.0 - Es_i) / max(1.0 - b.Es_avg, vec3(1e-6));
+    vec3 Es_i = brdf_specular_albedo(b, table, wi.z);
+    diffuse = lambert * (1.0 - b.Es_o) * (1.0 - Es_i) / max(1.0 - b.Es_avg, vec3(1e-6));
   }
   // Kulla & Conty 2017: f_ms = Fms (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)).
-  vec3 ms = b.Fms * ((1.0 - E_o) * (1.0 - E_i) / (kPi * max(1.0 - b.E_avg, 1e-6)));
+  vec3 ms = b.Fms * ((1.0 - b.E_o) * (1.0 - E_i) / (kPi * max(1.0 - b.E_avg, 1e-6)));
   return diffuse + ms;
 }
 

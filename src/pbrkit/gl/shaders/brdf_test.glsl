@@ -31,6 +31,6 @@ void main() {
   BrdfCase c = cases[i];
   BaseLayer layer = BaseLayer(c.base_metal.rgb, c.base_metal.a, c.rough.x, c.rough.y, c.rough.z,
                               c.spec_irid.rgb, c.rough.w, c.spec_irid.a, c.film.x, c.film.y);
-  Brdf b = make_brdf(layer, uGeometry, uMultiscatter, uFresnel, uEnergy);
+  Brdf b = brdf_at(make_brdf(layer, uGeometry, uMultiscatter, uFresnel, uEnergy), uEnergy, c.wo.xyz);
   results[i] = vec4(brdf_eval(b, uEnergy, c.wo.xyz, c.wi.xyz), 0.0);
 }

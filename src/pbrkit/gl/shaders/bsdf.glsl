@@ -21,6 +21,9 @@ struct Bsdf {
   vec3 sheen_color;
   float sheen_roughness;
   float sheen_max;
+  // BoundBsdf's state at wo (bsdf_at): 1 - max3(sheenColor) E_sheen(n.v), 1 - clearcoat F_c(n_c.v).
+  float sheen_o;
+  float coat_o;
 };
 
 // The coat's Fresnel: Schlick with F0 = 0.04, F90 = 1.
@@ -44,6 +47,16 @@ Bsdf make_bsdf(Brdf base, float coat_weight, float coat_roughness, vec3 coat_nor
   s.sheen_color = clamp(sheen_color, 0.0, 1.0);
   s.sheen_max = max3(s.sheen_color);
   s.sheen_roughness = clamp(sheen_roughness, kMinSheenRoughness, 1.0);
+  s.sheen_o = 1.0;
+  s.coat_o = 1.0;
+  return s;
+}
+
+// BoundBsdf's constructor: the layers' attenuations at wo, once per shading point. The base
+// must already be bound (brdf_at).
+Bsdf bsdf_at(Bsdf s, sampler2D sheen_lut, vec3 wo) {
+  if (s.sheen_max > 0.0) s.sheen_o = 1.0 - s.sheen_max * sheen_E(sheen_lut, wo.z, s.sheen_roughness);
+  if (s.has_coat) s.coat_o = 1.0 - s.coat_weight * coat_fresnel(abs(to_local(s.coat_frame, wo).z));
   return s;
 }
 
@@ -56,17 +69,15 @@ vec3 bsdf_eval(Bsdf s, sampler2D table, sampler2D coat_table, sampler2D sheen_lu
     vec3 h = normalize(wo + wi);
     float D = D_Charlie(h.z, s.sheen_roughness);
     vec3 f_sheen = s.sheen_color * (D * V_Charlie(wo.z, wi.z, s.sheen_roughness));
-    float sheen_o = 1.0 - s.sheen_max * sheen_E(sheen_lut, wo.z, s.sheen_roughness);
     float sheen_i = 1.0 - s.sheen_max * sheen_E(sheen_lut, wi.z, s.sheen_roughness);
-    f = f_sheen + min(sheen_o, sheen_i) * f;
+    f = f_sheen + min(s.sheen_o, sheen_i) * f;
   }
   if (s.has_coat) {
     vec3 wo_c = to_local(s.coat_frame, wo);
     vec3 wi_c = to_local(s.coat_frame, wi);
     vec3 f_coat = s.coat_weight * brdf_eval(s.coat, coat_table, wo_c, wi_c);
-    float coat_o = 1.0 - s.coat_weight * coat_fresnel(abs(wo_c.z));
     float coat_i = 1.0 - s.coat_weight * coat_fresnel(abs(wi_c.z));
-    f = f_coat + min(coat_o, coat_i) * f;
+    f = f_coat + min(s.coat_o, coat_i) * f;
   }
   return f;
 }

@@ -35,8 +35,10 @@ void main() {
   BsdfCase c = cases[i];
   BaseLayer layer = BaseLayer(c.base_metal.rgb, c.base_metal.a, c.rough.x, c.rough.y, c.rough.z,
                               c.spec_irid.rgb, c.rough.w, c.spec_irid.a, c.film.x, c.film.y);
-  Brdf base = make_brdf(layer, uGeometry, uMultiscatter, FRESNEL_SCHLICK, uEnergy);
-  Bsdf s = make_bsdf(base, c.layers.x, c.layers.y, c.coat_normal.xyz, c.sheen_color.rgb,
-                     c.layers.z, uEnergyCoat);
+  Brdf base = brdf_at(make_brdf(layer, uGeometry, uMultiscatter, FRESNEL_SCHLICK, uEnergy), uEnergy,
+                      c.wo.xyz);
+  Bsdf s = bsdf_at(make_bsdf(base, c.layers.x, c.layers.y, c.coat_normal.xyz, c.sheen_color.rgb,
+                             c.layers.z, uEnergyCoat),
+                   uSheenLut, c.wo.xyz);
   results[i] = vec4(bsdf_eval(s, uEnergy, uEnergyCoat, uSheenLut, c.wo.xyz, c.wi.xyz), 0.0);
 }

@@ -314,10 +314,13 @@ void main() {
   vec3 n_coat = n;
 #endif
 
-  Brdf brdf = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyDirect);
+  // Bound to wo once: the lights below share its albedo lookups (BoundBrdf / BoundBsdf).
+  Brdf brdf = brdf_at(make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyDirect),
+                      uEnergyDirect, wo);
 #if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
-  Bsdf bsdf = make_bsdf(brdf, coat_weight, coat_roughness, to_local(frame, n_coat), sheen_color,
-                        sheen_roughness, uEnergyCoat);
+  Bsdf bsdf = bsdf_at(make_bsdf(brdf, coat_weight, coat_roughness, to_local(frame, n_coat),
+                                sheen_color, sheen_roughness, uEnergyCoat),
+                      uSheenLut, wo);
 #endif
   vec3 color = vec3(0.0);
   for (int i = 0; i < LIGHT_COUNT && i < kMaxLights; ++i) {
