@@ -69,9 +69,9 @@ void register_render_command(CLI::App& app) {
                   "Schlick-GGX)")
       ->check(CLI::IsMember({"reference", "classic"}))
       ->capture_default_str();
-  cmd->add_flag("--multiscatter,!--no-multiscatter", options->multiscatter,
-                "multiple-scattering energy compensation (Kulla-Conty / Fdez-Aguera); default: "
-                "on for the reference model, off for classic");
+  add_multiscatter_flags(*cmd, options->multiscatter,
+                         "multiple-scattering energy compensation (Kulla-Conty / Fdez-Aguera); "
+                         "default: on for the reference model, off for classic");
 
   const RenderRunner path = add_path_render_options(*cmd);
   const RenderRunner gl = add_gl_render_options(*cmd);

@@ -52,8 +52,9 @@ void register_view_command(CLI::App& app) {
   cmd->add_option("--model", names->model, "BRDF model: reference or classic")
       ->check(CLI::IsMember({"reference", "classic"}))
       ->capture_default_str();
-  cmd->add_flag("--multiscatter,!--no-multiscatter", names->multiscatter,
-                "multiple-scattering compensation (default: on for reference, off for classic)");
+  add_multiscatter_flags(*cmd, names->multiscatter,
+                         "multiple-scattering compensation (default: on for reference, off for "
+                         "classic)");
   cmd->add_option("--background", names->background, "env, blur:<mip> or color:<r>,<g>,<b>")
       ->capture_default_str();
   cmd->add_option("--msaa", o->msaa,

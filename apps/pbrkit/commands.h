@@ -1,6 +1,7 @@
 #pragma once
 // The pbrkit CLI: one file per subcommand (cmd_<name>.cpp), each a thin shell that parses
 // options and calls the library. Each file defines one register_<name>_command().
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +21,18 @@ inline std::string builtin_scene_list() {
   std::string s;
   for (const std::string& name : builtin_scene_names()) s += (s.empty() ? "" : ", ") + name;
   return s;
+}
+
+/// --multiscatter / --no-multiscatter into `value`, which stays unset without either (the
+/// model then decides). Two callbacks: CLI11 2.3's add_flag on a std::optional<bool> sets
+/// it to false when neither flag is given.
+inline void add_multiscatter_flags(CLI::App& cmd, std::optional<bool>& value,
+                                   const std::string& what) {
+  auto* on = cmd.add_flag_callback(
+      "--multiscatter", [&value] { value = true; }, what);
+  auto* off = cmd.add_flag_callback(
+      "--no-multiscatter", [&value] { value = false; }, "no multiple-scattering compensation");
+  on->excludes(off);
 }
 
 void register_brdf_command(CLI::App& app);
