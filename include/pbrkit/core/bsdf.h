@@ -103,8 +103,6 @@ class BoundBsdf {
   BrdfSample sample(float u_lobe, glm::vec2 u) const;
 
   glm::vec3 wo() const { return wo_; }
-  /// The lobe-choice probabilities (coat, sheen, base) at wo, summing to 1.
-  glm::vec3 lobe_probabilities() const { return {p_coat_, p_sheen_, 1.0f - p_coat_ - p_sheen_}; }
 
  private:
   const Bsdf* bsdf_;

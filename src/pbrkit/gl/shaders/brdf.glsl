@@ -98,17 +98,24 @@ vec3 multiscatter_fresnel(vec3 F0, float E_avg) {
 const int kEnergyMuSize = 32;
 const int kEnergyRoughnessSize = 32;
 
+// Bilinear interpolation of a table of nodes (a texture read with texelFetch) at the
+// continuous node coordinates (x, y), in [0, nx - 1] x [0, ny - 1]: the C++ tables'
+// (EnergyTable, SheenTable) own interpolation, cell clamped as they clamp it.
+vec4 node_table_bilinear(sampler2D table, float x, float y, int nx, int ny) {
+  int i0 = min(int(x), nx - 2);
+  int j0 = min(int(y), ny - 2);
+  float fx = x - float(i0), fy = y - float(j0);
+  vec4 a00 = texelFetch(table, ivec2(i0, j0), 0);
+  vec4 a10 = texelFetch(table, ivec2(i0 + 1, j0), 0);
+  vec4 a01 = texelFetch(table, ivec2(i0, j0 + 1), 0);
+  vec4 a11 = texelFetch(table, ivec2(i0 + 1, j0 + 1), 0);
+  return mix(mix(a00, a10, fx), mix(a01, a11, fx), fy);
+}
+
 vec2 energy_AB(sampler2D table, float mu, float roughness) {
   float x = clamp(mu, 0.0, 1.0) * float(kEnergyMuSize - 1);
   float y = clamp(roughness, 0.0, 1.0) * float(kEnergyRoughnessSize - 1);
-  int i0 = min(int(x), kEnergyMuSize - 2);
-  int j0 = min(int(y), kEnergyRoughnessSize - 2);
-  float fx = x - float(i0), fy = y - float(j0);
-  vec2 a00 = texelFetch(table, ivec2(i0, j0), 0).xy;
-  vec2 a10 = texelFetch(table, ivec2(i0 + 1, j0), 0).xy;
-  vec2 a01 = texelFetch(table, ivec2(i0, j0 + 1), 0).xy;
-  vec2 a11 = texelFetch(table, ivec2(i0 + 1, j0 + 1), 0).xy;
-  return mix(mix(a00, a10, fx), mix(a01, a11, fx), fy);
+  return node_table_bilinear(table, x, y, kEnergyMuSize, kEnergyRoughnessSize).xy;
 }
 
 vec2 energy_AB_avg(sampler2D table, float roughness) {
@@ -243,13 +250,6 @@ Brdf make_brdf(BaseLayer layer, int geometry, bool multiscatter, int fresnel, sa
     }
   }
   return b;
-}
-
-// The old signature: the base layer without extensions.
-Brdf make_brdf(vec3 base_color, float metallic, float roughness, int geometry, bool multiscatter,
-               int fresnel, sampler2D table) {
-  return make_brdf(base_layer(base_color, metallic, roughness), geometry, multiscatter, fresnel,
-                   table);
 }
 
 // Schlick's weight (1 - c)^5, or UE4's spherical-Gaussian fit of it (FRESNEL_SG).

@@ -118,8 +118,8 @@ layout(binding = 6) uniform sampler2D uEnergyIBL;     // EnergyTable of the IBL 
 uniform float uMetallicOverride;   // < 0: none
 uniform float uRoughnessOverride;  // < 0: none
 layout(binding = 19) uniform sampler2D uEnergyCoat;  // EnergyTable of the reference G (the coat's)
-// The sheen's IBL and albedo: the baker's Charlie-prefiltered cube and sheen LUT when they
-// land; until then the GGX specular cube and core/sheen.h's placeholder E.
+// The sheen's IBL and albedo: the baker's Charlie-prefiltered cube (the GGX cube for maps
+// baked without it) and core/sheen.h's SheenTable.
 layout(binding = 20) uniform samplerCube uSheenCube;
 layout(binding = 21) uniform sampler2D uSheenLut;
 uniform int uSheenLevels;

@@ -46,12 +46,5 @@ float sheen_E(sampler2D sheen_lut, float mu, float roughness) {
   float x = sqrt(clamp(mu, 0.0, 1.0)) * float(kSheenMuSize - 1);
   float r = clamp(roughness, kMinSheenRoughness, 1.0);
   float y = sqrt((r - kMinSheenRoughness) / (1.0 - kMinSheenRoughness)) * float(kSheenRoughnessSize - 1);
-  int i0 = min(int(x), kSheenMuSize - 2);
-  int j0 = min(int(y), kSheenRoughnessSize - 2);
-  float fx = x - float(i0), fy = y - float(j0);
-  float e00 = texelFetch(sheen_lut, ivec2(i0, j0), 0).r;
-  float e10 = texelFetch(sheen_lut, ivec2(i0 + 1, j0), 0).r;
-  float e01 = texelFetch(sheen_lut, ivec2(i0, j0 + 1), 0).r;
-  float e11 = texelFetch(sheen_lut, ivec2(i0 + 1, j0 + 1), 0).r;
-  return mix(mix(e00, e10, fx), mix(e01, e11, fx), fy);
+  return node_table_bilinear(sheen_lut, x, y, kSheenMuSize, kSheenRoughnessSize).r;
 }
