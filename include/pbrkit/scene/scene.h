@@ -240,6 +240,9 @@ struct Mesh {
   std::vector<glm::vec4> colors0;      ///< COLOR_0 as RGBA (linear)
   std::vector<std::uint32_t> indices;  ///< 3 per triangle
   int material = -1;                   ///< -1: the glTF default material
+  /// Whether the triangles close a volume (every edge shared by exactly two triangles):
+  /// KHR_materials_volume needs it to bound a medium; an open mesh is rendered thin-walled.
+  bool closed = true;
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 
