@@ -1,0 +1,19 @@
+#pragma once
+// Where the denoiser's input comes from: a path tracer's Film (render --denoise, merge
+// --denoise) or an EXR written with the `denoise` AOV (pbrkit denoise).
+#include <filesystem>
+
+#include "pbrkit/denoise/denoiser.h"
+#include "pbrkit/pt/film.h"
+
+namespace pbrkit {
+
+/// The film's two half buffers of colour, albedo, normal and depth.
+DenoiseInput denoise_input(const Film& film);
+
+/// Reads the layers color_a, color_b, albedo_a, ..., depth_b (denoise_layer_names()) of
+/// an EXR; pbrkit::Error naming the file and every missing layer (and how to write them:
+/// `--aov denoise`) when any is absent.
+DenoiseInput read_denoise_input(const std::filesystem::path& path);
+
+}  // namespace pbrkit
