@@ -2,10 +2,12 @@
 // not near-specular, so a mirror shows the features of what it reflects.
 #include <gtest/gtest.h>
 
+#include "pbrkit/image/image_io.h"
 #include "pbrkit/pt/film.h"
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/scene/primitives.h"
 #include "pt_test_util.h"
+#include "support/test_paths.h"
 
 namespace pbrkit {
 namespace {
@@ -56,6 +58,31 @@ TEST(PathTracerAovs, FeatureHalfBuffersAverageToTheFullMeans) {
   const Image full = film.albedo_image(), a = film.albedo_half(0), b = film.albedo_half(1);
   for (std::size_t i = 0; i < full.data.size(); ++i)
     EXPECT_NEAR(0.5f * (a.data[i] + b.data[i]), full.data[i], 1e-5f);  // 4 spp: 2 + 2
+}
+
+// An accumulation file from before the features' half buffers: it loads, with each half
+// given its share of the totals (the denoiser then sees noise-free features).
+TEST(PathTracerAovs, OlderAccumulationFilesLoadWithoutFeatureHalves) {
+  const Film film = render_aovs(0.3f);
+  const auto path = test::scratch_dir() / "old.exr";
+  write_film(path, film);
+  std::vector<std::pair<std::string, Image>> layers = read_exr_layers(path);
+  std::vector<ExrLayer> kept;
+  for (const auto& [name, image] : layers)
+    if (name.find("even_sum") == std::string::npos || name == "pbrkit_sum_even")
+      kept.push_back({name,
+                      image.channels == 3 ? std::vector<std::string>{"R", "G", "B"}
+                                          : std::vector<std::string>{"Y"},
+                      &image, ExrPixelType::kFloat});
+  ASSERT_EQ(kept.size(), layers.size() - 3);
+  write_exr_layers(path, kept);
+  const Film old = read_film(path);
+  EXPECT_EQ(old.sum, film.sum);
+  const Image a = old.albedo_half(0), b = old.albedo_half(1), full = film.albedo_image();
+  for (std::size_t i = 0; i < full.data.size(); ++i) {
+    EXPECT_NEAR(a.data[i], full.data[i], 1e-5f);
+    EXPECT_NEAR(b.data[i], full.data[i], 1e-5f);
+  }
 }
 
 }  // namespace

@@ -78,7 +78,8 @@ const std::vector<std::string>& render_aov_names();
 /// The final outputs of a render: a linear EXR (main RGB layer plus the chosen AOV
 /// layers) and nothing else. AOV names: albedo, normal, depth, samples, noise, and
 /// denoise (the half buffers the denoiser reads: layers color_a, color_b, albedo_a,
-/// albedo_b, normal_a, normal_b, depth_a, depth_b). With `main` (a denoised image) the
+/// albedo_b, normal_a, normal_b (encoded 0.5 n + 0.5: EXR reading clamps negative
+/// samples), depth_a, depth_b). With `main` (a denoised image) the
 /// main layer is `main` and the film's own colour goes to a layer "raw".
 void write_render_exr(const std::filesystem::path& path, const Film& film,
                       const std::vector<std::string>& aovs, ExrPixelType type,

@@ -31,6 +31,9 @@ DenoiseInput read_denoise_input(const std::filesystem::path& path) {
     in.normal[h] = take("normal" + ab[h]);
     in.depth[h] = take("depth" + ab[h]);
   }
+  // The normals are stored encoded as 0.5 n + 0.5 (write_render_exr).
+  for (Image& n : in.normal)
+    for (float& v : n.data) v = 2.0f * v - 1.0f;
   std::string missing;
   const Image* images[8] = {&in.color[0],  &in.color[1],  &in.albedo[0], &in.albedo[1],
                             &in.normal[0], &in.normal[1], &in.depth[0],  &in.depth[1]};

@@ -263,7 +263,9 @@ void write_render_exr(const std::filesystem::path& path, const Film& film,
         layers.push_back({"color" + s, rgb, nullptr, f});
         images.push_back(film.albedo_half(h));
         layers.push_back({"albedo" + s, rgb, nullptr, f});
+        // Encoded 0.5 n + 0.5 like the film's sums: EXR reading clamps negative samples.
         images.push_back(film.normal_half(h));
+        for (float& v : images.back().data) v = 0.5f * v + 0.5f;
         layers.push_back({"normal" + s, xyz, nullptr, f});
         images.push_back(film.depth_half(h));
         layers.push_back({"depth" + s, {"Z"}, nullptr, f});
