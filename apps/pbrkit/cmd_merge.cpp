@@ -9,8 +9,10 @@
 
 #include "accumulation.h"
 #include "commands.h"
+#include "denoising.h"
 #include "output_paths.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/denoise/inputs.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/pt/film.h"
@@ -29,6 +31,7 @@ struct MergeOptions {
   std::string tonemap = "pbr-neutral";
   bool full_float = false;
   std::string accumulation;
+  bool denoise = false;
 };
 
 }  // namespace
@@ -47,11 +50,14 @@ void register_merge_command(CLI::App& app) {
       ->required();
   cmd->add_option("--aov", o->aovs, "extra EXR layers: albedo, normal, depth, samples, noise")
       ->delimiter(',')
-      ->check(CLI::IsMember({"albedo", "normal", "depth", "samples", "noise"}));
+      ->check(CLI::IsMember(render_aov_names()));
   cmd->add_option("--exposure", o->exposure, "exposure in EV for the PNG")->capture_default_str();
   cmd->add_option("--tonemap", o->tonemap, "tone mapper for the PNG")
       ->check(CLI::IsMember(tone_mapper_names()))
       ->capture_default_str();
+  cmd->add_flag("--denoise", o->denoise,
+                "denoise the merged image (the EXR keeps the raw image and the albedo, normal "
+                "and depth as layers)");
   cmd->add_flag("--float", o->full_float, "write the EXR as 32-bit floats (default half)");
   cmd->add_option("--accumulation", o->accumulation,
                   "also write the merged accumulation EXR here (to merge again later)");
@@ -68,9 +74,15 @@ void register_merge_command(CLI::App& app) {
     create_output_directory(outputs);
     const std::string& exr = outputs.exr;
     if (!o->accumulation.empty()) write_film(o->accumulation, film);
-    write_render_exr(exr, film, o->aovs,
-                     o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf);
-    write_display_png(outputs.png, film.color(), {o->exposure, parse_tone_mapper(o->tonemap)});
+    const auto type = o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;
+    if (o->denoise) {
+      const Image denoised = *run_denoiser(denoise_input(film));
+      write_render_exr(exr, film, with_denoise_aovs(o->aovs), type, &denoised);
+      write_display_png(outputs.png, denoised, {o->exposure, parse_tone_mapper(o->tonemap)});
+    } else {
+      write_render_exr(exr, film, o->aovs, type);
+      write_display_png(outputs.png, film.color(), {o->exposure, parse_tone_mapper(o->tonemap)});
+    }
     note("merged {} parts into {} and {}", o->parts.size(), outputs.png, exr);
   });
 }

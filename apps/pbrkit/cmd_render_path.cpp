@@ -12,7 +12,9 @@
 
 #include "accumulation.h"
 #include "commands.h"
+#include "denoising.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/denoise/inputs.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image_io.h"
@@ -80,6 +82,7 @@ struct PathOptions {
   std::vector<std::string> aovs;
   bool half = false;
   bool full_float = false;
+  bool denoise = false;
   std::string filter{pixel_filter_name(PathTracerSettings{}.filter)};
 };
 
@@ -166,10 +169,15 @@ RenderRunner add_path_render_options(CLI::App& render) {
       ->group(group);
   render
       .add_option("--aov", p->aovs,
-                  "extra EXR layers: albedo, normal, depth, samples, noise (repeat or comma "
-                  "separate)")
+                  "extra EXR layers: albedo, normal, depth, samples, noise, denoise (the half "
+                  "buffers 'pbrkit denoise' reads) (repeat or comma separate)")
       ->delimiter(',')
-      ->check(CLI::IsMember({"albedo", "normal", "depth", "samples", "noise"}))
+      ->check(CLI::IsMember(render_aov_names()))
+      ->group(group);
+  render
+      .add_flag("--denoise", p->denoise,
+                "denoise the image (docs/DENOISER.md); the EXR keeps the raw image (layer "
+                "'raw') and the albedo, normal and depth as layers")
       ->group(group);
   auto* half =
       render.add_flag("--half", p->half, "write the EXR as half floats (default)")->group(group);
@@ -203,6 +211,10 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.brdf.model = parse_brdf_model(o.model);
     s.brdf.multiscatter = o.multiscatter.value_or(default_multiscatter(s.brdf.model));
     const bool partial = !po.sample_range.empty();
+    if (partial && po.denoise)
+      fail(
+          "--denoise with --sample-range: a part cannot be denoised alone; denoise when "
+          "merging the parts ('pbrkit merge --denoise')");
     if (partial) {
       std::tie(s.sample_begin, s.sample_end) = parse_sample_range(po.sample_range);
       // Adaptive stopping depends on all of a pixel's samples; a part cannot decide it.
@@ -241,10 +253,21 @@ RenderRunner add_path_render_options(CLI::App& render) {
       note("wrote {} (samples {}:{}; combine the parts with 'pbrkit merge')", exr, s.sample_begin,
            s.sample_end);
     } else {
-      write_render_exr(exr, result.film, po.aovs,
-                       po.full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf);
-      write_display_png(o.outputs.png, result.color, {o.exposure, parse_tone_mapper(o.tonemap)});
-      note("wrote {} and {}", o.outputs.png, exr);
+      const auto type = po.full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;
+      // Denoising is skipped when the render was interrupted, and stops (leaving the raw
+      // image to be written) when Ctrl-C comes while it runs.
+      std::optional<Image> denoised;
+      if (po.denoise && !g_stop.load())
+        denoised = run_denoiser(denoise_input(result.film), &g_stop);
+      if (po.denoise && !denoised) warn("interrupted: not denoised, wrote the raw image");
+      if (denoised) {
+        write_render_exr(exr, result.film, with_denoise_aovs(po.aovs), type, &*denoised);
+        write_display_png(o.outputs.png, *denoised, {o.exposure, parse_tone_mapper(o.tonemap)});
+      } else {
+        write_render_exr(exr, result.film, po.aovs, type);
+        write_display_png(o.outputs.png, result.color, {o.exposure, parse_tone_mapper(o.tonemap)});
+      }
+      note("wrote {} and {}{}", o.outputs.png, exr, denoised ? " (denoised)" : "");
     }
     if (g_stop.load()) {
       const int sig = g_signal.load();

@@ -41,6 +41,7 @@ void register_info_command(CLI::App& app);
 void register_bake_command(CLI::App& app);
 void register_render_command(CLI::App& app);
 void register_merge_command(CLI::App& app);
+void register_denoise_command(CLI::App& app);
 void register_compare_command(CLI::App& app);
 void register_view_command(CLI::App& app);
 

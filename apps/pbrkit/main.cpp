@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   register_bake_command(app);
   register_render_command(app);
   register_merge_command(app);
+  register_denoise_command(app);
   register_compare_command(app);
   register_view_command(app);
 

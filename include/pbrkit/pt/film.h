@@ -28,8 +28,12 @@ struct Film {
   std::vector<glm::vec3> albedo;    ///< sum of the first-hit albedo
   std::vector<glm::vec3> normal;    ///< sum of the first-hit shading normal (world)
   std::vector<float> depth;         ///< sum of the first-hit distance (0 for a miss)
-  std::vector<float> count;         ///< samples taken (exact in float up to 2^24)
-  std::vector<float> done;          ///< 1 when adaptive sampling stopped the pixel
+  // The features' half buffers (even-indexed samples), for the denoiser's feature variance.
+  std::vector<glm::vec3> albedo_even;
+  std::vector<glm::vec3> normal_even;
+  std::vector<float> depth_even;
+  std::vector<float> count;  ///< samples taken (exact in float up to 2^24)
+  std::vector<float> done;   ///< 1 when adaptive sampling stopped the pixel
 
   Film() = default;
   Film(int w, int h);
@@ -43,6 +47,14 @@ struct Film {
   Image count_image() const;   ///< samples per pixel (1 channel)
   Image noise_image() const;   ///< per-pixel relative error estimate (1 channel)
 
+  /// The mean of one half buffer (half 0: the even-indexed samples, half 1: the odd ones)
+  /// of the colour and of each feature; a pixel whose half has no sample gets the full
+  /// mean. What the denoiser reads (denoise/inputs.h).
+  Image color_half(int half) const;
+  Image albedo_half(int half) const;
+  Image normal_half(int half) const;  ///< decoded to [-1, 1] like normal_image()
+  Image depth_half(int half) const;
+
   /// Relative error of pixel i from the two half buffers (Cycles' adaptive sampling):
   /// sum|I - E| / sqrt(sum I) with I the full mean and E the even-sample mean
   /// (pt/adaptive_sampling.h).
@@ -53,14 +65,24 @@ struct Film {
 };
 
 /// Writes the film's buffers as a float EXR ("accumulation" file: layers sum, sum_even,
-/// albedo, normal, depth, count, done), atomically.
+/// albedo, normal, depth, their even halves, count, done), atomically.
 void write_film(const std::filesystem::path& path, const Film& film);
 /// Reads a file written by write_film; pbrkit::Error naming the file if it is not one.
+/// A file from before the features' half buffers existed loads with them set to the
+/// expected share of the totals (so the feature variance reads as zero) and a warning.
 Film read_film(const std::filesystem::path& path);
 
+/// The AOV names write_render_exr knows.
+const std::vector<std::string>& render_aov_names();
+
 /// The final outputs of a render: a linear EXR (main RGB layer plus the chosen AOV
-/// layers) and nothing else. AOV names: albedo, normal, depth, samples, noise.
+/// layers) and nothing else. AOV names: albedo, normal, depth, samples, noise, and
+/// denoise (the half buffers the denoiser reads: layers color_a, color_b, albedo_a,
+/// albedo_b, normal_a, normal_b (encoded 0.5 n + 0.5: EXR reading clamps negative
+/// samples), depth_a, depth_b). With `main` (a denoised image) the
+/// main layer is `main` and the film's own colour goes to a layer "raw".
 void write_render_exr(const std::filesystem::path& path, const Film& film,
-                      const std::vector<std::string>& aovs, ExrPixelType type);
+                      const std::vector<std::string>& aovs, ExrPixelType type,
+                      const Image* main = nullptr);
 
 }  // namespace pbrkit

@@ -5,6 +5,7 @@
 
 #include "pbrkit/pt/adaptive_sampling.h"
 #include "pbrkit/util/error.h"
+#include "pbrkit/util/log.h"
 
 namespace pbrkit {
 
@@ -16,6 +17,9 @@ Film::Film(int w, int h)
       albedo(std::size_t(w) * h, glm::vec3(0.0f)),
       normal(std::size_t(w) * h, glm::vec3(0.0f)),
       depth(std::size_t(w) * h, 0.0f),
+      albedo_even(std::size_t(w) * h, glm::vec3(0.0f)),
+      normal_even(std::size_t(w) * h, glm::vec3(0.0f)),
+      depth_even(std::size_t(w) * h, 0.0f),
       count(std::size_t(w) * h, 0.0f),
       done(std::size_t(w) * h, 0.0f) {}
 
@@ -75,6 +79,53 @@ Image Film::noise_image() const {
   return image;
 }
 
+namespace {
+
+// Samples in each half of a pixel with `n` samples: ranges start on an even index
+// (half_buffer_error's convention), so the even half has ceil(n / 2).
+float half_count(float n, int half) {
+  const float even = std::ceil(n * 0.5f);
+  return half == 0 ? even : n - even;
+}
+
+// The mean of one half of `total` (a vec3 or float sum) given the even half's sum.
+template <typename T>
+T half_mean(T total, T even, float n, int half) {
+  const float m = half_count(n, half);
+  if (!(m > 0.0f)) return n > 0.0f ? total / n : T(0.0f);
+  return (half == 0 ? even : total - even) / m;
+}
+
+Image vec3_half(const Film& f, const std::vector<glm::vec3>& sum,
+                const std::vector<glm::vec3>& even, int half, float scale, float bias) {
+  Image image(f.width, f.height, 3);
+  for (std::size_t i = 0; i < f.pixel_count(); ++i) {
+    const glm::vec3 m = f.count[i] > 0.0f
+                            ? half_mean(sum[i], even[i], f.count[i], half) * scale + bias
+                            : glm::vec3(0.0f);
+    for (int c = 0; c < 3; ++c) image.data[i * 3 + c] = m[c];
+  }
+  return image;
+}
+
+}  // namespace
+
+Image Film::color_half(int half) const {
+  return vec3_half(*this, sum, sum_even, half, 1.0f, 0.0f);
+}
+Image Film::albedo_half(int half) const {
+  return vec3_half(*this, albedo, albedo_even, half, 1.0f, 0.0f);
+}
+Image Film::normal_half(int half) const {
+  return vec3_half(*this, normal, normal_even, half, 2.0f, -1.0f);
+}
+Image Film::depth_half(int half) const {
+  Image image(width, height, 1);
+  for (std::size_t i = 0; i < pixel_count(); ++i)
+    image.data[i] = count[i] > 0.0f ? half_mean(depth[i], depth_even[i], count[i], half) : 0.0f;
+  return image;
+}
+
 float Film::pixel_noise(std::size_t i) const {
   return half_buffer_error(sum[i], sum_even[i], count[i]);
 }
@@ -88,6 +139,9 @@ void Film::merge(const Film& other) {
     albedo[i] += other.albedo[i];
     normal[i] += other.normal[i];
     depth[i] += other.depth[i];
+    albedo_even[i] += other.albedo_even[i];
+    normal_even[i] += other.normal_even[i];
+    depth_even[i] += other.depth_even[i];
     count[i] += other.count[i];
     done[i] = std::max(done[i], other.done[i]);
   }
@@ -100,6 +154,8 @@ void write_film(const std::filesystem::path& path, const Film& film) {
   const Image al = vec3_image(film, film.albedo), no = vec3_image(film, film.normal);
   const Image de = scalar_image(film, film.depth), co = scalar_image(film, film.count);
   const Image dn = scalar_image(film, film.done);
+  const Image ae = vec3_image(film, film.albedo_even), ne = vec3_image(film, film.normal_even);
+  const Image de_even = scalar_image(film, film.depth_even);
   const std::vector<std::string> rgb{"R", "G", "B"}, y{"Y"};
   const auto f = ExrPixelType::kFloat;
   write_exr_layers(path, {{"", rgb, &color, f},
@@ -108,20 +164,27 @@ void write_film(const std::filesystem::path& path, const Film& film) {
                           {"pbrkit_albedo_sum", rgb, &al, f},
                           {"pbrkit_normal_sum", rgb, &no, f},
                           {"pbrkit_depth_sum", y, &de, f},
+                          {"pbrkit_albedo_even_sum", rgb, &ae, f},
+                          {"pbrkit_normal_even_sum", rgb, &ne, f},
+                          {"pbrkit_depth_even_sum", y, &de_even, f},
                           {"pbrkit_count", y, &co, f},
                           {"pbrkit_done", y, &dn, f}});
 }
 
 Film read_film(const std::filesystem::path& path) {
   const auto layers = read_exr_layers(path);
-  auto find = [&](const std::string& name, int channels) -> const Image& {
+  auto find_optional = [&](const std::string& name, int channels) -> const Image* {
     for (const auto& [n, image] : layers)
       if (n == name) {
         if (image.channels != channels)
           fail("{}: layer '{}' has {} channels, expected {}", path.string(), name, image.channels,
                channels);
-        return image;
+        return &image;
       }
+    return nullptr;
+  };
+  auto find = [&](const std::string& name, int channels) -> const Image& {
+    if (const Image* image = find_optional(name, channels)) return *image;
     fail("{}: not a pbrkit accumulation file (no layer '{}')", path.string(), name);
   };
   const Image& s = find("pbrkit_sum", 3);
@@ -147,18 +210,68 @@ Film read_film(const std::filesystem::path& path) {
   for (float c : film.count)
     if (!(c >= 0.0f) || c != std::floor(c))
       fail("{}: sample counts must be whole numbers >= 0", path.string());
+  const Image* ae = find_optional("pbrkit_albedo_even_sum", 3);
+  const Image* ne = find_optional("pbrkit_normal_even_sum", 3);
+  const Image* de = find_optional("pbrkit_depth_even_sum", 1);
+  if (ae && ne && de) {
+    load3(*ae, film.albedo_even);
+    load3(*ne, film.normal_even);
+    load1(*de, film.depth_even);
+  } else {
+    // Written before the features had half buffers: give each half its share of the
+    // total, which the denoiser reads as noise-free features.
+    warn(
+        "{}: no feature half buffers (an older accumulation file); the denoiser will treat "
+        "its albedo, normal and depth as noise-free",
+        path.string());
+    for (std::size_t i = 0; i < film.pixel_count(); ++i) {
+      const float n = film.count[i];
+      const float share = n > 0.0f ? std::ceil(n * 0.5f) / n : 0.0f;
+      film.albedo_even[i] = film.albedo[i] * share;
+      film.normal_even[i] = film.normal[i] * share;
+      film.depth_even[i] = film.depth[i] * share;
+    }
+  }
   return film;
 }
 
+const std::vector<std::string>& render_aov_names() {
+  static const std::vector<std::string> names{"albedo",  "normal", "depth",
+                                              "samples", "noise",  "denoise"};
+  return names;
+}
+
 void write_render_exr(const std::filesystem::path& path, const Film& film,
-                      const std::vector<std::string>& aovs, ExrPixelType type) {
+                      const std::vector<std::string>& aovs, ExrPixelType type, const Image* main) {
   std::vector<Image> images;
-  images.reserve(aovs.size() + 1);
+  images.reserve(aovs.size() + 16);
   std::vector<ExrLayer> layers;
   const std::vector<std::string> rgb{"R", "G", "B"}, xyz{"X", "Y", "Z"}, y{"Y"};
-  images.push_back(film.color());
+  images.push_back(main ? *main : film.color());
   layers.push_back({"", rgb, nullptr, type});
+  if (main) {
+    images.push_back(film.color());
+    layers.push_back({"raw", rgb, nullptr, type});
+  }
   for (const auto& name : aovs) {
+    if (name == "denoise") {
+      // Float: the denoiser's variance estimate is the difference of the two halves.
+      const auto f = ExrPixelType::kFloat;
+      for (int h = 0; h < 2; ++h) {
+        const std::string s = h == 0 ? "_a" : "_b";
+        images.push_back(film.color_half(h));
+        layers.push_back({"color" + s, rgb, nullptr, f});
+        images.push_back(film.albedo_half(h));
+        layers.push_back({"albedo" + s, rgb, nullptr, f});
+        // Encoded 0.5 n + 0.5 like the film's sums: EXR reading clamps negative samples.
+        images.push_back(film.normal_half(h));
+        for (float& v : images.back().data) v = 0.5f * v + 0.5f;
+        layers.push_back({"normal" + s, xyz, nullptr, f});
+        images.push_back(film.depth_half(h));
+        layers.push_back({"depth" + s, {"Z"}, nullptr, f});
+      }
+      continue;
+    }
     if (name == "albedo") {
       images.push_back(film.albedo_image());
       layers.push_back({name, rgb, nullptr, type});
@@ -179,7 +292,7 @@ void write_render_exr(const std::filesystem::path& path, const Film& film,
       images.push_back(std::move(noise));
       layers.push_back({name, y, nullptr, type});
     } else {
-      fail("unknown AOV '{}' (known: albedo, normal, depth, samples, noise)", name);
+      fail("unknown AOV '{}' (known: albedo, normal, depth, samples, noise, denoise)", name);
     }
   }
   for (std::size_t i = 0; i < layers.size(); ++i) layers[i].image = &images[i];

@@ -42,6 +42,36 @@ inline float power_heuristic(float f, float g) {
   return float(h >> 8) * 0x1p-24f;
 }
 
+// The denoiser's features (albedo, normal, depth) are those of the first vertex that is
+// not near-specular, as denoisers expect: seen in a mirror, the mirrored surface's texture
+// and edges are what the image shows. A vertex is near-specular when it is a smooth metal
+// (its reflection is a sharp image of what it faces). The first vertex records its own
+// features; a later one replaces them when every vertex before it was near-specular (its
+// albedo tinted by the path throughput, its depth the length of the path to it).
+constexpr float kAovSpecularRoughness = 0.1f;
+
+inline bool near_specular_for_aovs(const ShadingInputs& in) {
+  return in.params.base.metallic >= 0.5f && in.params.base.roughness < kAovSpecularRoughness;
+}
+
+struct AovTracker {
+  bool through_specular = true;  // every vertex so far was near-specular
+  float distance = 0.0f;         // path length to the current vertex
+
+  // Called at each surface vertex with its features; `specular` says whether the path
+  // would continue through it for the AOVs.
+  void record(PathSample& out, int depth, glm::vec3 albedo, glm::vec3 beta, glm::vec3 normal,
+              float t, bool specular) {
+    distance += t;
+    if (depth == 0 || through_specular) {
+      out.albedo = depth == 0 ? albedo : glm::clamp(beta * albedo, 0.0f, 1.0f);
+      out.normal = normal * 0.5f + 0.5f;
+      out.depth = distance;
+    }
+    through_specular = through_specular && specular;
+  }
+};
+
 }  // namespace
 
 // Li's helpers below are defined `inline` (they are used in this file only) so that the
@@ -59,6 +89,7 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   const EnvironmentSampler* env = lights_.environment_sampler();
   EnvironmentSampler::Location env_at;  // where `direction` meets the map (depth > 0)
   const LightStrategy strategy = settings_.strategy;
+  AovTracker aov;
   for (int depth = 0;; ++depth) {
     SurfaceHit hit;
     const Material* material = nullptr;
@@ -102,11 +133,7 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     if (in.unlit) {
       // KHR_materials_unlit: the base colour is what the surface shows, from every
       // direction; it reflects nothing (as Blender imports it, an emitter of its colour).
-      if (depth == 0) {
-        out.albedo = in.params.base.base_color;
-        out.normal = hit.ng * 0.5f + 0.5f;
-        out.depth = hit.t;
-      }
+      aov.record(out, depth, in.params.base.base_color, beta, hit.ng, hit.t, false);
       out.L += beta * in.params.base.base_color;
       break;
     }
@@ -114,11 +141,8 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     // silhouettes) would make the BRDF zero; tilt it just enough towards wo.
     const float ndotv = glm::dot(in.ns, wo);
     if (ndotv < 1e-4f) in.ns = glm::normalize(in.ns + (1e-4f - ndotv) * wo);
-    if (depth == 0) {
-      out.albedo = in.params.base.base_color;
-      out.normal = in.ns * 0.5f + 0.5f;
-      out.depth = hit.t;
-    }
+    aov.record(out, depth, in.params.base.base_color, beta, in.ns, hit.t,
+               near_specular_for_aovs(in));
     if (depth >= settings_.max_bounces) break;
 
     // The local frame: +X along the anisotropy direction when there is one.

@@ -207,10 +207,15 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
         const PathSample ps = integrator.Li(origins[k], directions[k], hits[k], *samplers[k],
                                             std::uint32_t(i), index, rays);
         film.sum[i] += ps.L;
-        if (in_half_buffer(index)) film.sum_even[i] += ps.L;
         film.albedo[i] += ps.albedo;
         film.normal[i] += ps.normal;
         film.depth[i] += ps.depth;
+        if (in_half_buffer(index)) {
+          film.sum_even[i] += ps.L;
+          film.albedo_even[i] += ps.albedo;
+          film.normal_even[i] += ps.normal;
+          film.depth_even[i] += ps.depth;
+        }
         film.count[i] = float(s + 1);
         ++taken;
       }

@@ -1,0 +1,73 @@
+// pbrkit denoise: denoises a render's EXR that holds the half-buffer layers the denoiser
+// reads ('pbrkit render --aov denoise' or 'pbrkit merge --aov denoise' writes them) and
+// writes the denoised PNG and EXR (the EXR keeps the raw image and the AOVs as layers).
+#include <memory>
+#include <string>
+
+#include "commands.h"
+#include "denoising.h"
+#include "output_paths.h"
+#include "pbrkit/core/color.h"
+#include "pbrkit/denoise/inputs.h"
+#include "pbrkit/image/display.h"
+#include "pbrkit/image/image_io.h"
+#include "pbrkit/util/log.h"
+
+namespace pbrkit::cli {
+
+namespace {
+
+struct DenoiseCommandOptions {
+  std::string input;
+  std::string output;
+  float exposure = 0.0f;
+  std::string tonemap = "pbr-neutral";
+  bool full_float = false;
+};
+
+Image mean_of(const Image& a, const Image& b) {
+  Image m = a;
+  for (std::size_t i = 0; i < m.data.size(); ++i) m.data[i] = 0.5f * (a.data[i] + b.data[i]);
+  return m;
+}
+
+}  // namespace
+
+void register_denoise_command(CLI::App& app) {
+  auto* cmd = app.add_subcommand(
+      "denoise",
+      "Denoise a path-traced EXR written with '--aov denoise' (its half-buffer layers); "
+      "writes the denoised image as a PNG and a linear EXR beside it");
+  auto o = std::make_shared<DenoiseCommandOptions>();
+  cmd->add_option("input", o->input, "EXR with the layers color_a, color_b, albedo_a, ...")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", o->output,
+                  "output .png or .exr; both are written, the other beside it")
+      ->required();
+  cmd->add_option("--exposure", o->exposure, "exposure in EV for the PNG")->capture_default_str();
+  cmd->add_option("--tonemap", o->tonemap, "tone mapper for the PNG")
+      ->check(CLI::IsMember(tone_mapper_names()))
+      ->capture_default_str();
+  cmd->add_flag("--float", o->full_float, "write the EXR as 32-bit floats (default half)");
+  cmd->callback([o] {
+    const ImageOutputs outputs = image_outputs(o->output);
+    const DenoiseInput input = read_denoise_input(o->input);
+    const std::optional<Image> denoised = run_denoiser(input);
+    create_output_directory(outputs);
+    const auto type = o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;
+    const Image raw = mean_of(input.color[0], input.color[1]);
+    const Image albedo = mean_of(input.albedo[0], input.albedo[1]);
+    const Image normal = mean_of(input.normal[0], input.normal[1]);
+    const Image depth = mean_of(input.depth[0], input.depth[1]);
+    write_exr_layers(outputs.exr, {{"", {"R", "G", "B"}, &*denoised, type},
+                                   {"raw", {"R", "G", "B"}, &raw, type},
+                                   {"albedo", {"R", "G", "B"}, &albedo, type},
+                                   {"normal", {"X", "Y", "Z"}, &normal, type},
+                                   {"depth", {"Z"}, &depth, ExrPixelType::kFloat}});
+    write_display_png(outputs.png, *denoised, {o->exposure, parse_tone_mapper(o->tonemap)});
+    note("denoised {} into {} and {}", o->input, outputs.png, outputs.exr);
+  });
+}
+
+}  // namespace pbrkit::cli

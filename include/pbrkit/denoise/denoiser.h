@@ -1,0 +1,83 @@
+#pragma once
+// The denoiser: feature-guided cross-filtering of a Monte Carlo render's two interleaved
+// half buffers, after Rousselle, Manzi and Zwicker 2013, "Robust Denoising using Feature
+// and Color Information" (Pacific Graphics 2013). docs/DENOISER.md says what each stage
+// does and why this method was chosen.
+//
+//  1. Variance from the half buffers: the squared difference of the two halves' means,
+//     box-smoothed, estimates each pixel's noise (colour and every feature).
+//  2. Feature prefilter: the albedo, normal and depth features are NL-means filtered with
+//     their own variance, each half with the same weights; the residual variance of the
+//     prefiltered features comes from the difference of the filtered halves.
+//  3. Candidate filters: each half is filtered with weights from the other half's colour
+//     (NL-means patch distance normalised by the variance) and from the features (their
+//     distance normalised by their variance and gradient); the weight is the smaller of
+//     the two. A few colour sensitivities give a few candidates, from detail-keeping to
+//     feature-only. Weights are normalised, so every output is a weighted mean of input
+//     pixels: no energy is added and the mean of a region is kept.
+//  4. Selection: Stein's unbiased risk estimate (SURE) of each candidate's error, which
+//     is exact for a cross filter (its weights do not depend on the half it filters),
+//     smoothed; the per-pixel best is chosen and the choice is smoothed.
+//
+// The work runs on oneTBB (pbrkit::parallel_for) with per-pixel independent sums in a
+// fixed order: the output is bit-identical whatever the thread count.
+#include <string>
+#include <vector>
+
+#include "pbrkit/image/image.h"
+#include "pbrkit/util/progress.h"
+
+namespace pbrkit {
+
+/// What the denoiser reads: the two interleaved half buffers of a render (the mean of the
+/// even-indexed samples and of the odd-indexed ones), for the colour and each feature.
+/// Every image has the same size; colour and albedo have 3 channels, normal 3 (XYZ in
+/// [-1, 1]), depth 1 (distance along the camera ray, 0 for a miss). The denoised image
+/// estimates the mean of the two halves.
+struct DenoiseInput {
+  Image color[2];
+  Image albedo[2];
+  Image normal[2];
+  Image depth[2];
+};
+
+/// One candidate filter: its colour sensitivity (larger mixes more; 0 or a negative value
+/// means infinity, a filter guided by the features alone).
+struct DenoiseCandidate {
+  float color_k = 0.45f;
+};
+
+struct DenoiseOptions {
+  int radius = 7;             ///< filter window radius in pixels ((2r+1)^2 neighbours)
+  int patch_radius = 1;       ///< NL-means colour patch radius
+  float feature_k = 0.6f;     ///< feature sensitivity (Rousselle et al. 2013's k_f)
+  float feature_tau = 1e-3f;  ///< floor of the feature normalisation (their tau)
+  /// Candidates, from detail-keeping to smoothest (Rousselle et al. 2013's FIRST..THIRD).
+  std::vector<DenoiseCandidate> candidates{{0.45f}, {1.0f}, {0.0f}};
+  int variance_radius = 3;   ///< box radius smoothing the half-buffer variance estimates
+  int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
+  int error_radius = 3;      ///< box radius smoothing the per-candidate error estimates
+  int selection_radius = 1;  ///< box radius smoothing the per-pixel choice of candidate
+};
+
+/// Diagnostics of one run.
+struct DenoiseStats {
+  double seconds = 0.0;
+  std::vector<double> candidate_share;  ///< fraction of the image each candidate won
+};
+
+/// Checks `input`: eight images present, one size, the channel counts above, every value
+/// finite. Throws pbrkit::Error naming the offending layer (`color_a`, `albedo_b`, ...)
+/// and, for a non-finite value, the pixel.
+void validate_denoise_input(const DenoiseInput& input);
+
+/// The layer names the checks and `pbrkit denoise` use: color_a, color_b, albedo_a, ...
+std::vector<std::string> denoise_layer_names();
+
+/// Denoises `input` (validated first). `progress` gets the fraction done; when it
+/// returns false the work stops and pbrkit::Error("denoising was interrupted") is thrown.
+/// Returns the denoised RGB image (every value finite and >= the smallest input value).
+Image denoise(const DenoiseInput& input, const DenoiseOptions& options = {},
+              const ProgressCallback& progress = {}, DenoiseStats* stats = nullptr);
+
+}  // namespace pbrkit

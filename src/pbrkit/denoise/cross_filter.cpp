@@ -1,0 +1,162 @@
+// The candidate filters (Rousselle et al. 2013, section 4.2): each half buffer is filtered
+// with weights computed from the other half's colour and from the prefiltered features.
+// Weights that do not depend on the data they average keep the noise of the weights out
+// of the result (no correlated blotches) and make the filter linear in its data, so that
+// Stein's unbiased risk estimate of its error is exact (section 4.3).
+#include <algorithm>
+
+#include "pbrkit/util/error.h"
+#include "pbrkit/util/parallel.h"
+#include "stages.h"
+
+namespace pbrkit::denoising {
+
+namespace {
+constexpr int kStrip = 8;  // rows per parallel work item
+}
+
+Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& options,
+                        const std::function<bool()>& tick, int* strip_count) {
+  const Channels& c0 = *input.color[0];
+  const int w = c0.front().width, h = c0.front().height, pad = c0.front().pad;
+  const int r = options.radius;
+  const int k_count = int(options.candidates.size());
+  // Per half: its colour and the channel mean of its variance.
+  Plane mean_variance[2] = {channel_mean(*input.variance[0]), channel_mean(*input.variance[1])};
+  std::vector<const Plane*> guide[2], guide_variance[2];
+  for (int g = 0; g < 2; ++g)
+    for (int c = 0; c < 3; ++c) {
+      guide[g].push_back(&(*input.color[g])[std::size_t(c)]);
+      guide_variance[g].push_back(&(*input.variance[g])[std::size_t(c)]);
+    }
+  std::vector<float> inv_k2(std::size_t(k_count), 0.0f);
+  for (int k = 0; k < k_count; ++k) {
+    const float kc = options.candidates[std::size_t(k)].color_k;
+    inv_k2[std::size_t(k)] = kc > 0.0f ? 1.0f / (kc * kc) : 0.0f;
+  }
+
+  Candidates out;
+  for (int k = 0; k < k_count; ++k) {
+    out.color.emplace_back();
+    for (int c = 0; c < 3; ++c) out.color.back().emplace_back(w, h, 0);
+    out.error.emplace_back(w, h, 0);
+  }
+  const int strips = (h + kStrip - 1) / kStrip;
+  if (strip_count) *strip_count = strips;
+  std::atomic<bool> stopped{false};
+
+  pbrkit::parallel_for(0, strips, [&](int s) {
+    if (stopped.load(std::memory_order_relaxed)) return;
+    const int y0 = s * kStrip, y1 = std::min(h, y0 + kStrip);
+    const std::size_t n = std::size_t(y1 - y0) * w;
+    // Sums per candidate and half: weight * colour (3), weight, weight^2 * variance.
+    constexpr int kSums = 5;
+    std::vector<float> sums(n * kSums * 2 * std::size_t(k_count), 0.0f);
+    auto sum = [&](int k, int half, int which) {
+      return sums.data() + n * (std::size_t((k * 2 + half) * kSums + which));
+    };
+    std::vector<float> dist[2] = {std::vector<float>(n), std::vector<float>(n)};
+    std::vector<float> feature_dist(n), weight(n), scratch;
+    for (int dy = -r; dy <= r; ++dy)
+      for (int dx = -r; dx <= r; ++dx) {
+        for (int g = 0; g < 2; ++g)
+          patch_distance(guide[g], guide_variance[g], dx, dy, options.patch_radius, y0, y1,
+                         dist[g].data(), scratch);
+        const int x0 = std::max(0, -dx), x1 = std::min(w, w - dx);
+        for (int y = y0; y < y1; ++y) {
+          if (y + dy < 0 || y + dy >= h) continue;
+          const std::size_t o = std::size_t(y - y0) * w;
+          // The feature distance: the largest over the features of
+          // (mean_c (f_p - f_q)^2 - (Var_p + min(Var_p, Var_q))) / (k_f^2 max(tau, Var_p,
+          // |grad_p|^2)).
+          float* fd = feature_dist.data() + o;
+          for (int x = x0; x < x1; ++x) fd[x] = 0.0f;
+          for (const Feature* f : input.features) {
+            const float inv_channels = 1.0f / float(f->mean.size());
+            const float* vp = f->variance.row(y);
+            const float* vq = f->variance.row(y + dy) + dx;
+            const float* norm = f->inv_norm.row(y);
+            float* tmp = weight.data() + o;
+            for (int x = x0; x < x1; ++x) tmp[x] = 0.0f;
+            for (const Plane& p : f->mean) {
+              const float* fp = p.row(y);
+              const float* fq = p.row(y + dy) + dx;
+              for (int x = x0; x < x1; ++x) {
+                const float d = fp[x] - fq[x];
+                tmp[x] += d * d;
+              }
+            }
+            for (int x = x0; x < x1; ++x) {
+              const float d = (tmp[x] * inv_channels - (vp[x] + std::min(vp[x], vq[x]))) * norm[x];
+              fd[x] = std::max(fd[x], d);
+            }
+          }
+          const float* q_var[2] = {mean_variance[0].row(y + dy) + dx,
+                                   mean_variance[1].row(y + dy) + dx};
+          for (int k = 0; k < k_count; ++k) {
+            const float ik2 = inv_k2[std::size_t(k)];
+            for (int half = 0; half < 2; ++half) {
+              // Half `half` is filtered with the colour distance of the other half.
+              float* wt = weight.data() + o;
+              if (ik2 > 0.0f) {
+                const float* cd = dist[1 - half].data() + o;
+                for (int x = x0; x < x1; ++x) wt[x] = exp_neg(std::max(cd[x] * ik2, fd[x]));
+              } else if (half == 0) {  // features alone: one weight for both halves
+                for (int x = x0; x < x1; ++x) wt[x] = exp_neg(fd[x]);
+              }
+              const Channels& data = *input.color[half];
+              float* s_w = sum(k, half, 3) + o;
+              float* s_v = sum(k, half, 4) + o;
+              const float* qv = q_var[half];
+              for (int x = x0; x < x1; ++x) {
+                s_w[x] += wt[x];
+                s_v[x] += wt[x] * wt[x] * qv[x];
+              }
+              for (int c = 0; c < 3; ++c) {
+                const float* q = data[std::size_t(c)].row(y + dy) + dx;
+                float* s_c = sum(k, half, c) + o;
+                for (int x = x0; x < x1; ++x) s_c[x] += wt[x] * q[x];
+              }
+            }
+          }
+        }
+      }
+    // Each candidate's output and SURE estimate (Stein 1981; Li et al. 2012): for a linear
+    // filter F = sum_q w_q c_q / W of data with variance s^2, E[|F - mu|^2] =
+    // E[|F - c_p|^2] - s_p^2 + 2 s_p^2 dF/dc_p, and dF/dc_p = w_pp / W = 1 / W. The error
+    // of the average of the two filtered halves: its bias is theirs, its variance
+    // (sum w^2 s^2 / W^2 per half) a quarter of their sum.
+    for (int k = 0; k < k_count; ++k)
+      for (int y = y0; y < y1; ++y) {
+        const std::size_t o = std::size_t(y - y0) * w;
+        for (int x = 0; x < w; ++x) {
+          float err = 0.0f;
+          float filtered[2][3];
+          for (int half = 0; half < 2; ++half) {
+            const float W = sum(k, half, 3)[o + x];  // >= 1: the pixel itself weighs 1
+            const float inv_W = 1.0f / W;
+            const float s2 = mean_variance[half].at(x, y);
+            float sq = 0.0f;
+            for (int c = 0; c < 3; ++c) {
+              filtered[half][c] = sum(k, half, c)[o + x] * inv_W;
+              const float d = filtered[half][c] - (*input.color[half])[std::size_t(c)].at(x, y);
+              sq += d * d;
+            }
+            const float sure = sq / 3.0f - s2 + 2.0f * s2 * inv_W;
+            const float variance = sum(k, half, 4)[o + x] * inv_W * inv_W;
+            err += 0.5f * sure - 0.25f * variance;
+          }
+          for (int c = 0; c < 3; ++c)
+            out.color[std::size_t(k)][std::size_t(c)].at(x, y) =
+                0.5f * (filtered[0][c] + filtered[1][c]);
+          out.error[std::size_t(k)].at(x, y) = err;
+        }
+      }
+    if (tick && !tick()) stopped.store(true, std::memory_order_relaxed);
+  });
+  (void)pad;
+  if (stopped.load()) fail("denoising was interrupted");
+  return out;
+}
+
+}  // namespace pbrkit::denoising

@@ -1,0 +1,116 @@
+// The denoiser's entry point: checks the input, runs the stages of stages.h in order and
+// reports progress.
+#include "pbrkit/denoise/denoiser.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+
+#include "pbrkit/util/error.h"
+#include "stages.h"
+
+namespace pbrkit {
+
+std::vector<std::string> denoise_layer_names() {
+  return {"color_a",  "color_b",  "albedo_a", "albedo_b",
+          "normal_a", "normal_b", "depth_a",  "depth_b"};
+}
+
+void validate_denoise_input(const DenoiseInput& in) {
+  const Image* images[8] = {&in.color[0],  &in.color[1],  &in.albedo[0], &in.albedo[1],
+                            &in.normal[0], &in.normal[1], &in.depth[0],  &in.depth[1]};
+  const int channels[8] = {3, 3, 3, 3, 3, 3, 1, 1};
+  const std::vector<std::string> names = denoise_layer_names();
+  std::vector<std::string> missing;
+  for (int i = 0; i < 8; ++i)
+    if (images[i]->empty()) missing.push_back(names[std::size_t(i)]);
+  if (!missing.empty()) {
+    std::string list;
+    for (const auto& m : missing) list += (list.empty() ? "" : ", ") + m;
+    fail("denoise: missing input layers: {}", list);
+  }
+  const int w = in.color[0].width, h = in.color[0].height;
+  for (int i = 0; i < 8; ++i) {
+    const Image& image = *images[i];
+    const std::string& name = names[std::size_t(i)];
+    if (image.width != w || image.height != h)
+      fail("denoise: layer '{}' is {}x{} but color_a is {}x{}", name, image.width, image.height, w,
+           h);
+    if (image.channels != channels[i])
+      fail("denoise: layer '{}' has {} channels, expected {}", name, image.channels, channels[i]);
+    if (image.data.size() != image.pixel_count() * std::size_t(image.channels))
+      fail("denoise: layer '{}' holds {} values, expected {}", name, image.data.size(),
+           image.pixel_count() * std::size_t(image.channels));
+    for (std::size_t j = 0; j < image.data.size(); ++j)
+      if (!std::isfinite(image.data[j])) {
+        const std::size_t p = j / std::size_t(image.channels);
+        fail("denoise: layer '{}' has a non-finite value ({}) at pixel ({}, {})", name,
+             image.data[j], p % std::size_t(w), p / std::size_t(w));
+      }
+  }
+  if (w < 1 || h < 1) fail("denoise: the image is empty");
+}
+
+Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
+              const ProgressCallback& progress, DenoiseStats* stats) {
+  using namespace denoising;
+  const auto start = std::chrono::steady_clock::now();
+  validate_denoise_input(input);
+  if (options.radius < 0 || options.patch_radius < 0 || options.variance_radius < 0 ||
+      options.prefilter_radius < 0 || options.candidates.empty())
+    fail("denoise: radii must be >= 0 and there must be at least one candidate");
+  const int pad = std::max({options.radius + options.patch_radius, options.prefilter_radius + 1,
+                            options.variance_radius, 1}) +
+                  1;
+  std::mutex progress_mutex;
+  bool keep_going = true;
+  auto report = [&](double fraction) {
+    if (!progress) return true;
+    const std::lock_guard lock(progress_mutex);
+    if (keep_going) keep_going = progress(fraction, {});
+    return keep_going;
+  };
+
+  Channels color[2] = {channels_from(input.color[0], pad), channels_from(input.color[1], pad)};
+  const Channels variance = half_variance(color[0], color[1], options.variance_radius);
+  // Features: albedo, normal and depth, the last normalised by its largest value so that
+  // the feature floor tau means the same in every scene.
+  float depth_max = 0.0f;
+  for (const Image* d : {&input.depth[0], &input.depth[1]})
+    for (float v : d->data) depth_max = std::max(depth_max, std::abs(v));
+  Image depth_scaled[2] = {input.depth[0], input.depth[1]};
+  if (depth_max > 0.0f)
+    for (Image& d : depth_scaled)
+      for (float& v : d.data) v /= depth_max;
+  std::vector<Feature> features;
+  features.push_back(prefilter_feature(channels_from(input.albedo[0], pad),
+                                       channels_from(input.albedo[1], pad), options));
+  features.push_back(prefilter_feature(channels_from(input.normal[0], pad),
+                                       channels_from(input.normal[1], pad), options));
+  features.push_back(prefilter_feature(channels_from(depth_scaled[0], pad),
+                                       channels_from(depth_scaled[1], pad), options));
+  if (!report(0.1)) fail("denoising was interrupted");
+
+  CrossFilterInput cf;
+  cf.color[0] = &color[0];
+  cf.color[1] = &color[1];
+  cf.variance[0] = cf.variance[1] = &variance;  // equal halves: the same variance
+  for (const Feature& f : features) cf.features.push_back(&f);
+  int strips = 1;
+  std::atomic<int> done{0};
+  const Candidates candidates = cross_filter(
+      cf, options,
+      [&] { return report(0.1 + 0.85 * double(++done) / double(std::max(1, strips))); }, &strips);
+  std::vector<double> share;
+  Image out = select_candidates(candidates, options, &share);
+  report(1.0);
+  if (stats) {
+    stats->seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->candidate_share = share;
+  }
+  return out;
+}
+
+}  // namespace pbrkit

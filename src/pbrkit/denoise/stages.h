@@ -1,0 +1,65 @@
+#pragma once
+// The denoiser's stages (include/pbrkit/denoise/denoiser.h gives the overview and
+// docs/DENOISER.md the method): the half-buffer variance estimate, the feature
+// prefilter, the candidate cross filters and the selection among them.
+#include <atomic>
+#include <functional>
+#include <vector>
+
+#include "pbrkit/denoise/denoiser.h"
+#include "planes.h"
+
+namespace pbrkit::denoising {
+
+/// A multi-channel padded image: one Plane per channel.
+using Channels = std::vector<Plane>;
+
+Channels channels_from(const Image& image, int pad);
+
+/// The variance of each half's mean from the two halves a and b (same channels):
+/// E[(a - b)^2] = Var(a) + Var(b) = 2 Var(a) for halves of equal sample counts, so
+/// box_r((a - b)^2 / 2), per channel. The variance of the mean of the two halves is half
+/// of it.
+Channels half_variance(const Channels& a, const Channels& b, int r);
+/// The mean over channels of `per_channel` (one plane, same padding).
+Plane channel_mean(const Channels& per_channel);
+
+/// A feature after prefiltering: its mean (the two filtered halves averaged, one plane
+/// per channel), the variance left in it (one plane: the channel mean of the filtered
+/// halves' variance of the mean) and 1 / (k_f^2 max(tau, variance, |gradient|^2)), the
+/// normalisation of Rousselle et al. 2013, eq. 9.
+struct Feature {
+  Channels mean;
+  Plane variance;
+  Plane inv_norm;
+};
+
+/// NL-means prefilter of one feature's halves with weights from their mean and its
+/// variance (Rousselle et al. 2013, section 4.1). The halves carry the output's padding.
+Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOptions& options);
+
+/// The candidates' outputs: per candidate the RGB mean of the two filtered halves and the
+/// estimated squared error (SURE, channel mean) per pixel.
+struct Candidates {
+  std::vector<Channels> color;  ///< [candidate][channel]
+  std::vector<Plane> error;     ///< [candidate]
+};
+
+struct CrossFilterInput {
+  const Channels* color[2];     ///< the halves
+  const Channels* variance[2];  ///< the variance of each half's mean, per channel
+  std::vector<const Feature*> features;
+};
+
+/// Filters each half with weights from the other half's colour and from the features
+/// (min of the two, Rousselle et al. 2013, eq. 10), once per candidate. `tick` is called
+/// once per finished strip of rows and returns false to stop.
+Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& options,
+                        const std::function<bool()>& tick, int* strips);
+
+/// Chooses per pixel among the candidates by their smoothed relative error, smooths the
+/// choice and blends. Returns the RGB image; `share` gets the fraction each candidate won.
+Image select_candidates(const Candidates& candidates, const DenoiseOptions& options,
+                        std::vector<double>* share);
+
+}  // namespace pbrkit::denoising

@@ -1,0 +1,127 @@
+// `pbrkit render --denoise`, `pbrkit merge --denoise` and `pbrkit denoise` end to end.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include "pbrkit/image/image_io.h"
+#include "support/test_paths.h"
+
+namespace pbrkit {
+namespace {
+
+namespace fs = std::filesystem;
+
+int pbrkit_cli(const std::string& args, std::string* log) {
+  return test::run_command(test::cli_path().string() + " " + args, log);
+}
+
+const Image* layer(const std::vector<std::pair<std::string, Image>>& layers,
+                   const std::string& name) {
+  for (const auto& [n, image] : layers)
+    if (n == name) return &image;
+  return nullptr;
+}
+
+const std::string kRender = "render cornell --renderer path --spp 8 --width 40 --height 40 ";
+
+TEST(DenoiseCli, RenderDenoiseWritesTheDenoisedImageAndKeepsTheRawOne) {
+  const fs::path dir = test::scratch_dir();
+  std::string log;
+  ASSERT_EQ(pbrkit_cli(kRender + "--denoise -o " + (dir / "d.exr").string(), &log), 0) << log;
+  EXPECT_TRUE(fs::exists(dir / "d.png"));
+  const auto layers = read_exr_layers(dir / "d.exr");
+  for (const char* name : {"", "raw", "albedo", "normal", "depth"})
+    ASSERT_NE(layer(layers, name), nullptr) << "layer '" << name << "' missing";
+  const Image& main = *layer(layers, "");
+  const Image& raw = *layer(layers, "raw");
+  ASSERT_EQ(main.data.size(), raw.data.size());
+  EXPECT_NE(main.data, raw.data);
+  // Denoising smooths: the sum of squared differences between horizontal neighbours drops.
+  auto roughness = [](const Image& im) {
+    double s = 0.0;
+    for (int y = 0; y < im.height; ++y)
+      for (int x = 1; x < im.width; ++x) {
+        const double d = im.pixel(x, y)[1] - im.pixel(x - 1, y)[1];
+        s += d * d;
+      }
+    return s;
+  };
+  EXPECT_LT(roughness(main), 0.5 * roughness(raw));
+}
+
+TEST(DenoiseCli, DenoiseCommandEqualsRenderDenoise) {
+  const fs::path dir = test::scratch_dir();
+  std::string log;
+  ASSERT_EQ(pbrkit_cli(kRender + "--denoise -o " + (dir / "direct.exr").string(), &log), 0) << log;
+  ASSERT_EQ(pbrkit_cli(kRender + "--aov denoise -o " + (dir / "layers.exr").string(), &log), 0)
+      << log;
+  ASSERT_EQ(
+      pbrkit_cli("denoise " + (dir / "layers.exr").string() + " -o " + (dir / "later.png").string(),
+                 &log),
+      0)
+      << log;
+  EXPECT_TRUE(fs::exists(dir / "later.png"));
+  const auto direct = read_exr_layers(dir / "direct.exr");
+  const auto later = read_exr_layers(dir / "later.exr");
+  ASSERT_NE(layer(later, "raw"), nullptr);
+  // The same film through the EXR's float half-buffer layers: the same denoised image.
+  EXPECT_EQ(layer(direct, "")->data, layer(later, "")->data);
+}
+
+TEST(DenoiseCli, MissingLayersAreAClearErrorAndWriteNothing) {
+  const fs::path dir = test::scratch_dir();
+  std::string log;
+  ASSERT_EQ(pbrkit_cli(kRender + "--aov albedo -o " + (dir / "plain.exr").string(), &log), 0);
+  const int code = pbrkit_cli(
+      "denoise " + (dir / "plain.exr").string() + " -o " + (dir / "out.png").string(), &log);
+  EXPECT_EQ(code, 1) << log;
+  EXPECT_NE(log.find("missing the layers the denoiser needs: color_a, color_b, albedo_a"),
+            std::string::npos)
+      << log;
+  EXPECT_NE(log.find("--aov denoise"), std::string::npos) << log;
+  EXPECT_FALSE(fs::exists(dir / "out.png"));
+  EXPECT_FALSE(fs::exists(dir / "out.exr"));
+}
+
+TEST(DenoiseCli, MergedPartsDenoiseLikeOneRender) {
+  const fs::path dir = test::scratch_dir();
+  std::string log;
+  ASSERT_EQ(pbrkit_cli(kRender + "--denoise -o " + (dir / "whole.exr").string(), &log), 0);
+  for (const char* range : {"0:3", "3:8"})
+    ASSERT_EQ(pbrkit_cli(kRender + "--sample-range " + range + " -o " +
+                             (dir / (std::string("part") + range[0] + ".exr")).string(),
+                         &log),
+              0)
+        << log;
+  ASSERT_EQ(
+      pbrkit_cli("merge " + (dir / "part0.exr").string() + " " + (dir / "part3.exr").string() +
+                     " --denoise -o " + (dir / "merged.exr").string(),
+                 &log),
+      0)
+      << log;
+  const auto whole = read_exr_layers(dir / "whole.exr");
+  const auto merged = read_exr_layers(dir / "merged.exr");
+  ASSERT_NE(layer(merged, "raw"), nullptr);
+  const Image& a = *layer(whole, "");
+  const Image& b = *layer(merged, "");
+  ASSERT_EQ(a.data.size(), b.data.size());
+  // Sums of parts equal the whole to float rounding; the denoised images agree as closely
+  // (half-float output: 2^-10 relative).
+  double worst = 0.0;
+  for (std::size_t i = 0; i < a.data.size(); ++i)
+    worst = std::max(worst, double(std::abs(a.data[i] - b.data[i])) / (1e-3 + a.data[i]));
+  EXPECT_LT(worst, 4e-3);
+}
+
+TEST(DenoiseCli, SampleRangeWithDenoiseIsRefused) {
+  const fs::path dir = test::scratch_dir();
+  std::string log;
+  EXPECT_EQ(
+      pbrkit_cli(kRender + "--sample-range 0:4 --denoise -o " + (dir / "p.exr").string(), &log), 1);
+  EXPECT_NE(log.find("pbrkit merge --denoise"), std::string::npos) << log;
+}
+
+}  // namespace
+}  // namespace pbrkit

@@ -1,0 +1,197 @@
+// The denoiser on synthetic inputs whose noise is known: every tolerance below comes from
+// that noise (sigma), not from the output of the code under test.
+#include <cmath>
+#include <functional>
+#include <random>
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include "pbrkit/denoise/denoiser.h"
+#include "pbrkit/util/error.h"
+
+namespace pbrkit {
+namespace {
+
+constexpr int kSize = 64;
+
+// Halves of a render whose every pixel has mean `truth(x, y)` (RGB grey) and whose half
+// means each carry Gaussian noise of standard deviation `sigma_half`; the features are
+// noise-free: albedo `albedo(x, y)`, a constant normal and depth.
+DenoiseInput synthetic(const std::function<float(int, int)>& truth,
+                       const std::function<float(int, int)>& albedo, float sigma_half,
+                       std::uint32_t seed = 1) {
+  DenoiseInput in;
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> noise(0.0f, sigma_half);
+  for (int h = 0; h < 2; ++h) {
+    in.color[h] = Image(kSize, kSize, 3);
+    in.albedo[h] = Image(kSize, kSize, 3);
+    in.normal[h] = Image(kSize, kSize, 3);
+    in.depth[h] = Image(kSize, kSize, 1, 2.0f);
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const float t = truth(x, y) + noise(rng);
+        in.color[h].set_rgb(x, y, glm::vec3(t));
+        in.albedo[h].set_rgb(x, y, glm::vec3(albedo(x, y)));
+        in.normal[h].set_rgb(x, y, glm::vec3(0.0f, 0.0f, 1.0f));
+      }
+  }
+  return in;
+}
+
+double region_mean(const Image& image, int x0, int y0, int x1, int y1) {
+  double sum = 0.0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x) sum += image.pixel(x, y)[0];
+  return sum / double((x1 - x0) * (y1 - y0));
+}
+
+TEST(Denoiser, ConstantImageComesBackConstant) {
+  const float c = 0.5f, sigma_half = 0.1f;
+  // The raw image is the mean of the halves: its per-pixel noise is sigma_half / sqrt 2.
+  const float sigma_raw = sigma_half / std::sqrt(2.0f);
+  const Image out =
+      denoise(synthetic([&](int, int) { return c; }, [](int, int) { return 0.5f; }, sigma_half));
+  double sq = 0.0, worst = 0.0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const double d = out.pixel(x, y)[0] - c;
+      sq += d * d;
+      worst = std::max(worst, std::abs(d));
+    }
+  const double rms = std::sqrt(sq / (kSize * kSize));
+  // A filter that averages at least 16 independent pixels cuts the noise 4-fold; the
+  // 15x15 window averages far more wherever the features agree, as here everywhere.
+  EXPECT_LT(rms, sigma_raw / 4.0) << "raw noise " << sigma_raw;
+  // No pixel is left at a raw pixel's typical deviation.
+  EXPECT_LT(worst, sigma_raw) << "raw noise " << sigma_raw;
+}
+
+TEST(Denoiser, AlbedoStepStaysSharp) {
+  const float sigma_half = 0.05f;
+  auto step = [](int x, int) { return x < kSize / 2 ? 0.2f : 0.8f; };
+  const Image out = denoise(synthetic(step, step, sigma_half));
+  // The column profile (mean over rows); the edge is between x = 31 and x = 32. Pixels
+  // between 10% and 90% of the step make up its width.
+  int width = 0;
+  for (int x = 0; x < kSize; ++x) {
+    const double v = region_mean(out, x, 0, x + 1, kSize);
+    if (v > 0.2 + 0.1 * 0.6 && v < 0.8 - 0.1 * 0.6) ++width;
+  }
+  EXPECT_LE(width, 2);
+  // Each side keeps its level within 4 standard errors of the raw side mean.
+  const double se = sigma_half / std::sqrt(2.0) / std::sqrt(double(kSize * kSize / 2));
+  EXPECT_NEAR(region_mean(out, 0, 0, kSize / 2, kSize), 0.2, 4 * se + 1e-3);
+  EXPECT_NEAR(region_mean(out, kSize / 2, 0, kSize, kSize), 0.8, 4 * se + 1e-3);
+}
+
+TEST(Denoiser, AlbedoTextureKeepsItsContrast) {
+  const float sigma_half = 0.05f;
+  // Stripes 2 px wide, 0.3 and 0.7: a texture the albedo shows.
+  auto stripes = [](int x, int) { return (x / 2) % 2 == 0 ? 0.3f : 0.7f; };
+  const Image out = denoise(synthetic(stripes, stripes, sigma_half));
+  double hi = 0.0, lo = 0.0;
+  int n_hi = 0, n_lo = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      if (stripes(x, y) > 0.5f) {
+        hi += out.pixel(x, y)[0];
+        ++n_hi;
+      } else {
+        lo += out.pixel(x, y)[0];
+        ++n_lo;
+      }
+    }
+  const double contrast = hi / n_hi - lo / n_lo;
+  EXPECT_NEAR(contrast, 0.4, 0.1 * 0.4);
+}
+
+TEST(Denoiser, RegionMeansArePreserved) {
+  const float sigma_half = 0.2f;
+  // Blocks of different albedo under one light: radiance = albedo.
+  auto blocks = [](int x, int y) { return 0.1f + 0.2f * float((x / 16 + 2 * (y / 16)) % 4); };
+  const DenoiseInput in = synthetic(blocks, blocks, sigma_half, 7);
+  const Image out = denoise(in);
+  const double sigma_raw = sigma_half / std::sqrt(2.0);
+  for (int by = 0; by < kSize; by += 32)
+    for (int bx = 0; bx < kSize; bx += 32) {
+      double truth = 0.0;
+      for (int y = by; y < by + 32; ++y)
+        for (int x = bx; x < bx + 32; ++x) truth += blocks(x, y);
+      truth /= 32.0 * 32.0;
+      // The raw mean of a 32x32 region has standard error sigma_raw / 32; a weighted mean
+      // of the same pixels (and neighbours of the same block) no more than twice that.
+      const double tolerance = 4.0 * 2.0 * sigma_raw / 32.0;
+      EXPECT_NEAR(region_mean(out, bx, by, bx + 32, by + 32), truth, tolerance)
+          << "region " << bx << "," << by;
+    }
+}
+
+TEST(Denoiser, SameOutputWithAnyThreadCount) {
+  auto ramp = [](int x, int y) { return 0.01f * float(x + y); };
+  const DenoiseInput in = synthetic(
+      ramp, [](int x, int) { return x < 20 ? 0.3f : 0.6f; }, 0.1f);
+  Image one, many;
+  tbb::task_arena(1).execute([&] { one = denoise(in); });
+  tbb::task_arena(2).execute([&] { many = denoise(in); });
+  ASSERT_EQ(one.data.size(), many.data.size());
+  EXPECT_TRUE(one.data == many.data);
+}
+
+TEST(Denoiser, BadInputGivesClearErrors) {
+  const DenoiseInput good =
+      synthetic([](int, int) { return 0.5f; }, [](int, int) { return 0.5f; }, 0.1f);
+  auto message = [](const DenoiseInput& in) -> std::string {
+    try {
+      denoise(in);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  DenoiseInput missing = good;
+  missing.albedo[1] = Image();
+  missing.depth[0] = Image();
+  EXPECT_NE(message(missing).find("missing input layers: albedo_b, depth_a"), std::string::npos)
+      << message(missing);
+  DenoiseInput size = good;
+  size.normal[0] = Image(kSize, kSize - 1, 3);
+  EXPECT_NE(message(size).find("'normal_a' is 64x63"), std::string::npos) << message(size);
+  DenoiseInput channels = good;
+  channels.depth[1] = Image(kSize, kSize, 3);
+  EXPECT_NE(message(channels).find("'depth_b' has 3 channels"), std::string::npos);
+  for (float bad : {std::nanf(""), INFINITY, -INFINITY}) {
+    DenoiseInput nan = good;
+    nan.color[1].pixel(5, 9)[2] = bad;
+    EXPECT_NE(message(nan).find("'color_b' has a non-finite value"), std::string::npos);
+    EXPECT_NE(message(nan).find("(5, 9)"), std::string::npos) << message(nan);
+    DenoiseInput feature = good;
+    feature.depth[0].pixel(3, 4)[0] = bad;
+    EXPECT_NE(message(feature).find("'depth_a' has a non-finite value"), std::string::npos);
+  }
+}
+
+TEST(Denoiser, HugeValuesGiveFiniteOutput) {
+  DenoiseInput in = synthetic([](int, int) { return 0.5f; }, [](int, int) { return 0.5f; }, 0.1f);
+  in.color[0].pixel(10, 10)[0] = 3e38f;
+  in.color[1].pixel(40, 40)[1] = 1e30f;
+  in.depth[0].pixel(20, 20)[0] = 1e30f;
+  const Image out = denoise(in);
+  for (float v : out.data) ASSERT_TRUE(std::isfinite(v));
+}
+
+TEST(Denoiser, ProgressCanStopIt) {
+  const DenoiseInput in =
+      synthetic([](int, int) { return 0.5f; }, [](int, int) { return 0.5f; }, 0.1f);
+  EXPECT_THROW(denoise(in, {}, [](double, const std::string&) { return false; }), Error);
+  double last = 0.0;
+  denoise(in, {}, [&](double f, const std::string&) {
+    last = f;
+    return true;
+  });
+  EXPECT_EQ(last, 1.0);
+}
+
+}  // namespace
+}  // namespace pbrkit
