@@ -11,12 +11,15 @@ Mesh make_uv_sphere(float radius, int segments, int rings) {
   mesh.name = "sphere";
   for (int j = 0; j <= rings; ++j) {
     const float v = float(j) / float(rings);
+    // The poles and the seam (u = 1) repeat positions exactly, so that welding equal
+    // positions closes the sphere (mesh_closure.h; sin(float(pi)) is not 0).
     const float theta = v * kPi;
+    const float sin_theta = j == 0 || j == rings ? 0.0f : std::sin(theta);
+    const float cos_theta = j == 0 ? 1.0f : j == rings ? -1.0f : std::cos(theta);
     for (int i = 0; i <= segments; ++i) {
       const float u = float(i) / float(segments);
-      const float phi = u * 2.0f * kPi;
-      const glm::vec3 n(std::sin(theta) * std::sin(phi), std::cos(theta),
-                        std::sin(theta) * std::cos(phi));
+      const float phi = i == segments ? 0.0f : u * 2.0f * kPi;
+      const glm::vec3 n(sin_theta * std::sin(phi), cos_theta, sin_theta * std::cos(phi));
       mesh.positions.push_back(radius * n);
       mesh.normals.push_back(n);
       // d(position)/d(phi) direction: the tangent follows increasing u.
