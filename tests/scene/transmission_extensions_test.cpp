@@ -125,12 +125,12 @@ TEST(TransmissionExtensions, AbsentValuesTakeTheReadmeDefaults) {
   const Scene s = load_scene(fixture().string());
   const Material& m = material(s, "empty_extensions");
   ASSERT_TRUE(m.transmission && m.volume && m.dispersion && m.diffuse_transmission);
-  EXPECT_EQ(m.transmission->factor, 0.0f);             // transmission README, Properties
-  EXPECT_EQ(m.volume->thickness_factor, 0.0f);         // volume README, Properties
-  EXPECT_EQ(m.volume->attenuation_distance, kInf);     // "default: +Infinity"
+  EXPECT_EQ(m.transmission->factor, 0.0f);          // transmission README, Properties
+  EXPECT_EQ(m.volume->thickness_factor, 0.0f);      // volume README, Properties
+  EXPECT_EQ(m.volume->attenuation_distance, kInf);  // "default: +Infinity"
   EXPECT_EQ(m.volume->attenuation_color, glm::vec3(1.0f));
-  EXPECT_EQ(m.dispersion->dispersion, 0.0f);           // dispersion README
-  EXPECT_EQ(m.diffuse_transmission->factor, 0.0f);     // diffuse_transmission schema
+  EXPECT_EQ(m.dispersion->dispersion, 0.0f);        // dispersion README
+  EXPECT_EQ(m.diffuse_transmission->factor, 0.0f);  // diffuse_transmission schema
   EXPECT_EQ(m.diffuse_transmission->color_factor, glm::vec3(1.0f));
   for (const TextureRef* ref : m.textures()) EXPECT_FALSE(ref->valid());
   const Material& none = material(s, "no_extensions");
@@ -160,15 +160,13 @@ TEST(TransmissionExtensions, InfoShowsThemAndListsNoneAsUnsupported) {
   EXPECT_NEAR(
       e["KHR_materials_diffuse_transmission"]["diffuseTransmissionColorFactor"][1].get<double>(),
       0.7, 1e-6);
-  EXPECT_TRUE(
-      e["KHR_materials_diffuse_transmission"].contains("diffuseTransmissionColorTexture"));
+  EXPECT_TRUE(e["KHR_materials_diffuse_transmission"].contains("diffuseTransmissionColorTexture"));
   // An absent attenuationDistance (infinity) is null: JSON has no infinity.
-  EXPECT_TRUE(j["material_list"][1]["extensions"]["KHR_materials_volume"]["attenuationDistance"]
-                  .is_null());
+  EXPECT_TRUE(
+      j["material_list"][1]["extensions"]["KHR_materials_volume"]["attenuationDistance"].is_null());
 
-  ASSERT_EQ(test::run_command(test::cli_path().string() + " info '" + fixture().string() + "'",
-                              &out),
-            0);
+  ASSERT_EQ(
+      test::run_command(test::cli_path().string() + " info '" + fixture().string() + "'", &out), 0);
   EXPECT_NE(out.find("transmission 0.8, volume thickness 0.5 attenuation (0.9, 0.5, 0.2) at 0.25"
                      ", dispersion 0.4 (Abbe 50), diffuse transmission 0.3 (0.2, 0.7, 0.9)"),
             std::string::npos)
@@ -264,8 +262,7 @@ TEST(TransmissionExtensions, WrongTypesAndNonFiniteValuesAreErrorsNamingTheJsonP
       {"thickness_transform_not_finite",
        {{"KHR_materials_volume",
          {{"thicknessTexture",
-           {{"index", 0},
-            {"extensions", {{"KHR_texture_transform", {{"offset", {0, 1e39}}}}}}}}}}},
+           {{"index", 0}, {"extensions", {{"KHR_texture_transform", {{"offset", {0, 1e39}}}}}}}}}}},
        "materials[0].extensions.KHR_materials_volume.thicknessTexture.extensions."
        "KHR_texture_transform",
        "non-finite"},
@@ -287,7 +284,8 @@ TEST(TransmissionExtensions, WrongTypesAndNonFiniteValuesAreErrorsNamingTheJsonP
 
 TEST(TransmissionExtensions, NanInTheFileIsAnErrorNamingTheFile) {
   // JSON has no NaN; a file that writes one is not JSON.
-  const fs::path path = variant("nan", {{"KHR_materials_transmission", {{"transmissionFactor", 7}}}});
+  const fs::path path =
+      variant("nan", {{"KHR_materials_transmission", {{"transmissionFactor", 7}}}});
   std::ifstream in(path);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   in.close();
@@ -457,8 +455,7 @@ TEST(TransmissionExtensions, AVolumeOnAnOpenMeshIsAWarningAndRenderedThinWalled)
             "the primitive is not closed (4 edges not shared by exactly two triangles); it is "
             "rendered thin-walled");
   ASSERT_EQ(log.lines.size(), 1u);
-  EXPECT_EQ(log.lines[0].rfind(path.string() + ": meshes[0].primitives[2]", 0), 0u)
-      << log.lines[0];
+  EXPECT_EQ(log.lines[0].rfind(path.string() + ": meshes[0].primitives[2]", 0), 0u) << log.lines[0];
   int closed = 0, open = 0;
   for (const Mesh& mesh : s.meshes)
     if (mesh.material == 0) (mesh.closed ? closed : open)++;
@@ -595,10 +592,10 @@ TEST(TransmissionExtensions, WriteLoadRoundTripKeepsEveryValueAndPassesTheValida
   EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();
   std::vector<std::string> used = loaded.extensions_used;
   std::sort(used.begin(), used.end());
-  EXPECT_EQ(used, (std::vector<std::string>{
-                      "KHR_materials_diffuse_transmission", "KHR_materials_dispersion",
-                      "KHR_materials_ior", "KHR_materials_transmission", "KHR_materials_volume",
-                      "KHR_texture_transform"}));
+  EXPECT_EQ(used, (std::vector<std::string>{"KHR_materials_diffuse_transmission",
+                                            "KHR_materials_dispersion", "KHR_materials_ior",
+                                            "KHR_materials_transmission", "KHR_materials_volume",
+                                            "KHR_texture_transform"}));
   ASSERT_EQ(loaded.materials.size(), 2u);
   const Material& b = loaded.materials[0];
   ASSERT_TRUE(b.transmission && b.volume && b.dispersion && b.diffuse_transmission);

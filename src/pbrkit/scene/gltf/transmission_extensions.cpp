@@ -37,8 +37,8 @@ void Loader::read_transmission_extensions(const json& extensions, const std::str
   if (const json* e = object("KHR_materials_volume")) {
     const std::string path = where + ".extensions.KHR_materials_volume";
     VolumeExtension v;
-    v.thickness_factor = extension_factor(*e, "thicknessFactor", v.thickness_factor, 0.0f, kInf,
-                                          path);
+    v.thickness_factor =
+        extension_factor(*e, "thicknessFactor", v.thickness_factor, 0.0f, kInf, path);
     v.thickness_texture = extension_texture(*e, "thicknessTexture", false, path);
     const float distance =
         extension_factor(*e, "attenuationDistance", v.attenuation_distance, -kInf, kInf, path);
@@ -95,10 +95,10 @@ void Loader::read_transmission_extensions(const json& extensions, const std::str
         where));
   if (m.volume && m.volume->thickness_factor > 0.0f && m.double_sided)
     // KHR_materials_volume, "Properties": doubleSided has no effect on volume boundaries.
-    warning(fmt::format(
-        "{}.doubleSided: has no effect on a volume boundary (KHR_materials_volume with "
-        "thicknessFactor > 0): both sides of the mesh bound the medium",
-        where));
+    warning(
+        fmt::format("{}.doubleSided: has no effect on a volume boundary (KHR_materials_volume with "
+                    "thicknessFactor > 0): both sides of the mesh bound the medium",
+                    where));
 }
 
 }  // namespace pbrkit::gltf
