@@ -112,7 +112,9 @@ class Bsdf {
   bool has_transmission() const { return transmissive_; }
   /// Whether the transmission is a delta lobe (smooth glass): its light is found by BSDF
   /// sampling only.
-  bool has_delta_lobe() const { return glass_weight_ > 0.0f && dielectric_is_smooth(glass_); }
+  bool has_delta_lobe() const {
+    return transmissive_ && glass_weight_ > 0.0f && dielectric_is_smooth(*glass_);
+  }
 
  private:
   friend class BoundBsdf;
@@ -120,16 +122,18 @@ class Bsdf {
   // scaled by 1 - dt), weighted by opaque_weight_.
   Brdf base_;
   bool transmissive_ = false;
-  float opaque_weight_ = 1.0f;  // (1 - metallic)(1 - transmission)
-  float glass_weight_ = 0.0f;   // (1 - metallic) transmission
-  glm::vec3 glass_tint_{1.0f};  // baseColor
-  Dielectric glass_;
-  float metal_weight_ = 0.0f;  // metallic, when the base is split
+  // The rest is set only when transmissive_ (left uninitialised otherwise: an opaque
+  // material, at every path vertex, pays for none of it).
+  float opaque_weight_;   // (1 - metallic)(1 - transmission)
+  float glass_weight_;    // (1 - metallic) transmission
+  glm::vec3 glass_tint_;  // baseColor
+  std::optional<Dielectric> glass_;
+  float metal_weight_;  // metallic, when the base is split
   std::optional<Brdf> metal_;
-  float dt_weight_ = 0.0f;    // (1 - metallic)(1 - transmission) diffuseTransmission
-  glm::vec3 dt_color_{0.0f};  // diffuseTransmissionColor / pi
-  float dt_F0_ = 0.0f;        // tau's Schlick terms: specular max3(F0_d) and
-  float dt_F90_ = 1.0f;       // specular F90_d (0 for ior 1: no interface), as core/brdf.h
+  float dt_weight_;       // (1 - metallic)(1 - transmission) diffuseTransmission
+  glm::vec3 dt_color_;    // diffuseTransmissionColor / pi
+  float dt_F0_, dt_F90_;  // tau's Schlick terms: specular max3(F0_d), specular F90_d (0 for
+                          // ior 1: no interface), as core/brdf.h
   // The coat: a black dielectric Brdf (ior 1.5, no compensation) in the coat's frame.
   std::optional<Brdf> coat_;
   float coat_weight_ = 0.0f;
@@ -174,9 +178,9 @@ class BoundBsdf {
   std::optional<BoundBrdf> metal_;
   bool layered_ = false;
   float p_coat_ = 0.0f, p_sheen_ = 0.0f;
-  float p_glass_ = 0.0f, p_metal_ = 0.0f, p_dt_ = 0.0f;  // (transmissive only)
-  float coat_o_ = 1.0f;                                  // 1 - clearcoat F_c(n_c.v)
-  float sheen_o_ = 1.0f;                                 // 1 - max3(sheenColor) E_sheen(n.v)
+  float p_glass_, p_metal_, p_dt_;  // set by bind_transmissive only (opaque: never read)
+  float coat_o_ = 1.0f;             // 1 - clearcoat F_c(n_c.v)
+  float sheen_o_ = 1.0f;            // 1 - max3(sheenColor) E_sheen(n.v)
 };
 
 // ---- Definitions (inline: the path tracer binds a BSDF at every vertex). ----

@@ -17,7 +17,6 @@ bool is_transmissive(const SurfaceParams& p) {
 // (metallic 0) whose diffuse lobe keeps the 1 - dt not transmitted diffusely (the diffuse
 // lobe is linear in baseColor, and the dielectric's specular does not depend on it).
 BaseLayer opaque_part(const SurfaceParams& p) {
-  if (!is_transmissive(p)) return p.base;
   BaseLayer d = p.base;
   d.metallic = 0.0f;
   d.base_color *= 1.0f - saturate(p.diffuse_transmission.weight);
@@ -26,8 +25,7 @@ BaseLayer opaque_part(const SurfaceParams& p) {
 
 }  // namespace
 
-Bsdf::Bsdf(const SurfaceParams& params, const BrdfOptions& options)
-    : base_(opaque_part(params), options) {
+Bsdf::Bsdf(const SurfaceParams& params, const BrdfOptions& options) : base_(params.base, options) {
   if (params.coat.weight > 0.0f) {
     // The coat is a GGX dielectric of ior 1.5 with nothing under it (its Brdf has a black
     // base) and no compensation; the layering weights it and attenuates what is below.
@@ -46,22 +44,26 @@ Bsdf::Bsdf(const SurfaceParams& params, const BrdfOptions& options)
   if (!is_transmissive(params)) return;
   // f_base = (1 - m) [(1 - t) f_dielectric' + t f_glass] + m f_metal (bsdf.h).
   transmissive_ = true;
+  // (Built again here rather than in the initialiser: opaque materials, the path tracer's
+  // every vertex, then pay nothing for the copy.)
+  base_ = Brdf(opaque_part(params), options);
   const float m = saturate(params.base.metallic);
   const float t = saturate(params.transmission.weight);
   const float dt = saturate(params.diffuse_transmission.weight);
   opaque_weight_ = (1.0f - m) * (1.0f - t);
   glass_weight_ = (1.0f - m) * t;
   glass_tint_ = glm::clamp(params.base.base_color, 0.0f, 1.0f);
-  glass_.eta = params.transmission.eta;
+  Dielectric& glass = glass_.emplace();
+  glass.eta = params.transmission.eta;
   // The same roughness as the reflection (transmission README), after the Brdf's clamp.
-  glass_.alpha_x = base_.alpha_x();
-  glass_.alpha_y = base_.alpha_y();
-  glass_.thin_walled = params.transmission.thin_walled;
+  glass.alpha_x = base_.alpha_x();
+  glass.alpha_y = base_.alpha_y();
+  glass.thin_walled = params.transmission.thin_walled;
+  metal_weight_ = m;
   if (m > 0.0f) {
     BaseLayer metal = params.base;
     metal.metallic = 1.0f;
     metal_.emplace(metal, options);
-    metal_weight_ = m;
   }
   dt_weight_ = (1.0f - m) * (1.0f - t) * dt;
   dt_color_ = glm::clamp(params.diffuse_transmission.color, 0.0f, 1.0f) * kInvPi;
@@ -73,6 +75,7 @@ Bsdf::Bsdf(const SurfaceParams& params, const BrdfOptions& options)
 
 void BoundBsdf::bind_transmissive() {
   const Bsdf& b = *bsdf_;
+  p_glass_ = p_metal_ = p_dt_ = 0.0f;
   float e_coat = 0.0f, e_sheen = 0.0f;
   if (b.coat_) {
     const glm::vec3 wo_c = b.coat_frame_.to_local(wo_);
@@ -88,7 +91,7 @@ void BoundBsdf::bind_transmissive() {
   if (b.metal_) metal_.emplace(*b.metal_, wo_);
   // Estimated albedos: the glass reflects F (exact, at the macro normal) and transmits the
   // rest tinted; any positive split keeps the estimator unbiased.
-  const float F = fresnel_dielectric(wo_.z, b.glass_.eta);
+  const float F = fresnel_dielectric(wo_.z, b.glass_->eta);
   const float under = coat_o_ * sheen_o_;
   const float e_glass = under * b.glass_weight_ * (F + (1.0f - F) * luminance(b.glass_tint_));
   const float e_metal = metal_ ? under * b.metal_weight_ * metal_->albedo_estimate() : 0.0f;
@@ -126,10 +129,10 @@ glm::vec3 BoundBsdf::eval_transmissive(glm::vec3 wi, float* pdf) const {
     f += b.dt_weight_ * b.dt_color_ * std::min(tau(wo_.z), tau(-wi.z));
     p += p_dt_ * cosine_hemisphere_pdf(-wi.z);
   }
-  if (b.glass_weight_ > 0.0f && !dielectric_is_smooth(b.glass_)) {
-    const float fg = dielectric_eval(b.glass_, wo_, wi);
+  if (b.glass_weight_ > 0.0f && !dielectric_is_smooth(*b.glass_)) {
+    const float fg = dielectric_eval(*b.glass_, wo_, wi);
     f += b.glass_weight_ * fg * (wi.z < 0.0f ? b.glass_tint_ : glm::vec3(1.0f));
-    if (pdf) p += p_glass_ * dielectric_pdf(b.glass_, wo_, wi);
+    if (pdf) p += p_glass_ * dielectric_pdf(*b.glass_, wo_, wi);
   }
   // The layers above: f = f_coat + A_coat (f_sheen + A_sheen f_base), |cos| below.
   if (b.sheen_max_ > 0.0f) {
@@ -171,7 +174,7 @@ BrdfSample BoundBsdf::sample_transmissive(float u_lobe, glm::vec2 u) const {
   } else if (u_lobe < c_glass) {
     s.wi = reflect_about(wo_, sample_charlie(u, b.sheen_roughness_).h);
   } else if (u_lobe < c_dt) {
-    const DielectricSample ds = dielectric_sample(b.glass_, wo_, rescale(c_glass, p_glass_), u);
+    const DielectricSample ds = dielectric_sample(*b.glass_, wo_, rescale(c_glass, p_glass_), u);
     if (!ds.valid) return s;
     if (ds.delta) {
       // A delta lobe: its weight directly (mass / probability), and no other lobe shares

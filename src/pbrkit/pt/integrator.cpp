@@ -156,35 +156,11 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     const bool transmits =
         in.params.transmission.weight > 0.0f || in.params.diffuse_transmission.weight > 0.0f;
     bool volume = false;
-    float n_material = material->ior;
+    float n_material = 1.0f;
     glm::vec3 sigma_near(0.0f), sigma_far(0.0f);
-    if (transmits) {
-      TransmissionLayer& tl = in.params.transmission;
-      volume = !tl.thin_walled && material->volume && geometry_.meshes()[hit.geom].mesh->closed;
-      tl.thin_walled = !volume;
-      sigma_near = sigma_far = media.sigma_a();
-      if (volume && material->dispersion && material->dispersion->dispersion > 0.0f) {
-        // KHR_materials_dispersion: the path takes one channel's wavelength from here on
-        // (core/dispersion.h); paths that never meet dispersion pay nothing.
-        if (channel < 0) {
-          const ChannelSample cs = sample_channel(u_bsdf.w);
-          channel = cs.channel;
-          beta *= cs.weight;
-        }
-        n_material = dispersion_iors(material->ior, material->dispersion->dispersion)[channel];
-      }
-      if (!volume) {
-        tl.eta = n_material / media.ior();
-      } else if (front_face) {
-        tl.eta = n_material / media.ior();
-        sigma_far = volume_absorption(material->volume->attenuation_color,
-                                      material->volume->attenuation_distance);
-      } else {
-        const MediumStack::Entry* beyond = media.outside_of(hit.geom);
-        tl.eta = (beyond ? beyond->ior : 1.0f) / n_material;
-        sigma_far = beyond ? beyond->sigma_a : glm::vec3(0.0f);
-      }
-    }
+    if (transmits) [[unlikely]]
+      volume = resolve_transmission(in, *material, hit, front_face, media, channel, beta, u_bsdf.w,
+                                    n_material, sigma_near, sigma_far);
     const Bsdf bsdf(in.params, settings_.brdf);
     const BoundBsdf brdf = bsdf.at(frame.to_local(wo));
 
@@ -232,6 +208,42 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 // environment are weighted against the BSDF sampling that could have found them (power
 // heuristic); delta lights, which only this strategy reaches, have weight 1. Returns the
 // contribution to the path's radiance, beta f Li tr w / pdf.
+[[gnu::noinline]] bool Integrator::resolve_transmission(ShadingInputs& in, const Material& material,
+                                                        const SurfaceHit& hit, bool front_face,
+                                                        const MediumStack& media, int& channel,
+                                                        glm::vec3& beta, float u_channel,
+                                                        float& n_material, glm::vec3& sigma_near,
+                                                        glm::vec3& sigma_far) const {
+  TransmissionLayer& tl = in.params.transmission;
+  const bool volume =
+      !tl.thin_walled && material.volume && geometry_.meshes()[hit.geom].mesh->closed;
+  tl.thin_walled = !volume;
+  n_material = material.ior;
+  sigma_near = sigma_far = media.sigma_a();
+  if (volume && material.dispersion && material.dispersion->dispersion > 0.0f) {
+    // KHR_materials_dispersion: the path takes one channel's wavelength from here on
+    // (core/dispersion.h); paths that never meet dispersion pay nothing.
+    if (channel < 0) {
+      const ChannelSample cs = sample_channel(u_channel);
+      channel = cs.channel;
+      beta *= cs.weight;
+    }
+    n_material = dispersion_iors(material.ior, material.dispersion->dispersion)[channel];
+  }
+  if (!volume) {
+    tl.eta = n_material / media.ior();
+  } else if (front_face) {
+    tl.eta = n_material / media.ior();
+    sigma_far = volume_absorption(material.volume->attenuation_color,
+                                  material.volume->attenuation_distance);
+  } else {
+    const MediumStack::Entry* beyond = media.outside_of(hit.geom);
+    tl.eta = (beyond ? beyond->ior : 1.0f) / n_material;
+    sigma_far = beyond ? beyond->sigma_a : glm::vec3(0.0f);
+  }
+  return volume;
+}
+
 // Through a transmissive surface the light may be on either side; a refractive (delta)
 // interface has no lobe a light sample can meet, and a shadow ray through glass is blocked
 // by it: light through glass arrives by BSDF sampling only (caustics; MODEL.md).
