@@ -21,6 +21,7 @@ struct GpuMesh {
   std::array<GLuint, 7> buffers{};  // 6 attributes + indices
   GLsizei index_count = 0;
   bool has_colors = false;
+  bool closed = true;  ///< Mesh::closed: a volume needs a closed mesh, else it is thin walled
   int material = -1;
   /// The material's alphaMode as drawn: 0 opaque, 1 mask, 2 blend; BLEND without any
   /// alpha below 1 is drawn opaque (scene.h has_alpha).
