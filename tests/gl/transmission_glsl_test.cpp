@@ -15,6 +15,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_test_context.h"
+#include "pbrkit/core/brdf.h"
+#include "pbrkit/core/microfacet.h"
 #include "pbrkit/gl/transmission_eval.h"
 
 namespace pbrkit::gl {
@@ -208,6 +210,57 @@ TEST(TransmissionGlsl, RoughnessAndLodFollowTheSampleViewer) {
     const double lod = std::log2(double(c.width)) * rough;  // 1x1 level at roughness 1
     worst = std::max({worst, std::abs(gpu[i].x - rough) / (1e-4 * rough + 1e-7),
                       std::abs(gpu[i].y - lod) / (1e-4 * lod + 1e-6)});
+  }
+  std::printf("%zu cases; worst %.3g of the allowed error\n", cases.size(), worst);
+  EXPECT_LE(worst, 1.0);
+}
+
+// The Sample Viewer's punctual transmission lobe, against the C++ GGX D and
+// height-correlated Smith G of core/microfacet.h (the path tracer's), with the dielectric
+// Schlick Fresnel and KHR_materials_ior's F0 = ((ior - 1) / (ior + 1))^2 written here.
+TEST(TransmissionGlsl, PunctualTransmissionIsTheMirroredGgxLobe) {
+  testing::context();
+  std::vector<TransmissionCase> cases;
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  auto hemisphere = [&] {
+    const float z = 0.02f + 0.98f * u(rng), phi = 6.2831853f * u(rng);
+    const float s = std::sqrt(1.0f - z * z);
+    return glm::vec3(s * std::cos(phi), s * std::sin(phi), z);
+  };
+  for (float ior : {1.0f, 1.2f, 1.33f, 1.5f, 2.0f})
+    for (float roughness : {0.0f, 0.1f, 0.4f, 1.0f})
+      for (int k = 0; k < 40; ++k) {
+        TransmissionCase c;
+        c.ior = ior;
+        c.roughness = roughness;
+        c.n = hemisphere();
+        // Half the cases near the straight-through direction, where the lobe peaks.
+        c.v = k % 2 == 0 ? glm::normalize(c.n + 0.05f * hemisphere()) : hemisphere();
+        c.base_color = glm::vec3(u(rng), u(rng), u(rng));
+        c.metallic = k % 5 == 0 ? u(rng) : 0.0f;
+        cases.push_back(c);
+      }
+  const std::vector<glm::vec4> gpu = eval_transmission_glsl(cases, TransmissionFunction::kPunctual);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const TransmissionCase& c = cases[i];
+    const double scale = c.ior <= 1.0f ? 0.0 : c.ior >= 1.5f ? 1.0 : (c.ior - 1.0) / 0.5;
+    const float r = std::max(float(std::max(c.roughness, kMinRoughness) * scale), kMinRoughness);
+    const float alpha = r * r;
+    const glm::vec3 h = glm::normalize(c.n + c.v);
+    const double D = DistributionGGX(h, alpha), G = SmithG2HeightCorrelated(c.n, c.v, alpha);
+    const double f0 = c.ior == 1.5f ? 0.04 : std::pow((c.ior - 1.0) / (c.ior + 1.0), 2.0);
+    const double f90 = c.ior > 1.0f ? 1.0 : 0.0;
+    const double F = f0 + (f90 - f0) * std::pow(1.0 - glm::dot(c.n, h), 5.0);
+    for (int k = 0; k < 3; ++k) {
+      const double expected =
+          (1.0 - F) * (1.0 - c.metallic) * c.base_color[k] * D * G / (4.0 * c.n.z * c.v.z);
+      ASSERT_TRUE(std::isfinite(gpu[i][k])) << "case " << i;
+      // Floor: 1e-6 of the lobe's peak-free scale 1 / (4 pi): where the lobe falls to 0
+      // only absolute float rounding of the terms remains.
+      worst = std::max(worst, std::abs(gpu[i][k] - expected) / (1e-4 * expected + 1e-6 / 12.566));
+    }
   }
   std::printf("%zu cases; worst %.3g of the allowed error\n", cases.size(), worst);
   EXPECT_LE(worst, 1.0);

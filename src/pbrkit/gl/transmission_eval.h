@@ -20,8 +20,10 @@ struct TransmissionCase {
   glm::vec3 attenuation_color{1.0f};
   float attenuation_distance = 0.0f;  ///< <= 0: none
   float roughness = 0.5f;
-  float width = 256.0f;   ///< the frame's width (transmission_lod)
-  float distance = 0.0f;  ///< through the medium (volume_attenuation)
+  float width = 256.0f;        ///< the frame's width (transmission_lod)
+  float distance = 0.0f;       ///< through the medium (volume_attenuation)
+  glm::vec3 base_color{1.0f};  ///< punctual_transmission's Brdf (n is wo, v the mirrored wi)
+  float metallic = 0.0f;
 };
 
 enum class TransmissionFunction {
@@ -30,6 +32,7 @@ enum class TransmissionFunction {
   kAttenuation = 2,  ///< volume_attenuation -> xyz
   kRoughness = 3,    ///< (transmission_roughness, transmission_lod)
   kProject = 4,      ///< project_to_screen(view_projection, n) -> (uv, on screen)
+  kPunctual = 5,     ///< punctual_transmission(Brdf(base, metallic, roughness, ior), n, v)
 };
 
 /// `function` of transmission.glsl for every case, read back as one vec4 each.

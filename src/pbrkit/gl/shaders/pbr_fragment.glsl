@@ -420,6 +420,13 @@ void main() {
       // diffuse lobe mirrored to the other side (KHR_materials_diffuse_transmission).
       vec3 wi_m = vec3(wi.xy, -wi.z);
       color += dt_weight * brdf_eval_diffuse(brdf, uEnergyDirect, wo, wi_m) * radiance * wi_m.z;
+#if MATERIAL_TRANSMISSION
+      // The specular BTDF (transmission.glsl's punctual_transmission), attenuated through
+      // the medium along the refracted ray (the Sample Viewer's applyVolumeAttenuation).
+      vec3 ray = volume_transmission_ray(n, v, thickness, uIor, uModelScale);
+      color += transmission * punctual_transmission(brdf, wo, wi_m, uIor) * radiance * wi_m.z *
+               volume_attenuation(length(ray), uAttenuationColor, uAttenuationDistance);
+#endif
       continue;
     }
     if (wi.z > 0.0) color -= through * brdf_eval_diffuse(brdf, uEnergyDirect, wo, wi) * radiance * wi.z;

@@ -139,3 +139,25 @@ vec3 brdf_eval_diffuse(Brdf b, sampler2D table, vec3 wo, vec3 wi) {
   return brdf_eval_diffuse_and_ms(b, table, wo, wi, diffuse_weight) -
          brdf_eval_diffuse_and_ms(black, table, wo, wi, diffuse_weight);
 }
+
+// A punctual light behind the surface seen through it (the Sample Viewer's
+// getPunctualRadianceTransmission): the specular BTDF approximated by the GGX lobe around
+// the straight-through direction, i.e. the base's specular lobe evaluated with the
+// light's direction mirrored to the viewer's side (wi_mirrored, local frame, z > 0), at
+// the roughness applyIorToRoughness gives (at least kMinRoughness, as every lobe), times
+// what the dielectric does not reflect, 1 - F(v.h), and the dielectric's base colour.
+// f(wo, wi) without the cosine; the caller multiplies by the transmission factor and by
+// wi_mirrored.z (the Sample Viewer leaves the cosine out; with it the lobe is the
+// mirrored BRDF lobe's value and a rough pane does not glow at grazing angles).
+vec3 punctual_transmission(Brdf b, vec3 wo, vec3 wi_mirrored, float ior) {
+  if (wo.z <= 0.0 || wi_mirrored.z <= 0.0) return vec3(0.0);
+  float r = max(transmission_roughness(b.roughness, ior), kMinRoughness);
+  float alpha = r * r;
+  vec3 h = normalize(wo + wi_mirrored);
+  float D = DistributionGGX(h, alpha);
+  float G = SmithG2HeightCorrelated(wo, wi_mirrored, alpha);
+  float c = 1.0 - saturate(dot(wo, h));
+  float c2 = c * c;
+  vec3 F = b.spec_weight * (b.F0_d + (b.F90_d - b.F0_d) * (c2 * c2 * c));
+  return (1.0 - F) * (1.0 - b.metallic) * b.base_color * (D * G / (4.0 * wo.z * wi_mirrored.z));
+}

@@ -13,6 +13,7 @@ struct TransmissionCase {
   vec4 scale_dispersion;  // model scale, dispersion
   vec4 attenuation;       // attenuation colour, attenuation distance
   vec4 rough;             // roughness, frame width, distance through the medium
+  vec4 base;              // base colour, metallic
 };
 layout(std430, binding = 0) readonly buffer Cases { TransmissionCase cases[]; };
 layout(std430, binding = 1) writeonly buffer Results { vec4 results[]; };
@@ -20,6 +21,7 @@ layout(std430, binding = 1) writeonly buffer Results { vec4 results[]; };
 uniform int uCount;
 uniform int uFunction;  // transmission_eval.h's TransmissionFunction
 uniform mat4 uViewProjection;
+layout(binding = 0) uniform sampler2D uEnergy;  // make_brdf's argument; not read
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -36,6 +38,12 @@ void main() {
   } else if (uFunction == 3) {
     r.x = transmission_roughness(c.rough.x, c.n_ior.w);
     r.y = transmission_lod(c.rough.x, c.n_ior.w, c.rough.y);
+  } else if (uFunction == 5) {
+    // n is wo, v the mirrored wi (local frame); no compensation: make_brdf reads no table.
+    BaseLayer layer = base_layer(c.base.rgb, c.base.a, c.rough.x);
+    layer.ior = c.n_ior.w;
+    Brdf b = make_brdf(layer, GEOMETRY_REFERENCE, false, FRESNEL_SCHLICK, uEnergy);
+    r.xyz = punctual_transmission(b, c.n_ior.xyz, c.v_thickness.xyz, c.n_ior.w);
   } else {
     vec2 uv;
     r.z = project_to_screen(uViewProjection, c.n_ior.xyz, uv) ? 1.0 : 0.0;
