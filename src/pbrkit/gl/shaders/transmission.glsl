@@ -9,21 +9,21 @@
 // thickness: docs/SPLIT_SUM_ERRORS.md measures where that differs from the truth.
 #include "ibl.glsl"
 
-// KHR_materials_dispersion: the Abbe number V = 20 / dispersion, V = (n_d - 1) / (n_F - n_C),
-// with n(lambda) = A + B / lambda^2 (Cauchy) through n(lambda_d) = ior. The three channels
-// refract at the Fraunhofer C, d and F lines (656.3, 587.6, 486.1 nm): red and blue are
-// then (ior - 1) / V apart, the spread of the Sample Viewer's ior -/+ halfSpread with
-// halfSpread = (ior - 1) 0.025 dispersion, and green keeps the material's ior.
-const vec3 kDispersionWavelengthsUm = vec3(0.6563, 0.5876, 0.4861);
+// KHR_materials_dispersion (core/dispersion.h's dispersion_iors): the README's normative
+// n(lambda) = max(n_d + (n_d - 1) / V_d (523655 / lambda^2 - 1.5168), 1), V_d = 20 /
+// dispersion, at the wavelengths the R, G, B channels stand for (the path tracer's
+// kChannelWavelengthR/G/B): those where the README's real-time sample, ior -/+ halfSpread
+// with halfSpread = (ior - 1) 0.025 dispersion, is exact, so both renderers refract each
+// channel with the same ior.
+const vec3 kChannelWavelengthsNm = vec3(717.64, 587.57, 509.56);
 
 vec3 dispersion_iors(float ior, float dispersion) {
   if (dispersion <= 0.0 || ior <= 1.0) return vec3(ior);
-  float V = 20.0 / dispersion;
-  vec3 inv_l2 = 1.0 / (kDispersionWavelengthsUm * kDispersionWavelengthsUm);
-  // n_F - n_C = B (1/lambda_F^2 - 1/lambda_C^2) = (ior - 1) / V.
-  float B = (ior - 1.0) / (V * (inv_l2.z - inv_l2.x));
-  float A = ior - B * inv_l2.y;
-  return A + B * inv_l2;
+  float inv_abbe = dispersion / 20.0;
+  vec3 n = ior + (ior - 1.0) * inv_abbe *
+                     (523655.0 / (kChannelWavelengthsNm * kChannelWavelengthsNm) - 1.5168);
+  n.g = ior;  // the d line itself
+  return max(n, vec3(1.0));
 }
 
 // The Sample Viewer's applyIorToRoughness: the refracted lobe's blur scales with how far
