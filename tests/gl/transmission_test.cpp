@@ -3,9 +3,10 @@
 // (no bending) attenuates by Beer-Lambert's attenuationColor^(thickness / distance), the
 // thickness in object space times the instance's scale; diffuse transmission carries a
 // light behind the surface as the mirrored lambertian baseColor diffuseTransmissionColor
-// / pi and takes the front light's diffuse away; a white non-absorbing glass object in a
-// white furnace disappears whatever the environment fallback or the screen reads (the
-// split sum's reflected + transmitted energy is 1); no image ever holds NaN or Inf.
+// / pi and takes the front light's diffuse away; glass behind glass is seen through it; a
+// white non-absorbing glass object in a white furnace disappears whatever the environment
+// fallback or the screen reads (the split sum's reflected + transmitted energy is 1); no
+// image ever holds NaN or Inf.
 #include <cmath>
 #include <cstdio>
 
@@ -112,6 +113,31 @@ TEST(GlTransmission, VolumeAttenuatesByBeerLambert) {
   m.volume->attenuation_distance = std::numeric_limits<float>::infinity();
   const glm::vec3 c = through_box(m, 1.0f);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], kBackdrop[k], 1e-6f);
+}
+
+// Glass seen through glass: a clear thin wall of ior 1 in front of the absorbing box of ior
+// 1 must show the box's attenuated backdrop (the frame is captured again after the box),
+// not the opaque frame alone.
+TEST(GlTransmission, GlassBehindGlassIsSeen) {
+  Material box = clear_glass();
+  VolumeExtension volume;
+  volume.thickness_factor = 0.5f;
+  volume.attenuation_distance = 0.25f;
+  volume.attenuation_color = glm::vec3(0.5f, 0.8f, 1.0f);
+  box.volume = volume;
+  Scene scene = backdrop_scene();
+  scene.materials.push_back(box);
+  add_mesh_instance(scene, make_box(glm::vec3(-0.5f, -0.5f, -0.5f), glm::vec3(0.5f, 0.5f, 0.0f)),
+                    1);
+  scene.materials.push_back(clear_glass());
+  add_mesh_instance(scene,
+                    make_quad(glm::vec3(-1, -1, 0.5f), glm::vec3(2, 0, 0), glm::vec3(0, 2, 0)), 2);
+  const Image image = render(scene);
+  expect_finite(image);
+  const glm::vec3 c = image.rgb(kSize / 2, kSize / 2);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(c[k], kBackdrop[k] * std::pow(volume.attenuation_color[k], 2.0f), 2e-6f)
+        << "channel " << k;
 }
 
 // A wall of white base, ior 1, fully diffusely transmitting, lit by one directional light

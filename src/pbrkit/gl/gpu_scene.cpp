@@ -95,6 +95,7 @@ void GpuScene::upload(const Scene& scene) {
     Bounds b;
     for (const glm::vec3& p : mesh.positions) b.extend(p);
     g.center = b.empty() ? glm::vec3(0.0f) : b.center();
+    if (!b.empty()) g.bounds_min = b.min, g.bounds_max = b.max;
     meshes.push_back(g);
   }
   for (const Texture& t : scene.textures) {

@@ -27,6 +27,7 @@ struct GpuMesh {
   /// alpha below 1 is drawn opaque (scene.h has_alpha).
   int alpha_mode = 0;
   glm::vec3 center{0.0f};
+  glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  ///< object-space bounding box
 };
 
 /// A Scene's meshes and textures on the GPU, with the materials, instances and lights

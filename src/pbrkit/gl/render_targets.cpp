@@ -44,7 +44,7 @@ void RenderTargets::resolve() const {
                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
 }
 
-void RenderTargets::capture_opaque_frame() {
+void RenderTargets::capture_frame() {
   if (!transmission_fbo) {
     int levels = 1;
     while ((std::max(width, height) >> levels) > 0) ++levels;

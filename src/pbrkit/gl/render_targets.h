@@ -31,7 +31,7 @@ struct RenderTargets {
   void resolve() const;
   /// Resolves what the multisampled target holds now into transmission_color's level 0
   /// and builds its mip chain (a box-filter chain: glGenerateMipmap).
-  void capture_opaque_frame();
+  void capture_frame();
   /// The resolved frame, linear RGBA float, row 0 at the top (as Image everywhere).
   Image read_back() const;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <epoxy/gl.h>
@@ -88,6 +89,49 @@ GLuint texture_unit(int t) {
 // The other units of pbr_fragment.glsl.
 constexpr GLuint kCoatEnergyUnit = 19, kSheenCubeUnit = 20, kSheenLutUnit = 21;
 constexpr GLuint kTransmissionFrameUnit = 26;
+
+// The most captures of the frame a transmission pass makes (the opaque frame, then one more
+// each time a transmissive surface covers one drawn since the last capture): glass seen
+// through glass, up to this depth.
+constexpr int kMaxTransmissionCaptures = 4;
+
+// A transmissive instance's place in the pass: drawn in increasing `nearest` (the view-space
+// z of its bounding box's nearest corner: an object nested in another, the liquid in its
+// glass, comes first), over its screen rectangle (NDC; the whole screen when a corner is
+// behind the camera).
+struct TransmissiveDraw {
+  float nearest = 0.0f;
+  glm::vec2 lo{-1.0f}, hi{1.0f};
+  std::size_t index = 0;
+  bool overlaps(const TransmissiveDraw& o) const {
+    return lo.x < o.hi.x && o.lo.x < hi.x && lo.y < o.hi.y && o.lo.y < hi.y;
+  }
+};
+
+TransmissiveDraw transmissive_draw(std::size_t index, const glm::mat4& model, const glm::vec3& bmin,
+                                   const glm::vec3& bmax, const glm::mat4& view,
+                                   const glm::mat4& projection) {
+  TransmissiveDraw d;
+  d.index = index;
+  d.nearest = -std::numeric_limits<float>::infinity();
+  glm::vec2 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+  bool behind = false;
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec3 corner((k & 1) ? bmax.x : bmin.x, (k & 2) ? bmax.y : bmin.y,
+                           (k & 4) ? bmax.z : bmin.z);
+    const glm::vec4 v = view * model * glm::vec4(corner, 1.0f);
+    d.nearest = std::max(d.nearest, v.z);  // view space looks down -Z: largest is nearest
+    const glm::vec4 clip = projection * v;
+    if (clip.w <= 0.0f) {
+      behind = true;
+      continue;
+    }
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    lo = glm::min(lo, ndc), hi = glm::max(hi, ndc);
+  }
+  if (!behind) d.lo = lo, d.hi = hi;
+  return d;
+}
 
 // Whether `m` on a mesh (closed or not) reads the opaque frame (KHR_materials_transmission),
 // and the features of issue 12 it compiles in. A volume is only a volume on a closed mesh
@@ -312,7 +356,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
   };
   // Surfaces with KHR_materials_transmission read the opaque frame: they wait for it.
-  std::vector<std::pair<float, std::size_t>> transmissive;
+  std::vector<TransmissiveDraw> transmissive;
   bool frame_read = false;  // a blended surface reads the frame too
   for (std::size_t i = 0; i < s.scene.instances.size(); ++i) {
     const Instance& inst = s.scene.instances[i];
@@ -325,7 +369,8 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
       blended.emplace_back(c.z, i);  // view space looks down -Z: most negative is farthest
       frame_read = frame_read || transmits;
     } else if (transmits) {
-      transmissive.emplace_back(c.z, i);
+      transmissive.push_back(
+          transmissive_draw(i, inst.transform, mesh.bounds_min, mesh.bounds_max, view, projection));
     } else {
       draw(i);
     }
@@ -364,13 +409,30 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
 
   // The transmission pass (the Sample Viewer's and Filament's screen-space refraction): the
   // opaque frame and background, resolved into a mip-mapped colour target, then the
-  // transmissive surfaces, far to near, each reading it through transmission.glsl. A frame
-  // without them pays nothing: no copy, no mip chain.
+  // transmissive surfaces, far to near, each reading it through transmission.glsl. The
+  // Sample Viewer reads only the opaque frame, so glass behind glass (a liquid in its
+  // glass) is invisible; here the frame is captured again before a surface that covers one
+  // drawn since the last capture (at most kMaxTransmissionCaptures in all). A frame
+  // without transmissive surfaces pays nothing: no copy, no mip chain.
   if (!transmissive.empty() || frame_read) {
-    s.targets.capture_opaque_frame();
+    s.targets.capture_frame();
+    int captures = 1;
     glBindTextureUnit(kTransmissionFrameUnit, s.targets.transmission_color);
-    std::sort(transmissive.begin(), transmissive.end());
-    for (const auto& t : transmissive) draw(t.second);
+    std::sort(
+        transmissive.begin(), transmissive.end(),
+        [](const TransmissiveDraw& a, const TransmissiveDraw& b) { return a.nearest < b.nearest; });
+    std::vector<const TransmissiveDraw*> since_capture;
+    for (const TransmissiveDraw& t : transmissive) {
+      const bool covers = std::any_of(since_capture.begin(), since_capture.end(),
+                                      [&](const TransmissiveDraw* o) { return t.overlaps(*o); });
+      if (covers && captures < kMaxTransmissionCaptures) {
+        s.targets.capture_frame();
+        ++captures;
+        since_capture.clear();
+      }
+      since_capture.push_back(&t);
+      draw(t.index);
+    }
     glDisable(GL_CULL_FACE);
     glFrontFace(GL_CCW);
   }
