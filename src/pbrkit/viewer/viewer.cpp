@@ -45,7 +45,11 @@ struct Orbit {
 
   static Orbit from_camera(const Camera& c, const Bounds& bounds) {
     Orbit o;
-    o.target = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    // The target on the camera's line of sight, as deep as the scene's centre, so that the
+    // first view is the camera's own (a glTF camera need not look at the centre).
+    const glm::vec3 centre = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    const float depth = std::max(glm::dot(centre - c.position(), c.forward()), 1e-3f);
+    o.target = c.position() + depth * c.forward();
     const glm::vec3 d = c.position() - o.target;
     o.distance = std::max(glm::length(d), 1e-3f);
     o.pitch = std::asin(std::clamp(d.y / o.distance, -1.0f, 1.0f));
