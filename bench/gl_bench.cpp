@@ -188,14 +188,17 @@ BENCHMARK(BM_GlFrameLayers)
 // sphere thin-walled glass (1: the opaque frame captured, its mip chain built, the glass
 // spheres drawn after it reading it), and with those spheres a thick dispersive volume
 // (2: three refracted reads per fragment). Goal: 1 and 2 cost at most one extra opaque
-// pass plus the mip chain over 0.
+// pass plus the mip chain over 0. 3 and 4: the built-in `glass` and `liquid` scenes (their
+// own cameras; `liquid` captures the frame twice: its amber behind its glass).
 void BM_GlFrameTransmission(benchmark::State& state) {
   constexpr int kWidth = 1280, kHeight = 720;
   gl::HeadlessContext context;
   gl::Renderer renderer;
-  Scene scene = spheres_with_two_lights();
   const int variant = int(state.range(0));
-  if (variant > 0) {
+  Scene scene = variant == 3   ? builtin_scene("glass")
+                : variant == 4 ? builtin_scene("liquid")
+                               : spheres_with_two_lights();
+  if (variant == 1 || variant == 2) {
     const std::size_t count = scene.materials.size();
     for (std::size_t i = 0; i < count; i += 2) {
       Material& m = scene.materials[i];
@@ -222,11 +225,12 @@ void BM_GlFrameTransmission(benchmark::State& state) {
     glFinish();
   }
   state.counters["cpu_ms"] = (process_cpu_seconds() - cpu0) * 1e3 / double(state.iterations());
-  static const char* const kNames[] = {"opaque", "half thin glass", "half thick dispersive glass"};
+  static const char* const kNames[] = {"opaque", "half thin glass", "half thick dispersive glass",
+                                       "builtin glass", "builtin liquid"};
   state.SetLabel(kNames[variant]);
 }
 BENCHMARK(BM_GlFrameTransmission)
-    ->DenseRange(0, 2)
+    ->DenseRange(0, 4)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(3.0);
