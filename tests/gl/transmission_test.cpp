@@ -2,9 +2,9 @@
 // the OpenGL renderer. A thin wall of ior 1 (no interface) is invisible; a volume of ior 1
 // (no bending) attenuates by Beer-Lambert's attenuationColor^(thickness / distance), the
 // thickness in object space times the instance's scale; diffuse transmission carries a
-// light behind the surface as the mirrored lambertian baseColor diffuseTransmissionColor
-// / pi and takes the front light's diffuse away; glass behind glass is seen through it; a
-// white non-absorbing glass object in a white furnace disappears whatever the environment
+// light behind the surface as the mirrored lambertian diffuseTransmissionColor / pi and
+// takes the front light's diffuse away; glass behind glass is seen through it; a white
+// non-absorbing glass object in a white furnace disappears whatever the environment
 // fallback or the screen reads (the split sum's reflected + transmitted energy is 1); no
 // image ever holds NaN or Inf.
 #include <cmath>
@@ -167,9 +167,11 @@ glm::vec3 diffuse_wall(bool light_behind) {
 }
 
 TEST(GlTransmission, DiffuseTransmissionCarriesTheLightBehind) {
-  // baseColor diffuseTransmissionColor / pi x E cos(60 deg); with ior 1 nothing reflects.
+  // diffuseTransmissionColor / pi x E cos(60 deg) (the README's normative
+  // diffuse_btdf(color = diffuseTransmissionColor): the base colour 0.8 plays no part); with
+  // ior 1 nothing reflects.
   const glm::vec3 behind = diffuse_wall(true);
-  const glm::vec3 expected = 0.8f * glm::vec3(1.0f, 0.5f, 0.25f) / 3.14159265f * 2.0f * 0.5f;
+  const glm::vec3 expected = glm::vec3(1.0f, 0.5f, 0.25f) / 3.14159265f * 2.0f * 0.5f;
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(behind[k], expected[k], 1e-4f * expected[k] + 1e-7f);
   // All of the diffuse lobe transmits: a light in front shows nothing.
   const glm::vec3 front = diffuse_wall(false);

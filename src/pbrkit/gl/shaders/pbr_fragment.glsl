@@ -380,11 +380,15 @@ void main() {
   // The diffuse lobe becomes mix(mix(diffuse, diffuse BTDF, DT), specular BTDF, T) (the
   // transmission and diffuse_transmission READMEs): `through` of it goes through, and the
   // diffuse BTDF's light crosses the medium (attenuated over the thickness, as the Sample
-  // Viewer's diffuse transmission does).
+  // Viewer's diffuse transmission does). The diffuse BTDF's colour is
+  // diffuseTransmissionColor alone (the README's normative diffuse_btdf(color =
+  // diffuseTransmissionColor), no baseColor): the diffuse lobe's functions below read it
+  // from a copy of the Brdf whose base colour it is.
   float through = transmission + (1.0 - transmission) * diffuse_transmission;
   float mean_scale = (uModelScale.x + uModelScale.y + uModelScale.z) / 3.0;
-  vec3 dt_weight = (1.0 - transmission) * diffuse_transmission * dt_color *
+  vec3 dt_weight = (1.0 - transmission) * diffuse_transmission *
                    volume_attenuation(thickness * mean_scale, uAttenuationColor, uAttenuationDistance);
+  dt_color = clamp(dt_color, 0.0, 1.0);
 #endif
 
   // Bound to wo once: the lights below share its albedo lookups (BoundBrdf / BoundBsdf).
@@ -419,7 +423,9 @@ void main() {
       // A light behind the surface reaches the viewer through the diffuse BTDF: the
       // diffuse lobe mirrored to the other side (KHR_materials_diffuse_transmission).
       vec3 wi_m = vec3(wi.xy, -wi.z);
-      color += dt_weight * brdf_eval_diffuse(brdf, uEnergyDirect, wo, wi_m) * radiance * wi_m.z;
+      Brdf brdf_dt = brdf;
+      brdf_dt.base_color = dt_color;
+      color += dt_weight * brdf_eval_diffuse(brdf_dt, uEnergyDirect, wo, wi_m) * radiance * wi_m.z;
 #if MATERIAL_TRANSMISSION
       // The specular BTDF (transmission.glsl's punctual_transmission), attenuated through
       // the medium along the refracted ray (the Sample Viewer's applyVolumeAttenuation).
@@ -471,7 +477,10 @@ void main() {
 #else
       vec3 irradiance_back = textureLod(uIrradianceCube, -n_env, 0.0).rgb;
 #endif
-      indirect += ibl_diffuse(ibl, uEnergyIBL, dot(n, v), dt_weight * irradiance_back - through * irradiance);
+      Brdf ibl_dt = ibl;
+      ibl_dt.base_color = dt_color;
+      indirect += ibl_diffuse(ibl_dt, uEnergyIBL, dot(n, v), dt_weight * irradiance_back) -
+                  ibl_diffuse(ibl, uEnergyIBL, dot(n, v), through * irradiance);
     }
 #endif
 #if MATERIAL_SHEEN
