@@ -183,6 +183,58 @@ BENCHMARK(BM_GlFrameLayers)
     ->UseRealTime()
     ->MinTime(3.0);
 
+// Issue 12: the cost of the transmission pass. The 1280x720 frame (MSAA 1) of `spheres`
+// as is (0: no transmissive material, so no capture and no mip chain), with every other
+// sphere thin-walled glass (1: the opaque frame captured, its mip chain built, the glass
+// spheres drawn after it reading it), and with those spheres a thick dispersive volume
+// (2: three refracted reads per fragment). Goal: 1 and 2 cost at most one extra opaque
+// pass plus the mip chain over 0. 3 and 4: the built-in `glass` and `liquid` scenes (their
+// own cameras; `liquid` captures the frame twice: its amber behind its glass).
+void BM_GlFrameTransmission(benchmark::State& state) {
+  constexpr int kWidth = 1280, kHeight = 720;
+  gl::HeadlessContext context;
+  gl::Renderer renderer;
+  const int variant = int(state.range(0));
+  Scene scene = variant == 3   ? builtin_scene("glass")
+                : variant == 4 ? builtin_scene("liquid")
+                               : spheres_with_two_lights();
+  if (variant == 1 || variant == 2) {
+    const std::size_t count = scene.materials.size();
+    for (std::size_t i = 0; i < count; i += 2) {
+      Material& m = scene.materials[i];
+      m.transmission = TransmissionExtension{1.0f, {}};
+      if (variant == 2) {
+        m.volume = VolumeExtension{0.5f, {}, 1.0f, glm::vec3(0.9f, 0.6f, 0.3f)};
+        m.dispersion = DispersionExtension{1.0f};
+      }
+    }
+  }
+  const Camera camera = select_camera(scene, std::nullopt, float(kWidth) / float(kHeight));
+  const Environment env = load_environment_or_default("", 0.0f, 1.0f);
+  const gl::IblMaps maps = gl::ibl_maps_from_bake(bake_environment(env, viewer_bake()), env);
+  renderer.set_scene(scene);
+  renderer.set_environment(&env);
+  renderer.set_ibl(&maps);
+  gl::RenderSettings settings;
+  settings.msaa = 1;
+  renderer.render(camera, kWidth, kHeight, settings);
+  glFinish();
+  const double cpu0 = process_cpu_seconds();
+  for (auto _ : state) {
+    renderer.render(camera, kWidth, kHeight, settings);
+    glFinish();
+  }
+  state.counters["cpu_ms"] = (process_cpu_seconds() - cpu0) * 1e3 / double(state.iterations());
+  static const char* const kNames[] = {"opaque", "half thin glass", "half thick dispersive glass",
+                                       "builtin glass", "builtin liquid"};
+  state.SetLabel(kNames[variant]);
+}
+BENCHMARK(BM_GlFrameTransmission)
+    ->DenseRange(0, 4)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(3.0);
+
 void BM_GlReadBack(benchmark::State& state) {
   gl::HeadlessContext context;
   gl::Renderer renderer;

@@ -6,6 +6,7 @@
 // renderer's (same IBL bake). And the MSAA default by rasteriser.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -146,15 +147,18 @@ TEST(Viewer, FramesTheSceneForTheWindowsAspect) {
 // specular cube's resolution: measured identical to the bit on llvmpipe, and off by an RMSE
 // of 4e-3 with --bake-size 64 or 256, 9e-5 with --bake-samples 128, so the bound (a
 // millionth, for float rounding) holds the viewer to the render's bake, not a neighbour of it.
-TEST(Viewer, ShowsWhatTheHeadlessRenderWrites) {
+// `scene` in the viewer's window and from the headless renderer: the same pixels (RMSE
+// below `rmse_bound`).
+void expect_viewer_matches_headless(const std::string& scene, double rmse_bound = 1e-6) {
   if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed";
   const std::filesystem::path dir = pbrkit::test::scratch_dir();
-  ASSERT_EQ(view("spheres", 160, 120, dir).width, 160);
+  ASSERT_EQ(view(scene, 160, 120, dir).width, 160);
   const pbrkit::Image shown = pbrkit::read_image(dir / "shot.exr");
   const std::filesystem::path exr = dir / "render.exr";
   // Software rendering, as the viewer under Xvfb (a GPU's arithmetic would differ).
   const std::string command = "LIBGL_ALWAYS_SOFTWARE=1 " + pbrkit::test::cli_path().string() +
-                              " render spheres --renderer gl --width 160 --height 120 --msaa 1"
+                              " render " + scene +
+                              " --renderer gl --width 160 --height 120 --msaa 1"
                               " --background color:1,0,0 --tonemap none --float -o " +
                               exr.string() + " > " + (dir / "render_log.txt").string() + " 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << "see " << (dir / "render_log.txt");
@@ -175,8 +179,24 @@ TEST(Viewer, ShowsWhatTheHeadlessRenderWrites) {
         worst = std::max(worst, std::abs(d));
       }
   const double rmse = std::sqrt(sum_sq / (3.0 * shown.width * shown.height));
-  EXPECT_LT(rmse, 1e-6) << "largest difference " << worst;
+  std::printf("%s: RMSE %.3g, largest difference %.3g\n", scene.c_str(), rmse, worst);
+  EXPECT_LT(rmse, rmse_bound) << "largest difference " << worst;
   std::filesystem::remove_all(dir);
+}
+
+TEST(Viewer, ShowsWhatTheHeadlessRenderWrites) {
+  expect_viewer_matches_headless("spheres");
+}
+
+// Issue 12: the transmission pass (the frame captured, its mip chain, glass behind glass)
+// runs in the window's context as it does headless. `glass` has a glTF camera, which the
+// viewer turns into its orbit (target, yaw, pitch, distance) and back: the matrix comes
+// back within float rounding, which moves edge pixels across triangle edges and the
+// refracted reads by fractions of a texel (measured: RMSE 2.7e-3, largest 0.47 at one
+// edge pixel). 1e-2 still fails a viewer that frames the scene otherwise (the orbit about
+// the bounds' centre before issue 12: RMSE 0.55).
+TEST(Viewer, ShowsGlassAsTheHeadlessRenderDoes) {
+  expect_viewer_matches_headless("glass", 1e-2);
 }
 
 // The viewer's interactive defaults: no MSAA on software rasterisers (4x MSAA costs about

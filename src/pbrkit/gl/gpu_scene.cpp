@@ -84,6 +84,7 @@ void GpuScene::upload(const Scene& scene) {
     attribute(4, mesh.texcoords1.data(), mesh.texcoords1.size(), 2);
     attribute(5, mesh.colors0.data(), mesh.colors0.size(), 4);
     g.has_colors = !mesh.colors0.empty();
+    g.closed = mesh.closed;
     g.material = mesh.material;
     const AlphaMode mode = scene.material_of(mesh).alpha_mode;
     g.alpha_mode = !has_alpha(scene, mesh) ? 0 : mode == AlphaMode::kMask ? 1 : 2;
@@ -94,6 +95,7 @@ void GpuScene::upload(const Scene& scene) {
     Bounds b;
     for (const glm::vec3& p : mesh.positions) b.extend(p);
     g.center = b.empty() ? glm::vec3(0.0f) : b.center();
+    if (!b.empty()) g.bounds_min = b.min, g.bounds_max = b.max;
     meshes.push_back(g);
   }
   for (const Texture& t : scene.textures) {

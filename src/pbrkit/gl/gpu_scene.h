@@ -21,11 +21,13 @@ struct GpuMesh {
   std::array<GLuint, 7> buffers{};  // 6 attributes + indices
   GLsizei index_count = 0;
   bool has_colors = false;
+  bool closed = true;  ///< Mesh::closed: a volume needs a closed mesh, else it is thin walled
   int material = -1;
   /// The material's alphaMode as drawn: 0 opaque, 1 mask, 2 blend; BLEND without any
   /// alpha below 1 is drawn opaque (scene.h has_alpha).
   int alpha_mode = 0;
   glm::vec3 center{0.0f};
+  glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  ///< object-space bounding box
 };
 
 /// A Scene's meshes and textures on the GPU, with the materials, instances and lights

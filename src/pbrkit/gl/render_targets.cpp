@@ -13,7 +13,10 @@ void RenderTargets::release() {
   glDeleteRenderbuffers(1, &msaa_depth);
   glDeleteFramebuffers(1, &resolve_fbo);
   glDeleteTextures(1, &resolve_color);
+  glDeleteFramebuffers(1, &transmission_fbo);
+  glDeleteTextures(1, &transmission_color);
   msaa_fbo = msaa_color = msaa_depth = resolve_fbo = resolve_color = 0;
+  transmission_fbo = transmission_color = 0;
 }
 
 void RenderTargets::ensure(int w, int h, int s) {
@@ -39,6 +42,26 @@ void RenderTargets::ensure(int w, int h, int s) {
 void RenderTargets::resolve() const {
   glBlitNamedFramebuffer(msaa_fbo, resolve_fbo, 0, 0, width, height, 0, 0, width, height,
                          GL_COLOR_BUFFER_BIT, GL_NEAREST);
+}
+
+void RenderTargets::capture_frame() {
+  if (!transmission_fbo) {
+    int levels = 1;
+    while ((std::max(width, height) >> levels) > 0) ++levels;
+    glCreateTextures(GL_TEXTURE_2D, 1, &transmission_color);
+    glTextureStorage2D(transmission_color, levels, GL_RGBA32F, width, height);
+    glTextureParameteri(transmission_color, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTextureParameteri(transmission_color, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(transmission_color, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(transmission_color, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glCreateFramebuffers(1, &transmission_fbo);
+    glNamedFramebufferTexture(transmission_fbo, GL_COLOR_ATTACHMENT0, transmission_color, 0);
+    if (glCheckNamedFramebufferStatus(transmission_fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      fail("OpenGL: a {}x{} mip-mapped float target is not supported here", width, height);
+  }
+  glBlitNamedFramebuffer(msaa_fbo, transmission_fbo, 0, 0, width, height, 0, 0, width, height,
+                         GL_COLOR_BUFFER_BIT, GL_NEAREST);
+  glGenerateTextureMipmap(transmission_color);
 }
 
 Image RenderTargets::read_back() const {

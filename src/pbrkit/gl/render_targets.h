@@ -2,7 +2,9 @@
 // Private to the OpenGL renderer (renderer.cpp): the frame's framebuffers. A frame is drawn
 // into a float colour + depth target with `samples` samples per pixel (one: no MSAA) and
 // resolved into a single-sample float texture, which read_back() and Renderer::display()
-// read. Both are remade only when the size or the sample count changes.
+// read. Both are remade only when the size or the sample count changes. Frames with
+// transmissive surfaces also capture the opaque frame into a mip-mapped colour texture
+// (made on the first such frame) that those surfaces read (shaders/transmission.glsl).
 #include <epoxy/gl.h>
 
 #include "pbrkit/image/image.h"
@@ -13,6 +15,8 @@ struct RenderTargets {
   // Framebuffers: multisampled (or not) render target, and the resolved one.
   GLuint msaa_fbo = 0, msaa_color = 0, msaa_depth = 0;
   GLuint resolve_fbo = 0, resolve_color = 0;
+  // The opaque frame for the transmission pass: single-sample, every mip level down to 1x1.
+  GLuint transmission_fbo = 0, transmission_color = 0;
   int width = 0, height = 0, samples = 0;
 
   RenderTargets() = default;
@@ -25,6 +29,9 @@ struct RenderTargets {
   void release();
   /// Resolves the samples into the single-sample float target.
   void resolve() const;
+  /// Resolves what the multisampled target holds now into transmission_color's level 0
+  /// and builds its mip chain (a box-filter chain: glGenerateMipmap).
+  void capture_frame();
   /// The resolved frame, linear RGBA float, row 0 at the top (as Image everywhere).
   Image read_back() const;
 };

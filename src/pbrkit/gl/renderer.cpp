@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <epoxy/gl.h>
@@ -35,8 +36,6 @@ glm::vec2 env_rotation_cs(float rotation_deg) {
   return {std::cos(a), std::sin(a)};
 }
 
-// The texture unit of Material::textures()'s slot t (pbr_fragment.glsl's bindings): the
-// core slots on 0..4, the extensions' on 9..18 (5..8 hold the energy tables and cubes).
 // The extensions' factors (their READMEs' defaults when the material has none, which the
 // permutation then does not read).
 void set_extension_uniforms(const Program& p, const Material& m) {
@@ -64,13 +63,89 @@ void set_extension_uniforms(const Program& p, const Material& m) {
     p.set("uIridescenceThickness",
           glm::vec2(m.iridescence->thickness_min, m.iridescence->thickness_max));
   }
+  if (m.transmission) p.set("uTransmissionFactor", m.transmission->factor);
+  if (m.volume) {
+    p.set("uThicknessFactor", m.volume->thickness_factor);
+    p.set("uAttenuationColor", m.volume->attenuation_color);
+    // The shader's "none" is <= 0 (glTF requires a positive distance; absent is infinity).
+    const float d = m.volume->attenuation_distance;
+    p.set("uAttenuationDistance", std::isfinite(d) && d > 0.0f ? d : 0.0f);
+  } else {
+    p.set("uAttenuationDistance", 0.0f);
+  }
+  if (m.dispersion) p.set("uDispersion", m.dispersion->dispersion);
+  if (m.diffuse_transmission) {
+    p.set("uDiffuseTransmissionFactor", m.diffuse_transmission->factor);
+    p.set("uDiffuseTransmissionColorFactor", m.diffuse_transmission->color_factor);
+  }
 }
 
+// The texture unit of Material::textures()'s slot t (pbr_fragment.glsl's bindings): the
+// core slots on 0..4, issue 11's extensions' (5..14) on 9..18, issue 12's (15..18) on
+// 22..25; 5..8 and 19..21 hold the energy tables and cubes, 26 the transmission frame.
 GLuint texture_unit(int t) {
-  return GLuint(t < 5 ? t : t + 4);
+  return GLuint(t < 5 ? t : t < 15 ? t + 4 : t + 7);
 }
 // The other units of pbr_fragment.glsl.
 constexpr GLuint kCoatEnergyUnit = 19, kSheenCubeUnit = 20, kSheenLutUnit = 21;
+constexpr GLuint kTransmissionFrameUnit = 26;
+
+// The most captures of the frame a transmission pass makes (the opaque frame, then one more
+// each time a transmissive surface covers one drawn since the last capture): glass seen
+// through glass, up to this depth.
+constexpr int kMaxTransmissionCaptures = 4;
+
+// A transmissive instance's place in the pass: drawn in increasing `nearest` (the view-space
+// z of its bounding box's nearest corner: an object nested in another, the liquid in its
+// glass, comes first), over its screen rectangle (NDC; the whole screen when a corner is
+// behind the camera).
+struct TransmissiveDraw {
+  float nearest = 0.0f;
+  glm::vec2 lo{-1.0f}, hi{1.0f};
+  std::size_t index = 0;
+  bool overlaps(const TransmissiveDraw& o) const {
+    return lo.x < o.hi.x && o.lo.x < hi.x && lo.y < o.hi.y && o.lo.y < hi.y;
+  }
+};
+
+TransmissiveDraw transmissive_draw(std::size_t index, const glm::mat4& model, const glm::vec3& bmin,
+                                   const glm::vec3& bmax, const glm::mat4& view,
+                                   const glm::mat4& projection) {
+  TransmissiveDraw d;
+  d.index = index;
+  d.nearest = -std::numeric_limits<float>::infinity();
+  glm::vec2 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+  bool behind = false;
+  for (int k = 0; k < 8; ++k) {
+    const glm::vec3 corner((k & 1) ? bmax.x : bmin.x, (k & 2) ? bmax.y : bmin.y,
+                           (k & 4) ? bmax.z : bmin.z);
+    const glm::vec4 v = view * model * glm::vec4(corner, 1.0f);
+    d.nearest = std::max(d.nearest, v.z);  // view space looks down -Z: largest is nearest
+    const glm::vec4 clip = projection * v;
+    if (clip.w <= 0.0f) {
+      behind = true;
+      continue;
+    }
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    lo = glm::min(lo, ndc), hi = glm::max(hi, ndc);
+  }
+  if (!behind) d.lo = lo, d.hi = hi;
+  return d;
+}
+
+// Whether `m` on a mesh (closed or not) reads the opaque frame (KHR_materials_transmission),
+// and the features of issue 12 it compiles in. A volume is only a volume on a closed mesh
+// with a thickness (KHR_materials_volume: thickness 0 is thin walled); dispersion changes
+// only the refraction through a volume (KHR_materials_dispersion).
+void set_transmission_features(const Material& m, bool closed, SurfaceFeatures& f) {
+  f.transmission = m.transmission.has_value() && m.transmission->factor > 0.0f;
+  f.diffuse_transmission =
+      m.diffuse_transmission.has_value() && m.diffuse_transmission->factor > 0.0f;
+  f.volume = (f.transmission || f.diffuse_transmission) && closed && m.volume.has_value() &&
+             m.volume->thickness_factor > 0.0f;
+  f.dispersion =
+      f.transmission && f.volume && m.dispersion.has_value() && m.dispersion->dispersion > 0.0f;
+}
 
 }  // namespace
 
@@ -98,12 +173,12 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {
   glTextureSubImage2D(s.white_texture, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, white);
   s.sheen_lut = create_sheen_lut_texture();
   glCreateVertexArrays(1, &s.empty_vao);
-  // pbr_fragment.glsl binds samplers up to unit kSheenLutUnit.
+  // pbr_fragment.glsl binds samplers up to unit kTransmissionFrameUnit.
   GLint units = 0;
   glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
-  if (units <= GLint(kSheenLutUnit))
+  if (units <= GLint(kTransmissionFrameUnit))
     fail("OpenGL: {} fragment texture units, the surface shader needs {}", units,
-         kSheenLutUnit + 1);
+         kTransmissionFrameUnit + 1);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 }
 
@@ -198,6 +273,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uSheenLevels", s.environment.sheen_levels);
     p.set("uIblRotation", env_rotation_cs(rotation_delta));
     p.set("uIblScale", ibl_scale);
+    p.set("uTransmissionFrameSize", glm::vec2(float(width), float(height)));
     for (int k = 0; k < int(lights.size()); ++k) {
       const Light& l = *lights[std::size_t(k)];
       p.set(indexed("uLightType", k).c_str(), l.type == Light::Type::kPoint  ? 0
@@ -240,6 +316,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     features.iridescence = m.iridescence.has_value() && m.iridescence->factor > 0.0f;
     features.clearcoat = m.clearcoat.has_value() && m.clearcoat->factor > 0.0f;
     features.sheen = m.sheen.has_value() && max3(m.sheen->color_factor) > 0.0f;
+    set_transmission_features(m, mesh.closed, features);
     const Program& p = s.programs.surface(features);
     prepare(p);
     p.use();
@@ -253,6 +330,10 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uOcclusionStrength", m.occlusion_strength);
     p.set("uAlphaCutoff", m.alpha_cutoff);
     set_extension_uniforms(p, m);
+    if (features.transmission || features.diffuse_transmission)
+      p.set("uModelScale", glm::vec3(glm::length(glm::vec3(inst.transform[0])),
+                                     glm::length(glm::vec3(inst.transform[1])),
+                                     glm::length(glm::vec3(inst.transform[2]))));
     for (int t = 0; t < kTextureSlotCount; ++t) {
       const TextureRef& ref = *refs[std::size_t(t)];
       const bool valid = (features.textures >> t) & 1u;
@@ -274,13 +355,22 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     glBindVertexArray(mesh.vao);
     glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
   };
+  // Surfaces with KHR_materials_transmission read the opaque frame: they wait for it.
+  std::vector<TransmissiveDraw> transmissive;
+  bool frame_read = false;  // a blended surface reads the frame too
   for (std::size_t i = 0; i < s.scene.instances.size(); ++i) {
     const Instance& inst = s.scene.instances[i];
     if (inst.mesh < 0 || std::size_t(inst.mesh) >= s.scene.meshes.size()) continue;
     const GpuMesh& mesh = s.scene.meshes[std::size_t(inst.mesh)];
+    const Material& m = s.scene.material_of(mesh);
+    const bool transmits = m.transmission.has_value() && m.transmission->factor > 0.0f;
+    const glm::vec4 c = view * inst.transform * glm::vec4(mesh.center, 1.0f);
     if (mesh.alpha_mode == 2) {
-      const glm::vec4 c = view * inst.transform * glm::vec4(mesh.center, 1.0f);
       blended.emplace_back(c.z, i);  // view space looks down -Z: most negative is farthest
+      frame_read = frame_read || transmits;
+    } else if (transmits) {
+      transmissive.push_back(
+          transmissive_draw(i, inst.transform, mesh.bounds_min, mesh.bounds_max, view, projection));
     } else {
       draw(i);
     }
@@ -315,6 +405,36 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
+  }
+
+  // The transmission pass (the Sample Viewer's and Filament's screen-space refraction): the
+  // opaque frame and background, resolved into a mip-mapped colour target, then the
+  // transmissive surfaces, far to near, each reading it through transmission.glsl. The
+  // Sample Viewer reads only the opaque frame, so glass behind glass (a liquid in its
+  // glass) is invisible; here the frame is captured again before a surface that covers one
+  // drawn since the last capture (at most kMaxTransmissionCaptures in all). A frame
+  // without transmissive surfaces pays nothing: no copy, no mip chain.
+  if (!transmissive.empty() || frame_read) {
+    s.targets.capture_frame();
+    int captures = 1;
+    glBindTextureUnit(kTransmissionFrameUnit, s.targets.transmission_color);
+    std::sort(
+        transmissive.begin(), transmissive.end(),
+        [](const TransmissiveDraw& a, const TransmissiveDraw& b) { return a.nearest < b.nearest; });
+    std::vector<const TransmissiveDraw*> since_capture;
+    for (const TransmissiveDraw& t : transmissive) {
+      const bool covers = std::any_of(since_capture.begin(), since_capture.end(),
+                                      [&](const TransmissiveDraw* o) { return t.overlaps(*o); });
+      if (covers && captures < kMaxTransmissionCaptures) {
+        s.targets.capture_frame();
+        ++captures;
+        since_capture.clear();
+      }
+      since_capture.push_back(&t);
+      draw(t.index);
+    }
+    glDisable(GL_CULL_FACE);
+    glFrontFace(GL_CCW);
   }
 
   if (!blended.empty()) {

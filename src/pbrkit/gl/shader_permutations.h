@@ -17,7 +17,7 @@ namespace pbrkit::gl {
 // Compile-time features of the surface program (pbr_fragment.glsl says why they are not
 // uniforms: on llvmpipe an unused branch still costs its texture fetches).
 struct SurfaceFeatures {
-  unsigned textures = 0;  ///< bit t: texture slot t bound (scene.h's TextureSlot, 15 slots)
+  unsigned textures = 0;  ///< bit t: texture slot t bound (scene.h's TextureSlot, 19 slots)
   bool colors = false;    ///< the mesh has COLOR_0
   int alpha_mode = 0;     ///< 0 opaque, 1 mask, 2 blend
   bool ibl = false;
@@ -33,24 +33,36 @@ struct SurfaceFeatures {
   bool clearcoat = false;
   bool sheen = false;
   bool unlit = false;
+  // Issue 12's (transmission.glsl): KHR_materials_transmission (the screen-space refraction
+  // of the opaque frame), _volume (thickness > 0: refraction through a thick medium and
+  // Beer-Lambert attenuation), _dispersion (three iors), _diffuse_transmission.
+  bool transmission = false;
+  bool volume = false;
+  bool dispersion = false;
+  bool diffuse_transmission = false;
 
   std::uint64_t key() const {
-    return std::uint64_t(textures) | std::uint64_t(alpha_mode) << 15 | std::uint64_t(ibl) << 17 |
-           std::uint64_t(irradiance_sh) << 18 | std::uint64_t(multiscatter) << 19 |
-           std::uint64_t(geometry) << 20 | std::uint64_t(fresnel) << 22 |
-           std::uint64_t(light_count) << 23 | std::uint64_t(colors) << 28 |
-           std::uint64_t(specular) << 29 | std::uint64_t(anisotropy) << 30 |
-           std::uint64_t(iridescence) << 31 | std::uint64_t(clearcoat) << 32 |
-           std::uint64_t(sheen) << 33 | std::uint64_t(unlit) << 34;
+    return std::uint64_t(textures) | std::uint64_t(alpha_mode) << 19 | std::uint64_t(ibl) << 21 |
+           std::uint64_t(irradiance_sh) << 22 | std::uint64_t(multiscatter) << 23 |
+           std::uint64_t(geometry) << 24 | std::uint64_t(fresnel) << 26 |
+           std::uint64_t(light_count) << 27 | std::uint64_t(colors) << 32 |
+           std::uint64_t(specular) << 33 | std::uint64_t(anisotropy) << 34 |
+           std::uint64_t(iridescence) << 35 | std::uint64_t(clearcoat) << 36 |
+           std::uint64_t(sheen) << 37 | std::uint64_t(unlit) << 38 |
+           std::uint64_t(transmission) << 39 | std::uint64_t(volume) << 40 |
+           std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42;
   }
   std::string defines() const {
     std::string d;
     d += fmt::format(
         "#define MATERIAL_SPECULAR {}\n#define MATERIAL_ANISOTROPY {}\n"
         "#define MATERIAL_IRIDESCENCE {}\n#define MATERIAL_CLEARCOAT {}\n"
-        "#define MATERIAL_SHEEN {}\n#define MATERIAL_UNLIT {}\n",
-        int(specular), int(anisotropy), int(iridescence), int(clearcoat), int(sheen), int(unlit));
-    for (int t = 0; t < 15; ++t)
+        "#define MATERIAL_SHEEN {}\n#define MATERIAL_UNLIT {}\n"
+        "#define MATERIAL_TRANSMISSION {}\n#define MATERIAL_VOLUME {}\n"
+        "#define MATERIAL_DISPERSION {}\n#define MATERIAL_DIFFUSE_TRANSMISSION {}\n",
+        int(specular), int(anisotropy), int(iridescence), int(clearcoat), int(sheen), int(unlit),
+        int(transmission), int(volume), int(dispersion), int(diffuse_transmission));
+    for (int t = 0; t < 19; ++t)
       d += fmt::format("#define HAS_TEXTURE_{} {}\n", t, (textures >> t) & 1u);
     d += fmt::format("#define HAS_COLOR_0 {}\n", int(colors));
     d += fmt::format(

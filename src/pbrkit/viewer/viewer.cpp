@@ -45,7 +45,11 @@ struct Orbit {
 
   static Orbit from_camera(const Camera& c, const Bounds& bounds) {
     Orbit o;
-    o.target = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    // The target on the camera's line of sight, as deep as the scene's centre, so that the
+    // first view is the camera's own (a glTF camera need not look at the centre).
+    const glm::vec3 centre = bounds.empty() ? glm::vec3(0.0f) : bounds.center();
+    const float depth = std::max(glm::dot(centre - c.position(), c.forward()), 1e-3f);
+    o.target = c.position() + depth * c.forward();
     const glm::vec3 d = c.position() - o.target;
     o.distance = std::max(glm::length(d), 1e-3f);
     o.pitch = std::asin(std::clamp(d.y / o.distance, -1.0f, 1.0f));
@@ -89,6 +93,16 @@ struct ViewerState {
     float sheen_roughness = 0.5f;
     float anisotropy = 0.5f, anisotropy_rotation_deg = 0.0f;
     float iridescence = 1.0f, iridescence_thickness = 400.0f;
+    // Issue 12's: transmission, volume (thickness, attenuation), dispersion, diffuse
+    // transmission.
+    bool transmission_on = false, volume_on = false, dispersion_on = false;
+    bool diffuse_transmission_on = false;
+    float transmission = 1.0f;
+    float thickness = 0.5f, attenuation_distance = 1.0f;
+    glm::vec3 attenuation_color{1.0f};
+    float dispersion = 0.5f;
+    float diffuse_transmission = 1.0f;
+    glm::vec3 diffuse_transmission_color{1.0f};
   } ext;
   Orbit orbit;
 };
@@ -123,6 +137,25 @@ std::vector<Material> overridden_materials(const ViewerState& s) {
       m.iridescence->factor = e.iridescence;
       m.iridescence->thickness_max = e.iridescence_thickness;
     }
+    if (e.transmission_on) {
+      if (!m.transmission) m.transmission.emplace();
+      m.transmission->factor = e.transmission;
+    }
+    if (e.volume_on) {
+      if (!m.volume) m.volume.emplace();
+      m.volume->thickness_factor = e.thickness;
+      m.volume->attenuation_distance = e.attenuation_distance;
+      m.volume->attenuation_color = e.attenuation_color;
+    }
+    if (e.dispersion_on) {
+      if (!m.dispersion) m.dispersion.emplace();
+      m.dispersion->dispersion = e.dispersion;
+    }
+    if (e.diffuse_transmission_on) {
+      if (!m.diffuse_transmission) m.diffuse_transmission.emplace();
+      m.diffuse_transmission->factor = e.diffuse_transmission;
+      m.diffuse_transmission->color_factor = e.diffuse_transmission_color;
+    }
   }
   return materials;
 }
@@ -156,6 +189,22 @@ bool draw_extension_controls(ViewerState& s) {
     changed |= ImGui::SliderFloat("iridescence", &e.iridescence, 0.0f, 1.0f);
     changed |=
         ImGui::SliderFloat("film thickness", &e.iridescence_thickness, 0.0f, 1200.0f, "%.0f nm");
+  }
+  changed |= ImGui::Checkbox("override transmission", &e.transmission_on);
+  if (e.transmission_on) changed |= ImGui::SliderFloat("transmission", &e.transmission, 0.0f, 1.0f);
+  changed |= ImGui::Checkbox("override volume", &e.volume_on);
+  if (e.volume_on) {
+    changed |= ImGui::SliderFloat("thickness", &e.thickness, 0.0f, 5.0f);
+    changed |= ImGui::SliderFloat("attenuation distance", &e.attenuation_distance, 0.01f, 10.0f,
+                                  "%.2f", ImGuiSliderFlags_Logarithmic);
+    changed |= ImGui::ColorEdit3("attenuation colour", &e.attenuation_color.x);
+  }
+  changed |= ImGui::Checkbox("override dispersion", &e.dispersion_on);
+  if (e.dispersion_on) changed |= ImGui::SliderFloat("dispersion", &e.dispersion, 0.0f, 5.0f);
+  changed |= ImGui::Checkbox("override diffuse transmission", &e.diffuse_transmission_on);
+  if (e.diffuse_transmission_on) {
+    changed |= ImGui::SliderFloat("diffuse transmission", &e.diffuse_transmission, 0.0f, 1.0f);
+    changed |= ImGui::ColorEdit3("diffuse transmission colour", &e.diffuse_transmission_color.x);
   }
   return changed;
 }

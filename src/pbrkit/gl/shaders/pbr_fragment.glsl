@@ -17,6 +17,10 @@
 // specular), MATERIAL_ANISOTROPY, MATERIAL_IRIDESCENCE, MATERIAL_CLEARCOAT, MATERIAL_SHEEN,
 // MATERIAL_UNLIT. Every input is computed as the path tracer's shade_inputs
 // (pt/shading.cpp) computes it.
+// Issue 12's (transmission.glsl; HAS_TEXTURE_15..18): MATERIAL_TRANSMISSION (the opaque
+// frame, uTransmissionFrame, read through the surface), MATERIAL_VOLUME (a thickness > 0:
+// refraction through the medium, Beer-Lambert), MATERIAL_DISPERSION (three iors),
+// MATERIAL_DIFFUSE_TRANSMISSION (the irradiance at -n through the diffuse lobe).
 #ifndef MATERIAL_SPECULAR
 #define MATERIAL_SPECULAR 0
 #define MATERIAL_ANISOTROPY 0
@@ -34,6 +38,16 @@
 #define HAS_TEXTURE_12 0
 #define HAS_TEXTURE_13 0
 #define HAS_TEXTURE_14 0
+#endif
+#ifndef MATERIAL_TRANSMISSION
+#define MATERIAL_TRANSMISSION 0
+#define MATERIAL_VOLUME 0
+#define MATERIAL_DISPERSION 0
+#define MATERIAL_DIFFUSE_TRANSMISSION 0
+#define HAS_TEXTURE_15 0
+#define HAS_TEXTURE_16 0
+#define HAS_TEXTURE_17 0
+#define HAS_TEXTURE_18 0
 #endif
 #ifndef HAS_TEXTURE_0
 #define HAS_TEXTURE_0 0
@@ -55,6 +69,9 @@
 #endif
 #include "ibl.glsl"
 #include "bsdf.glsl"
+#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
+#include "transmission.glsl"
+#endif
 
 in vec3 vPosition;
 in vec3 vNormal;
@@ -79,8 +96,8 @@ uniform float uOcclusionStrength;
 uniform float uAlphaCutoff;
 // Per texture slot (scene.h's TextureSlot): which TEXCOORD set, the KHR_texture_transform
 // matrix.
-uniform int uTexcoordSet[15];
-uniform mat3 uTextureTransform[15];
+uniform int uTexcoordSet[19];
+uniform mat3 uTextureTransform[19];
 layout(binding = 0) uniform sampler2D uBaseColorTexture;
 layout(binding = 1) uniform sampler2D uMetallicRoughnessTexture;
 layout(binding = 2) uniform sampler2D uNormalTexture;
@@ -111,6 +128,23 @@ layout(binding = 15) uniform sampler2D uSheenRoughnessTexture;
 layout(binding = 16) uniform sampler2D uAnisotropyTexture;
 layout(binding = 17) uniform sampler2D uIridescenceTexture;
 layout(binding = 18) uniform sampler2D uIridescenceThicknessTexture;
+// Issue 12's factors and textures: slots 15..18 on units 22..25 (after the model's 19..21).
+uniform float uTransmissionFactor;          // KHR_materials_transmission
+uniform float uThicknessFactor;             // KHR_materials_volume (object space)
+uniform vec3 uAttenuationColor;
+uniform float uAttenuationDistance;         // <= 0: infinite (none)
+uniform float uDispersion;                  // KHR_materials_dispersion
+uniform float uDiffuseTransmissionFactor;   // KHR_materials_diffuse_transmission
+uniform vec3 uDiffuseTransmissionColorFactor;
+uniform vec3 uModelScale;                   // the model matrix's column lengths
+layout(binding = 22) uniform sampler2D uTransmissionTexture;
+layout(binding = 23) uniform sampler2D uThicknessTexture;
+layout(binding = 24) uniform sampler2D uDiffuseTransmissionTexture;
+layout(binding = 25) uniform sampler2D uDiffuseTransmissionColorTexture;
+// The opaque frame with its mip chain (renderer.cpp's transmission pass), and its size.
+layout(binding = 26) uniform sampler2D uTransmissionFrame;
+uniform vec2 uTransmissionFrameSize;
+uniform mat4 uViewProjection;
 
 // Model.
 layout(binding = 5) uniform sampler2D uEnergyDirect;  // EnergyTable of the direct G
@@ -314,6 +348,49 @@ void main() {
   vec3 n_coat = n;
 #endif
 
+#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
+  float transmission = 0.0;
+#if MATERIAL_TRANSMISSION
+  transmission = uTransmissionFactor;
+#if HAS_TEXTURE_15
+  transmission *= texture(uTransmissionTexture, texcoord(15)).r;
+#endif
+#endif
+  float diffuse_transmission = 0.0;
+  vec3 dt_color = vec3(1.0);
+#if MATERIAL_DIFFUSE_TRANSMISSION
+  diffuse_transmission = uDiffuseTransmissionFactor;
+#if HAS_TEXTURE_17
+  diffuse_transmission *= texture(uDiffuseTransmissionTexture, texcoord(17)).a;
+#endif
+  dt_color = uDiffuseTransmissionColorFactor;
+#if HAS_TEXTURE_18
+  dt_color *= texture(uDiffuseTransmissionColorTexture, texcoord(18)).rgb;
+#endif
+#endif
+  float thickness = 0.0;
+#if MATERIAL_VOLUME
+  thickness = uThicknessFactor;
+#if HAS_TEXTURE_16
+  thickness *= texture(uThicknessTexture, texcoord(16)).g;
+#endif
+#endif
+  transmission = saturate(transmission);
+  diffuse_transmission = saturate(diffuse_transmission);
+  // The diffuse lobe becomes mix(mix(diffuse, diffuse BTDF, DT), specular BTDF, T) (the
+  // transmission and diffuse_transmission READMEs): `through` of it goes through, and the
+  // diffuse BTDF's light crosses the medium (attenuated over the thickness, as the Sample
+  // Viewer's diffuse transmission does). The diffuse BTDF's colour is
+  // diffuseTransmissionColor alone (the README's normative diffuse_btdf(color =
+  // diffuseTransmissionColor), no baseColor): the diffuse lobe's functions below read it
+  // from a copy of the Brdf whose base colour it is.
+  float through = transmission + (1.0 - transmission) * diffuse_transmission;
+  float mean_scale = (uModelScale.x + uModelScale.y + uModelScale.z) / 3.0;
+  vec3 dt_weight = (1.0 - transmission) * diffuse_transmission *
+                   volume_attenuation(thickness * mean_scale, uAttenuationColor, uAttenuationDistance);
+  dt_color = clamp(dt_color, 0.0, 1.0);
+#endif
+
   // Bound to wo once: the lights below share its albedo lookups (BoundBrdf / BoundBsdf).
   Brdf brdf = brdf_at(make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyDirect),
                       uEnergyDirect, wo);
@@ -341,6 +418,25 @@ void main() {
       }
     }
     vec3 wi = to_local(frame, l);
+#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
+    if (wi.z < 0.0) {
+      // A light behind the surface reaches the viewer through the diffuse BTDF: the
+      // diffuse lobe mirrored to the other side (KHR_materials_diffuse_transmission).
+      vec3 wi_m = vec3(wi.xy, -wi.z);
+      Brdf brdf_dt = brdf;
+      brdf_dt.base_color = dt_color;
+      color += dt_weight * brdf_eval_diffuse(brdf_dt, uEnergyDirect, wo, wi_m) * radiance * wi_m.z;
+#if MATERIAL_TRANSMISSION
+      // The specular BTDF (transmission.glsl's punctual_transmission), attenuated through
+      // the medium along the refracted ray (the Sample Viewer's applyVolumeAttenuation).
+      vec3 ray = volume_transmission_ray(n, v, thickness, uIor, uModelScale);
+      color += transmission * punctual_transmission(brdf, wo, wi_m, uIor) * radiance * wi_m.z *
+               volume_attenuation(length(ray), uAttenuationColor, uAttenuationDistance);
+#endif
+      continue;
+    }
+    if (wi.z > 0.0) color -= through * brdf_eval_diffuse(brdf, uEnergyDirect, wo, wi) * radiance * wi.z;
+#endif
     if (wi.z <= 0.0) continue;
 #if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
     color += bsdf_eval(bsdf, uEnergyDirect, uEnergyCoat, uSheenLut, wo, wi) * radiance * wi.z;
@@ -374,11 +470,27 @@ void main() {
     // reference: the IBL's energy table is the punctual lights' (both height-correlated
     // Smith), so the bound Brdf is the IBL's too and brdf_at has looked up (A, B) at n.v
     // already (two of the compensation's fetches and a make_brdf fewer per fragment).
-    vec3 indirect = wo.z >= 1e-4 ? ibl_shading_ab(brdf, uEnergyIBL, wo.z, brdf.ab_o, prefiltered, irradiance)
-                                 : ibl_shading(brdf, uEnergyIBL, wo.z, prefiltered, irradiance);
+    Brdf ibl = brdf;
+    vec3 indirect = wo.z >= 1e-4 ? ibl_shading_ab(ibl, uEnergyIBL, wo.z, ibl.ab_o, prefiltered, irradiance)
+                                 : ibl_shading(ibl, uEnergyIBL, wo.z, prefiltered, irradiance);
 #else
     Brdf ibl = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
     vec3 indirect = ibl_shading(ibl, uEnergyIBL, dot(n, v), prefiltered, irradiance);
+#endif
+#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
+    {
+      // The diffuse lobe's environment light: E(n) for the part that stays, dt E(-n) for the
+      // diffuse BTDF; the specular BTDF's light is the frame's, added after the IBL.
+#if IRRADIANCE_SH
+      vec3 irradiance_back = max(eval_sh_irradiance(uSH, -n_env), vec3(0.0));
+#else
+      vec3 irradiance_back = textureLod(uIrradianceCube, -n_env, 0.0).rgb;
+#endif
+      Brdf ibl_dt = ibl;
+      ibl_dt.base_color = dt_color;
+      indirect += ibl_diffuse(ibl_dt, uEnergyIBL, dot(n, v), dt_weight * irradiance_back) -
+                  ibl_diffuse(ibl, uEnergyIBL, dot(n, v), through * irradiance);
+    }
 #endif
 #if MATERIAL_SHEEN
     {
@@ -401,6 +513,41 @@ void main() {
     }
 #endif
     color += ao * uIblScale * indirect;
+  }
+#endif
+
+#if MATERIAL_TRANSMISSION
+  {
+    // KHR_materials_transmission: the specular BTDF's light is what the opaque frame shows
+    // through the surface (transmission.glsl), through the diffuse lobe's slot under the
+    // dielectric's specular and base colour, then under the sheen and the coat.
+    TransmissionInputs t;
+    t.position = vPosition;
+    t.n = n;
+    t.v = v;
+    t.roughness = brdf.roughness;
+#if MATERIAL_DISPERSION
+    t.iors = dispersion_iors(uIor, uDispersion);
+#else
+    t.iors = vec3(uIor);
+#endif
+    t.thickness = thickness;
+    t.model_scale = uModelScale;
+    t.attenuation_color = uAttenuationColor;
+    t.attenuation_distance = uAttenuationDistance;
+    vec3 seen = refracted_radiance(t, uTransmissionFrame, uTransmissionFrameSize, uViewProjection,
+                                   uCameraPosition, uSpecularCube, uIblRotation, uSpecularLevels,
+                                   IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
+    Brdf tb = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
+    vec3 transmitted = ibl_diffuse(tb, uEnergyIBL, dot(n, v), kPi * transmission * seen);
+#if MATERIAL_SHEEN
+    transmitted *= 1.0 - max3(clamp(sheen_color, 0.0, 1.0)) *
+                             sheen_E(uSheenLut, dot(n, v), clamp(sheen_roughness, kMinSheenRoughness, 1.0));
+#endif
+#if MATERIAL_CLEARCOAT
+    transmitted *= 1.0 - saturate(coat_weight) * coat_fresnel(abs(dot(n_coat, v)));
+#endif
+    color += transmitted;
   }
 #endif
 

@@ -1,0 +1,43 @@
+#pragma once
+// Evaluates the GLSL transmission functions (shaders/transmission.glsl) on the GPU for a
+// batch of inputs, through a compute shader: the shader unit test of the OpenGL renderer's
+// screen-space refraction, Beer-Lambert attenuation and dispersion. Needs a current GL 4.5
+// context.
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace pbrkit::gl {
+
+/// The inputs of the functions of transmission.glsl (each function reads its own).
+struct TransmissionCase {
+  glm::vec3 n{0.0f, 0.0f, 1.0f};  ///< shading normal (or the point to project, kProject)
+  float ior = 1.5f;
+  glm::vec3 v{0.0f, 0.0f, 1.0f};  ///< towards the viewer
+  float thickness = 0.0f;
+  glm::vec3 model_scale{1.0f};
+  float dispersion = 0.0f;
+  glm::vec3 attenuation_color{1.0f};
+  float attenuation_distance = 0.0f;  ///< <= 0: none
+  float roughness = 0.5f;
+  float width = 256.0f;        ///< the frame's width (transmission_lod)
+  float distance = 0.0f;       ///< through the medium (volume_attenuation)
+  glm::vec3 base_color{1.0f};  ///< punctual_transmission's Brdf (n is wo, v the mirrored wi)
+  float metallic = 0.0f;
+};
+
+enum class TransmissionFunction {
+  kVolumeRay = 0,    ///< volume_transmission_ray -> xyz
+  kDispersion = 1,   ///< dispersion_iors -> xyz
+  kAttenuation = 2,  ///< volume_attenuation -> xyz
+  kRoughness = 3,    ///< (transmission_roughness, transmission_lod)
+  kProject = 4,      ///< project_to_screen(view_projection, n) -> (uv, on screen)
+  kPunctual = 5,     ///< punctual_transmission(Brdf(base, metallic, roughness, ior), n, v)
+};
+
+/// `function` of transmission.glsl for every case, read back as one vec4 each.
+std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase>& cases,
+                                              TransmissionFunction function,
+                                              const glm::mat4& view_projection = glm::mat4(1.0f));
+
+}  // namespace pbrkit::gl
