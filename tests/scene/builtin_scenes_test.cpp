@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
@@ -376,6 +377,25 @@ TEST(BuiltinScenes, TransmissionScenesRoundTripThroughGlb) {
     }
     for (const Mesh& mesh : b.meshes) EXPECT_TRUE(mesh.closed) << mesh.name;
   }
+  // The same through the CLI: `pbrkit scene write`, then `pbrkit info` finds every
+  // extension supported and nothing to warn about.
+  const auto path = test::scratch_dir() / "glass_cli.glb";
+  std::string out;
+  ASSERT_EQ(test::run_command(
+                test::cli_path().string() + " scene write glass '" + path.string() + "'", &out),
+            0)
+      << out;
+  ASSERT_EQ(
+      test::run_command(test::cli_path().string() + " info --json '" + path.string() + "'", &out),
+      0)
+      << out;
+  const nlohmann::json j = nlohmann::json::parse(out.substr(out.find('{')));
+  EXPECT_EQ(j["extensions_unsupported"], nlohmann::json::array());
+  EXPECT_EQ(j["warnings"], nlohmann::json::array());
+  std::vector<std::string> used = j["extensions_used"];
+  std::sort(used.begin(), used.end());
+  EXPECT_EQ(used, (std::vector<std::string>{"KHR_materials_dispersion", "KHR_materials_ior",
+                                            "KHR_materials_transmission", "KHR_materials_volume"}));
 }
 
 TEST(BuiltinScenes, UnknownNameListsTheKnownOnes) {

@@ -4,7 +4,6 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
-#include <unordered_map>
 #include <vector>
 
 namespace pbrkit {
@@ -26,39 +25,71 @@ PositionKey key_of(glm::vec3 p) {
   return k;
 }
 
-struct PositionHash {
-  std::size_t operator()(const PositionKey& k) const {
-    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the three words
-    for (const std::uint32_t w : k.bits) h = (h ^ w) * 1099511628211ull;
-    return std::size_t(h);
-  }
-};
+std::uint64_t hash_of(const PositionKey& k) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the three words
+  for (const std::uint32_t w : k.bits) h = (h ^ w) * 1099511628211ull;
+  return h ^ (h >> 29);
+}
 
 }  // namespace
 
 EdgeCount count_edges(const Mesh& mesh) {
-  // Each vertex's welded id: the first vertex with its position.
-  std::unordered_map<PositionKey, std::uint32_t, PositionHash> first;
-  first.reserve(mesh.positions.size());
-  std::vector<std::uint32_t> weld(mesh.positions.size());
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
-    weld[i] = first.try_emplace(key_of(mesh.positions[i]), std::uint32_t(i)).first->second;
+  // Each vertex's welded id: the first vertex with its position, found in an
+  // open-addressing table of vertex ids (linear probing, at most half full).
+  const std::size_t n = mesh.positions.size();
+  std::vector<PositionKey> keys(n);
+  for (std::size_t i = 0; i < n; ++i) keys[i] = key_of(mesh.positions[i]);
+  std::size_t capacity = 16;
+  while (capacity < 2 * n) capacity *= 2;
+  constexpr std::uint32_t kEmpty = 0xffffffffu;
+  std::vector<std::uint32_t> table(capacity, kEmpty);
+  std::vector<std::uint32_t> weld(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::size_t slot = std::size_t(hash_of(keys[i])) & (capacity - 1);
+    while (table[slot] != kEmpty && !(keys[table[slot]] == keys[i]))
+      slot = (slot + 1) & (capacity - 1);
+    if (table[slot] == kEmpty) table[slot] = std::uint32_t(i);
+    weld[i] = table[slot];
+  }
 
-  // Undirected edges (lower id in the high word) and how many triangles use each.
+  // Undirected edges, stored once at their lower welded id (a compressed adjacency list:
+  // a hash map of 3 edges per triangle cost 20x the whole glTF load of the mesh).
+  const auto triangle = [&](std::size_t t) {
+    return std::array<std::uint32_t, 3>{weld[mesh.indices[t]], weld[mesh.indices[t + 1]],
+                                        weld[mesh.indices[t + 2]]};
+  };
+  const auto degenerate = [](const std::array<std::uint32_t, 3>& v) {
+    return v[0] == v[1] || v[1] == v[2] || v[2] == v[0];
+  };
   EdgeCount result;
-  std::unordered_map<std::uint64_t, std::uint32_t> uses;
-  uses.reserve(mesh.indices.size());
+  std::vector<std::uint32_t> start(mesh.positions.size() + 1, 0);
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    const std::uint32_t v[3] = {weld[mesh.indices[t]], weld[mesh.indices[t + 1]],
-                                weld[mesh.indices[t + 2]]};
-    if (v[0] == v[1] || v[1] == v[2] || v[2] == v[0]) continue;  // degenerate
+    const auto v = triangle(t);
+    if (degenerate(v)) continue;
     ++result.triangles;
+    for (int e = 0; e < 3; ++e) ++start[std::min(v[std::size_t(e)], v[std::size_t(e + 1) % 3]) + 1];
+  }
+  for (std::size_t i = 1; i < start.size(); ++i) start[i] += start[i - 1];
+  std::vector<std::uint32_t> other(start.back());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const auto v = triangle(t);
+    if (degenerate(v)) continue;
     for (int e = 0; e < 3; ++e) {
-      const std::uint32_t a = v[e], b = v[(e + 1) % 3];
-      ++uses[(std::uint64_t(std::min(a, b)) << 32) | std::max(a, b)];
+      const std::uint32_t a = v[std::size_t(e)], b = v[std::size_t(e + 1) % 3];
+      other[fill[std::min(a, b)]++] = std::max(a, b);
     }
   }
-  for (const auto& [edge, count] : uses) result.unpaired += count != 2;
+  // Each vertex's few edges, sorted: a run of equal ends is one edge and its triangles.
+  for (std::size_t vtx = 0; vtx + 1 < start.size(); ++vtx) {
+    const auto first = other.begin() + start[vtx], last = other.begin() + start[vtx + 1];
+    std::sort(first, last);
+    for (auto run = first; run != last;) {
+      const auto end = std::upper_bound(run, last, *run);
+      result.unpaired += (end - run) != 2;
+      run = end;
+    }
+  }
   return result;
 }
 
