@@ -1,13 +1,14 @@
 // Scene loading speed: glTF/GLB load time against file size (it must be linear), the
-// shared 2CylinderEngine model, and tangent generation. Generated grids are written to
-// the temp folder as pbrkit-bench-grid-<triangles>.glb (reused by `pbrkit info` timings
-// in BENCHMARKS.md).
+// shared 2CylinderEngine model, tangent generation and the closure check of volumes.
+// Generated grids are written to the temp folder as pbrkit-bench-grid-<triangles>.glb
+// (reused by `pbrkit info` timings in BENCHMARKS.md).
 #include <filesystem>
 
 #include <benchmark/benchmark.h>
 
 #include "pbrkit/scene/load.h"
 #include "pbrkit/scene/mesh_attributes.h"
+#include "pbrkit/scene/mesh_closure.h"
 #include "pbrkit/util/log.h"
 
 namespace {
@@ -92,6 +93,15 @@ void BM_GenerateTangents(benchmark::State& state) {
   state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(base.triangle_count()));
 }
 BENCHMARK(BM_GenerateTangents)->Arg(1000000)->Unit(benchmark::kMillisecond);
+
+// The closure check a volume's primitive gets (Mesh::closed, mesh_closure.h): welding by
+// position and counting edges, on the same grid.
+void BM_CountEdges(benchmark::State& state) {
+  const Mesh m = grid_mesh(int(std::sqrt(double(state.range(0)) / 2.0)));
+  for (auto _ : state) benchmark::DoNotOptimize(count_edges(m).unpaired);
+  state.SetItemsProcessed(std::int64_t(state.iterations()) * std::int64_t(m.triangle_count()));
+}
+BENCHMARK(BM_CountEdges)->Arg(1000000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -242,6 +242,8 @@ struct Mesh {
   int material = -1;                   ///< -1: the glTF default material
   /// Whether the triangles close a volume (every edge shared by exactly two triangles):
   /// KHR_materials_volume needs it to bound a medium; an open mesh is rendered thin-walled.
+  /// Computed (scene/mesh_closure.h) for meshes whose material has a volume with
+  /// thicknessFactor > 0, by the loader and the built-in scenes; left true for the others.
   bool closed = true;
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
