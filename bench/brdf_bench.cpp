@@ -99,7 +99,30 @@ void BM_Construct(benchmark::State& state) {
 // ---- The layered material (core/bsdf.h): each extension alone and all together, with the
 // default options (reference, compensated), bound once per call as the path tracer does. ----
 
-enum class Layer { kNone, kAnisotropy, kIridescence, kClearcoat, kSheen, kAll };
+// kRoughGlass, kSmoothGlass, kDiffuseTransmission (issue 12): transmission through a
+// volume boundary (eta 1.5) and the diffuse BTDF; their eval and pdf take every other wi
+// mirrored below the surface, so that half the calls evaluate the transmission.
+enum class Layer {
+  kNone,
+  kAnisotropy,
+  kIridescence,
+  kClearcoat,
+  kSheen,
+  kAll,
+  kRoughGlass,
+  kSmoothGlass,
+  kDiffuseTransmission
+};
+
+constexpr bool transmits(Layer l) {
+  return l == Layer::kRoughGlass || l == Layer::kSmoothGlass || l == Layer::kDiffuseTransmission;
+}
+
+template <Layer kLayer>
+glm::vec3 layered_wi(glm::vec3 wi, std::size_t i) {
+  if (transmits(kLayer) && (i & 1)) wi.z = -wi.z;
+  return wi;
+}
 
 struct LayeredInputs {
   std::vector<Bsdf> bsdfs;
@@ -124,6 +147,18 @@ struct LayeredInputs {
         p.sheen.color = glm::vec3(rng.next_float());
         p.sheen.roughness = rng.next_float();
       }
+      if (layer == Layer::kRoughGlass || layer == Layer::kSmoothGlass) {
+        p.base.metallic = 0.0f;
+        p.transmission.weight = 1.0f;
+        p.transmission.eta = 1.5f;
+        p.transmission.thin_walled = false;
+        if (layer == Layer::kSmoothGlass) p.base.roughness = 0.0f;
+      }
+      if (layer == Layer::kDiffuseTransmission) {
+        p.base.metallic = 0.0f;
+        p.diffuse_transmission.weight = rng.next_float();
+        p.diffuse_transmission.color = glm::vec3(rng.next_float());
+      }
       bsdfs.emplace_back(p);
     }
   }
@@ -141,7 +176,8 @@ void BM_LayeredEval(benchmark::State& state) {
   const LayeredInputs& li = layered_inputs<kLayer>();
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(li.bsdfs[i & (kMaterials - 1)].eval(in.wo[i], in.wi[i]));
+    benchmark::DoNotOptimize(
+        li.bsdfs[i & (kMaterials - 1)].eval(in.wo[i], layered_wi<kLayer>(in.wi[i], i)));
     i = (i + 1) & (kCount - 1);
   }
   state.SetItemsProcessed(state.iterations());
@@ -166,7 +202,8 @@ void BM_LayeredPdf(benchmark::State& state) {
   const LayeredInputs& li = layered_inputs<kLayer>();
   std::size_t i = 0;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(li.bsdfs[i & (kMaterials - 1)].pdf(in.wo[i], in.wi[i]));
+    benchmark::DoNotOptimize(
+        li.bsdfs[i & (kMaterials - 1)].pdf(in.wo[i], layered_wi<kLayer>(in.wi[i], i)));
     i = (i + 1) & (kCount - 1);
   }
   state.SetItemsProcessed(state.iterations());
@@ -182,6 +219,9 @@ PBRKIT_LAYERED(kIridescence, "iridescence");
 PBRKIT_LAYERED(kClearcoat, "clearcoat");
 PBRKIT_LAYERED(kSheen, "sheen");
 PBRKIT_LAYERED(kAll, "all");
+PBRKIT_LAYERED(kRoughGlass, "rough-glass");
+PBRKIT_LAYERED(kSmoothGlass, "smooth-glass");
+PBRKIT_LAYERED(kDiffuseTransmission, "diffuse-transmission");
 #undef PBRKIT_LAYERED
 
 constexpr BrdfModel kRef = BrdfModel::kReference;

@@ -142,6 +142,36 @@ TEST(PathTracerGlass, SlabTransmitsBeerLambertTimesFresnel) {
   expect_uniform(res.color, expected, "slab");
 }
 
+TEST(PathTracerGlass, NestedVolumesTrackTheMediumStack) {
+  // An absorbing slab (thickness d_in) inside a clear one (thickness d_out), both of ior n:
+  // the inner faces separate equal iors, so they neither reflect nor bend (eta = 1 from the
+  // stack's ior, not from vacuum's), and only the inner segment absorbs. The outer faces'
+  // inner reflections cross the inner slab twice per round trip:
+  // Le (1 - R)^2 a / (1 - R^2 a^2), a = attenuationColor^(d_in / attenuationDistance).
+  const float n = 1.5f, d_out = 1.0f, d_in = 0.4f, D = 0.5f;
+  const glm::vec3 color(0.9f, 0.6f, 0.3f);
+  Material clear = glass(0.0f, n);
+  Material tinted = glass(0.0f, n);
+  tinted.volume->attenuation_color = color;
+  tinted.volume->attenuation_distance = D;
+  SlabScene s = slab_scene(clear, make_box(glm::vec3(-50.0f, -50.0f, -d_out / 2.0f),
+                                           glm::vec3(50.0f, 50.0f, d_out / 2.0f)));
+  s.scene.materials.push_back(tinted);
+  add_mesh_instance(
+      s.scene,
+      make_box(glm::vec3(-40.0f, -40.0f, -d_in / 2.0f), glm::vec3(40.0f, 40.0f, d_in / 2.0f)),
+      int(s.scene.materials.size()) - 1);
+  const PathTracerResult res =
+      render_path(s.scene, nullptr, ortho_camera(1.0f), deep_settings(16, 64));
+  const double R = std::pow((n - 1.0) / (n + 1.0), 2.0);
+  glm::vec3 expected;
+  for (int c = 0; c < 3; ++c) {
+    const double a = std::pow(double(color[c]), d_in / D);
+    expected[c] = float(s.Le[c] * (1.0 - R) * (1.0 - R) * a / (1.0 - R * R * a * a));
+  }
+  expect_uniform(res.color, expected, "nested slabs");
+}
+
 TEST(PathTracerGlass, ThinWalledSheetsTransmitOneMinusFresnel) {
   // A thin wall (core/transmission.h): no bending, no eta^2, one interface's Fresnel:
   // Le (1 - R). Thin because the material has no volume, or because the mesh is open.

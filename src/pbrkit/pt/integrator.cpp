@@ -77,7 +77,8 @@ struct AovTracker {
 
 // Beer-Lambert over `distance` (infinite for a ray that escapes): exp(-sigma_a d) per
 // channel; no NaN for sigma_a = inf or d = inf.
-inline glm::vec3 absorb(glm::vec3 sigma_a, float distance) {
+// (Out of line: only paths inside volumes call it, and Li's other helpers must stay inline.)
+[[gnu::noinline]] glm::vec3 absorb(glm::vec3 sigma_a, float distance) {
   glm::vec3 tr;
   for (int c = 0; c < 3; ++c) tr[c] = sigma_a[c] > 0.0f ? std::exp(-sigma_a[c] * distance) : 1.0f;
   return tr;
@@ -190,7 +191,10 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     const BoundBsdf brdf = bsdf.at(frame.to_local(wo));
 
     // Direct lighting: one light sample, weighted against BSDF sampling.
-    out.L += sample_ld(hit, frame, brdf, u_nee, beta, rays, transmits, sigma_near, sigma_far);
+    if (transmits) [[unlikely]]
+      out.L += sample_ld_transmissive(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far);
+    else
+      out.L += sample_ld<false>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far);
 
     // Continue the path by sampling the BSDF (visible-normal GGX, cosine, the dielectric).
     const BrdfSample bs = brdf.sample(u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y));
@@ -233,6 +237,12 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 // environment are weighted against the BSDF sampling that could have found them (power
 // heuristic); delta lights, which only this strategy reaches, have weight 1. Returns the
 // contribution to the path's radiance, beta f Li tr w / pdf.
+[[gnu::noinline]] glm::vec3 Integrator::sample_ld_transmissive(
+    const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf, glm::vec4 u_nee,
+    glm::vec3 beta, std::uint64_t& rays, glm::vec3 sigma_near, glm::vec3 sigma_far) const {
+  return sample_ld<true>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far);
+}
+
 [[gnu::noinline]] bool Integrator::resolve_transmission(ShadingInputs& in, const Material& material,
                                                         const SurfaceHit& hit, bool front_face,
                                                         const MediumStack& media, int& channel,
@@ -272,9 +282,10 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 // Through a transmissive surface the light may be on either side; a refractive (delta)
 // interface has no lobe a light sample can meet, and a shadow ray through glass is blocked
 // by it: light through glass arrives by BSDF sampling only (caustics; MODEL.md).
+template <bool kTransmits>
 inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame,
                                        const BoundBsdf& brdf, glm::vec4 u_nee, glm::vec3 beta,
-                                       std::uint64_t& rays, bool transmits, glm::vec3 sigma_near,
+                                       std::uint64_t& rays, glm::vec3 sigma_near,
                                        glm::vec3 sigma_far) const {
   LightSample ls;
   // (The light choice needs no random number when there is a single light.)
@@ -285,17 +296,17 @@ inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame
   if (!ls.delta && strategy == LightStrategy::kBsdfOnly) return glm::vec3(0.0f);
   if (ls.Li == glm::vec3(0.0f)) return glm::vec3(0.0f);
   const bool above = glm::dot(ls.wi, hit.ng) > 0.0f;
-  if (!above && !transmits) return glm::vec3(0.0f);
+  if (!above && !kTransmits) return glm::vec3(0.0f);
   const glm::vec3 wi_local = frame.to_local(ls.wi);
   const bool mis = !ls.delta && strategy == LightStrategy::kMis;
   float bsdf_pdf = 0.0f;
-  const float cos_i = transmits ? std::abs(wi_local.z) : std::max(wi_local.z, 0.0f);
+  const float cos_i = kTransmits ? std::abs(wi_local.z) : std::max(wi_local.z, 0.0f);
   const glm::vec3 f = brdf.eval(wi_local, mis ? &bsdf_pdf : nullptr) * cos_i;
   if (f == glm::vec3(0.0f)) return glm::vec3(0.0f);
   float w = 1.0f;
   if (mis) w = power_heuristic(ls.pdf, bsdf_pdf);
-  glm::vec3 tr = transmittance(hit, ls, above ? hit.ng : -hit.ng, rays);
-  if (transmits) {
+  glm::vec3 tr = transmittance<kTransmits>(hit, ls, above ? hit.ng : -hit.ng, rays);
+  if constexpr (kTransmits) {
     const glm::vec3 sigma = above ? sigma_near : sigma_far;
     if (sigma != glm::vec3(0.0f))
       tr *= absorb(sigma, ls.infinite ? std::numeric_limits<float>::infinity()
@@ -349,6 +360,7 @@ inline bool Integrator::closest_hit(glm::vec3& origin, glm::vec3 direction, std:
 
 // Visibility of a light sample: 0 or 1 through opaque geometry; through alpha-tested
 // and blended surfaces the expected transmittance (MASK: 0 or 1, BLEND: 1 - alpha).
+template <bool kTransmits>
 inline glm::vec3 Integrator::transmittance(const SurfaceHit& hit, const LightSample& ls,
                                            glm::vec3 n_side, std::uint64_t& rays) const {
   const glm::vec3 o = offset_ray_origin(hit.p, n_side);

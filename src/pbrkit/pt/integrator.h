@@ -58,10 +58,11 @@ struct MediumStack {
     }
     return nullptr;
   }
-  void push(const Entry& e) {
+  // (Out of line: Li, which calls them, keeps its inlining budget for opaque surfaces.)
+  [[gnu::noinline]] void push(const Entry& e) {
     if (size < kCapacity) entries[size++] = e;
   }
-  void remove(std::uint32_t geom) {
+  [[gnu::noinline]] void remove(std::uint32_t geom) {
     for (int k = size - 1; k >= 0; --k)
       if (entries[k].geom == geom) {
         for (int j = k; j + 1 < size; ++j) entries[j] = entries[j + 1];
@@ -93,12 +94,19 @@ class Integrator {
                 std::uint64_t& rays) const;
 
  private:
-  /// `transmits`: the BSDF has lobes below the surface, so light samples on the far side
+  /// kTransmits: the BSDF has lobes below the surface, so light samples on the far side
   /// count; `sigma_near` / `sigma_far`: the absorption of the media on the viewer's side
-  /// and on the far side, applied along the shadow ray.
+  /// and on the far side, applied along the shadow ray. (A template, so that opaque
+  /// surfaces run the code they ran before transmission existed.)
+  template <bool kTransmits>
   glm::vec3 sample_ld(const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf,
-                      glm::vec4 u_nee, glm::vec3 beta, std::uint64_t& rays, bool transmits,
-                      glm::vec3 sigma_near, glm::vec3 sigma_far) const;
+                      glm::vec4 u_nee, glm::vec3 beta, std::uint64_t& rays, glm::vec3 sigma_near,
+                      glm::vec3 sigma_far) const;
+  /// sample_ld<true>, out of line: Li stays the size it was for opaque surfaces (its
+  /// inlining budget otherwise moved other helpers out of line).
+  glm::vec3 sample_ld_transmissive(const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf,
+                                   glm::vec4 u_nee, glm::vec3 beta, std::uint64_t& rays,
+                                   glm::vec3 sigma_near, glm::vec3 sigma_far) const;
   /// Resolves a transmissive surface's media (the medium stack, dispersion's channel) and
   /// sets in.params.transmission's eta and thin_walled; returns whether a volume is behind
   /// the surface. Out of line: opaque paths never call it.
@@ -109,6 +117,9 @@ class Integrator {
   bool closest_hit(glm::vec3& origin, glm::vec3 direction, std::uint32_t pixel, std::uint32_t index,
                    int depth, std::uint64_t& rays, SurfaceHit& hit, const Material*& material,
                    const SceneGeometry::PacketHit* first = nullptr) const;
+  // (A template like sample_ld: each instantiation has one caller, so the opaque one is
+  // inlined into Li as before.)
+  template <bool kTransmits>
   glm::vec3 transmittance(const SurfaceHit& hit, const LightSample& ls, glm::vec3 n_side,
                           std::uint64_t& rays) const;
 
