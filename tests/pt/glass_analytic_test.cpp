@@ -172,6 +172,38 @@ TEST(PathTracerGlass, NestedVolumesTrackTheMediumStack) {
   expect_uniform(res.color, expected, "nested slabs");
 }
 
+// The stack of non-absorbing interfaces' transmittance, light reflected back and forth
+// between them incoherently: two stacks of transmittance T1, T2 (a lossless stack reflects
+// 1 - T from either side) transmit T1 T2 / (1 - (1 - T1)(1 - T2)).
+double stack_transmittance(std::initializer_list<double> etas) {
+  double T = 1.0;
+  for (double eta : etas) {
+    const double r = std::pow((eta - 1.0) / (eta + 1.0), 2.0);
+    T = T * (1.0 - r) / (1.0 - (1.0 - T) * r);
+  }
+  return T;
+}
+
+TEST(PathTracerGlass, OverlappingVolumesTakeTheInnermostMediumsIor) {
+  // A liquid slab (ior 1.33, z in [-0.2, 0.8]) reaching into a glass slab (ior 1.5, z in
+  // [-0.5, 0.5]), as the built-in liquid reaches into its glass: seen from above, the path
+  // enters the liquid (air/liquid), then the glass (liquid/glass: the glass is now the
+  // innermost medium), leaves the liquid's bottom face inside the glass (glass/glass: no
+  // interface) and leaves the glass (glass/air). Taking the liquid's own ior on leaving it
+  // (as the first version did) bends the path there and made this 21% darker.
+  const float n_glass = 1.5f, n_liquid = 1.33f;
+  SlabScene s = slab_scene(glass(0.0f, n_glass), make_box(glm::vec3(-50.0f, -50.0f, -0.5f),
+                                                          glm::vec3(50.0f, 50.0f, 0.5f)));
+  s.scene.materials.push_back(glass(0.0f, n_liquid));
+  add_mesh_instance(s.scene,
+                    make_box(glm::vec3(-40.0f, -40.0f, -0.2f), glm::vec3(40.0f, 40.0f, 0.8f)),
+                    int(s.scene.materials.size()) - 1);
+  const PathTracerResult res =
+      render_path(s.scene, nullptr, ortho_camera(1.0f), deep_settings(16, 1024));
+  const double T = stack_transmittance({n_liquid, n_glass / n_liquid, n_glass});
+  expect_uniform(res.color, s.Le * float(T), "overlapping slabs");
+}
+
 TEST(PathTracerGlass, ThinWalledSheetsTransmitOneMinusFresnel) {
   // A thin wall (core/transmission.h): no bending, no eta^2, one interface's Fresnel:
   // Le (1 - R). Thin because the material has no volume, or because the mesh is open.

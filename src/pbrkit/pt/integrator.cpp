@@ -47,9 +47,9 @@ inline float power_heuristic(float f, float g) {
 // The denoiser's features (albedo, normal, depth) are those of the first vertex that is
 // not near-specular, as denoisers expect: seen in a mirror, the mirrored surface's texture
 // and edges are what the image shows. A vertex is near-specular when it is a smooth metal
-// or smooth glass (its reflection or refraction is a sharp image of what it faces). The first vertex records its own
-// features; a later one replaces them when every vertex before it was near-specular (its
-// albedo tinted by the path throughput, its depth the length of the path to it).
+// or smooth glass (its reflection or refraction is a sharp image of what it faces). The first
+// vertex records its own features; a later one replaces them when every vertex before it was
+// near-specular (its albedo tinted by the path throughput, its depth the length of the path to it).
 constexpr float kAovSpecularRoughness = 0.1f;
 
 inline bool near_specular_for_aovs(const ShadingInputs& in) {
@@ -273,7 +273,9 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
                                   material.volume->attenuation_distance);
   } else {
     const MediumStack::Entry* beyond = media.outside_of(hit.geom);
-    tl.eta = (beyond ? beyond->ior : 1.0f) / n_material;
+    // The near side is the innermost medium, which is not this volume where another was
+    // entered inside it (overlapping volumes: a liquid reaching into its glass's wall).
+    tl.eta = (beyond ? beyond->ior : 1.0f) / media.ior();
     sigma_far = beyond ? beyond->sigma_a : glm::vec3(0.0f);
   }
   return volume;

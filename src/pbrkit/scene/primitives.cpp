@@ -81,6 +81,12 @@ Mesh make_box(glm::vec3 lo, glm::vec3 hi, bool inward) {
     box.texcoords0.insert(box.texcoords0.end(), q.texcoords0.begin(), q.texcoords0.end());
     for (auto i : q.indices) box.indices.push_back(base + i);
   }
+  // Every corner is lo or hi on each axis, exactly: lo + (hi - lo) need not round to hi
+  // (-0.2 + 1.0 != 0.8 in float), and faces that meet at corners a bit apart leave the box
+  // open to Mesh::closed's welding, which would render a volume on it thin-walled.
+  for (glm::vec3& p : box.positions)
+    for (int c = 0; c < 3; ++c)
+      p[c] = std::fabs(p[c] - lo[c]) <= std::fabs(p[c] - hi[c]) ? lo[c] : hi[c];
   return box;
 }
 
