@@ -50,13 +50,16 @@ struct DenoiseCandidate {
 struct DenoiseOptions {
   int radius = 7;             ///< filter window radius in pixels ((2r+1)^2 neighbours)
   int patch_radius = 1;       ///< NL-means colour patch radius
-  float feature_k = 0.6f;     ///< feature sensitivity (Rousselle et al. 2013's k_f)
+  float feature_k = 1.0f;     ///< feature sensitivity (Rousselle et al. 2013's k_f; they use 0.6)
   float feature_tau = 1e-3f;  ///< floor of the feature normalisation (their tau)
+  /// Scale of the squared feature gradient in the normalisation (1: Rousselle et al.;
+  /// less keeps silhouettes from leaking, docs/DENOISER.md)
+  float feature_gradient = 0.25f;
   /// Candidates, from detail-keeping to smoothest (Rousselle et al. 2013's FIRST..THIRD).
   std::vector<DenoiseCandidate> candidates{{0.45f}, {1.0f}, {0.0f}};
-  int variance_radius = 3;   ///< box radius smoothing the half-buffer variance estimates
+  int variance_radius = 2;   ///< box radius smoothing the half-buffer variance estimates
   int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
-  int error_radius = 3;      ///< box radius smoothing the per-candidate error estimates
+  int error_radius = 2;      ///< box radius smoothing the per-candidate error estimates
   int selection_radius = 1;  ///< box radius smoothing the per-pixel choice of candidate
 };
 
