@@ -6,6 +6,12 @@
 // reference) as a PNG.
 //
 // Usage: denoise_bench [--size N] [--ref-spp N] [--cache DIR] [--crops PNG] [--threads N]
+//                      [--only NAME] [--spp-count 1|2] [--skip-timing 1] [--debug 1]
+//                      [DenoiseOptions: --radius --variance-radius --error-radius
+//                       --selection-radius --prefilter-radius --patch-radius --feature-k
+//                       --feature-gradient --candidates k1,k2,...]
+// --debug 1 prints the pixels with the largest errors and writes heat maps (red: the
+// denoised image's relative squared error, green: the raw one's) into the cache folder.
 // The references (rendered once, cached as float EXRs under --cache, default
 // build/denoise_refs) take minutes each on two cores.
 #include <algorithm>
@@ -233,7 +239,7 @@ int main(int argc, char** argv) {
             heat.data[i * 3] = float(worst[i].first * 20.0);
             heat.data[i * 3 + 1] = float(er * 20.0);
           }
-          write_display_png("/tmp/dn/heat_" + key + "_" + std::to_string(spp) + ".png", heat, {});
+          write_display_png(cache / ("heat_" + key + "_" + std::to_string(spp) + ".png"), heat, {});
         }
         std::sort(worst.rbegin(), worst.rend());
         double total = 0.0;
