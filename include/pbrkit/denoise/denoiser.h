@@ -61,6 +61,9 @@ struct DenoiseOptions {
   int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
   int error_radius = 2;      ///< box radius smoothing the per-candidate error estimates
   int selection_radius = 1;  ///< box radius smoothing the per-pixel choice of candidate
+  /// Also offer the unfiltered image as a candidate (last in DenoiseStats::candidate_share);
+  /// off: it changed no scene of denoise_bench measurably (BENCHMARKS.md, issue 13)
+  bool raw_candidate = false;
 };
 
 /// Diagnostics of one run.

@@ -60,6 +60,7 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   if (options.radius < 0 || options.patch_radius < 0 || options.variance_radius < 0 ||
       options.prefilter_radius < 0 || options.candidates.empty())
     fail("denoise: radii must be >= 0 and there must be at least one candidate");
+  const int w = input.color[0].width, h = input.color[0].height;
   const int pad = std::max({options.radius + options.patch_radius, options.prefilter_radius + 1,
                             options.variance_radius, 1}) +
                   1;
@@ -99,9 +100,29 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   for (const Feature& f : features) cf.features.push_back(&f);
   int strips = 1;
   std::atomic<int> done{0};
-  const Candidates candidates = cross_filter(
+  Candidates candidates = cross_filter(
       cf, options,
       [&] { return report(0.1 + 0.85 * double(++done) / double(std::max(1, strips))); }, &strips);
+  if (options.raw_candidate) {
+    // The unfiltered mean of the halves: its error is its variance, exactly (half a half's),
+    // so where every filter would blur more than it removes (converged or noise-free
+    // pixels: a sharp environment seen directly) the selection keeps the input.
+    Channels raw;
+    Plane error(w, h, 0);
+    const Plane half_variance_mean = channel_mean(variance);
+    for (int c = 0; c < 3; ++c) {
+      Plane m(w, h, 0);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          m.at(x, y) =
+              0.5f * (color[0][std::size_t(c)].at(x, y) + color[1][std::size_t(c)].at(x, y));
+      raw.push_back(std::move(m));
+    }
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) error.at(x, y) = 0.5f * half_variance_mean.at(x, y);
+    candidates.color.push_back(std::move(raw));
+    candidates.error.push_back(std::move(error));
+  }
   std::vector<double> share;
   Image out = select_candidates(candidates, options, &share);
   report(1.0);
