@@ -2,7 +2,9 @@
 // glTF-Transform's `inspect`), or the same numbers as JSON with --json.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -53,7 +55,7 @@ nlohmann::json texture_json(const TextureRef& ref) {
   return t;
 }
 
-// The KHR_materials_* surface extensions a material uses, each with every value (defaults
+// The KHR_materials_* extensions a material uses, each with every value (defaults
 // included) and its textures, under the extension's own property names.
 nlohmann::json material_extensions(const Material& m) {
   nlohmann::json out = nlohmann::json::object();
@@ -103,6 +105,31 @@ nlohmann::json material_extensions(const Material& m) {
     texture(o, "iridescenceThicknessTexture", e.thickness_texture);
     out["KHR_materials_iridescence"] = o;
   }
+  if (m.transmission) {
+    nlohmann::json o = {{"transmissionFactor", m.transmission->factor}};
+    texture(o, "transmissionTexture", m.transmission->texture);
+    out["KHR_materials_transmission"] = o;
+  }
+  if (m.volume) {
+    const VolumeExtension& e = *m.volume;
+    // JSON has no infinity: an absent attenuationDistance (no absorption) is null.
+    nlohmann::json o = {{"thicknessFactor", e.thickness_factor},
+                        {"attenuationDistance", std::isfinite(e.attenuation_distance)
+                                                    ? nlohmann::json(e.attenuation_distance)
+                                                    : nlohmann::json()},
+                        {"attenuationColor", vec3_json(e.attenuation_color)}};
+    texture(o, "thicknessTexture", e.thickness_texture);
+    out["KHR_materials_volume"] = o;
+  }
+  if (m.dispersion) out["KHR_materials_dispersion"] = {{"dispersion", m.dispersion->dispersion}};
+  if (m.diffuse_transmission) {
+    const DiffuseTransmissionExtension& e = *m.diffuse_transmission;
+    nlohmann::json o = {{"diffuseTransmissionFactor", e.factor},
+                        {"diffuseTransmissionColorFactor", vec3_json(e.color_factor)}};
+    texture(o, "diffuseTransmissionTexture", e.texture);
+    texture(o, "diffuseTransmissionColorTexture", e.color_texture);
+    out["KHR_materials_diffuse_transmission"] = o;
+  }
   if (m.unlit) out["KHR_materials_unlit"] = nlohmann::json::object();
   return out;
 }
@@ -131,6 +158,26 @@ std::string material_extensions_text(const Material& m) {
     s +=
         fmt::format(", iridescence {:g} ior {:g} {:g}-{:g} nm", m.iridescence->factor,
                     m.iridescence->ior, m.iridescence->thickness_min, m.iridescence->thickness_max);
+  if (m.transmission) s += fmt::format(", transmission {:g}", m.transmission->factor);
+  if (m.volume) {
+    const VolumeExtension& v = *m.volume;
+    s += v.thickness_factor > 0.0f ? fmt::format(", volume thickness {:g}", v.thickness_factor)
+                                   : std::string(", volume thin-walled (thickness 0)");
+    if (std::isfinite(v.attenuation_distance)) {
+      const glm::vec3 c = v.attenuation_color;
+      s += fmt::format(" attenuation ({:g}, {:g}, {:g}) at {:g}", c.r, c.g, c.b,
+                       v.attenuation_distance);
+    }
+  }
+  if (m.dispersion)
+    s += fmt::format(", dispersion {:g} (Abbe {:g})", m.dispersion->dispersion,
+                     m.dispersion->dispersion > 0.0f ? 20.0f / m.dispersion->dispersion
+                                                     : std::numeric_limits<float>::infinity());
+  if (m.diffuse_transmission) {
+    const glm::vec3 c = m.diffuse_transmission->color_factor;
+    s += fmt::format(", diffuse transmission {:g} ({:g}, {:g}, {:g})",
+                     m.diffuse_transmission->factor, c.r, c.g, c.b);
+  }
   return s;
 }
 

@@ -2,6 +2,8 @@
 // the Scene helpers on known geometry.
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -9,7 +11,9 @@
 
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/mesh_closure.h"
 #include "pbrkit/util/error.h"
+#include "support/test_paths.h"
 
 namespace pbrkit {
 namespace {
@@ -229,6 +233,148 @@ TEST(BuiltinScenes, ExtensionSweepsCoverTheirRanges) {
     for (const auto& row : rows)
       for (std::size_t c = 0; c < 6; c += 2)
         EXPECT_EQ(row[c].material->base_color_factor, row[c + 1].material->base_color_factor);
+  }
+}
+
+const Material& named(const Scene& s, const std::string& name) {
+  for (const Material& m : s.materials)
+    if (m.name == name) return m;
+  throw std::runtime_error("no material " + name);
+}
+
+// Every mesh whose material is a volume boundary closes its volume (recounted here: the
+// Mesh::closed default is true too), and the camera sees every non-backdrop mesh whole,
+// in front of the wall (the backdrop's material is "backdrop").
+void expect_closed_volumes_framed_before_the_backdrop(const Scene& s) {
+  const Camera& cam = s.cameras.at(0);
+  float wall_z = 1e9f;
+  for (const Mesh& mesh : s.meshes)
+    if (mesh.name == "wall") wall_z = mesh.positions[0].z;
+  ASSERT_LT(wall_z, 0.0f);
+  for (const Instance& inst : s.instances) {
+    const Mesh& mesh = s.meshes[std::size_t(inst.mesh)];
+    const Material& m = s.material_of(mesh);
+    SCOPED_TRACE(mesh.name);
+    if (m.volume && m.volume->thickness_factor > 0.0f) {
+      EXPECT_TRUE(mesh.closed);
+      EXPECT_TRUE(count_edges(mesh).closed());
+      EXPECT_FALSE(m.double_sided);  // glTF-Validator: KHR_MATERIALS_VOLUME_DOUBLE_SIDED
+    }
+    if (m.name == "backdrop") continue;
+    EXPECT_TRUE(m.transmission.has_value());
+    for (const glm::vec3& p : mesh.positions) {
+      const glm::vec3 w(inst.transform * glm::vec4(p, 1.0f));
+      EXPECT_GT(w.z, wall_z);
+      EXPECT_GE(w.y, -1e-6f);  // on or above the floor
+      const glm::vec2 ndc = project(cam, w);
+      ASSERT_LT(std::abs(ndc.x), 1.0f) << w.x << " " << w.y << " " << w.z;
+      ASSERT_LT(std::abs(ndc.y), 1.0f) << w.x << " " << w.y << " " << w.z;
+    }
+  }
+  // The backdrop is a checker (refraction shows as bent edges).
+  const TextureRef& checker = named(s, "backdrop").base_color_texture;
+  ASSERT_TRUE(checker.valid());
+  const Image& texels = s.textures[std::size_t(checker.texture)].mips[0];
+  EXPECT_GT(texels.pixel(0, 0)[0], 10.0f * texels.pixel(texels.width - 1, 0)[0]);
+}
+
+TEST(BuiltinScenes, GlassHasEachKindOfGlassBeforeACheckerBackdrop) {
+  const Scene s = load_scene("glass");
+  EXPECT_EQ(s.source, "builtin:glass");
+  EXPECT_TRUE(s.warnings.empty());
+  expect_closed_volumes_framed_before_the_backdrop(s);
+  const Material& smooth = named(s, "glass_smooth");
+  EXPECT_EQ(smooth.roughness_factor, 0.0f);
+  EXPECT_EQ(smooth.transmission->factor, 1.0f);
+  EXPECT_EQ(smooth.metallic_factor, 0.0f);
+  EXPECT_EQ(smooth.volume->attenuation_distance, std::numeric_limits<float>::infinity());
+  EXPECT_GT(named(s, "glass_rough").roughness_factor, 0.2f);
+  const Material& tinted = named(s, "glass_tinted");
+  EXPECT_TRUE(std::isfinite(tinted.volume->attenuation_distance));
+  EXPECT_LT(tinted.volume->attenuation_color.r, 0.5f);  // a visible tint
+  const Material& sheet = named(s, "glass_sheet");
+  EXPECT_FALSE(sheet.volume.has_value());  // thin-walled
+  EXPECT_TRUE(sheet.double_sided);
+  const Material& flint = named(s, "glass_dispersive");
+  EXPECT_GE(flint.dispersion->dispersion, 0.5f);
+  EXPECT_GT(flint.volume->thickness_factor, 0.0f);  // dispersion needs a volume
+  EXPECT_GT(flint.ior, 1.5f);
+  // The volumes' thicknessFactor is their size (what a rasteriser uses for the path length).
+  for (const Mesh& mesh : s.meshes) {
+    if (mesh.name.rfind("sphere", 0) == 0) {
+      EXPECT_NEAR(s.material_of(mesh).volume->thickness_factor,
+                  2.0f * glm::length(mesh.positions[0]), 1e-5f);
+    }
+  }
+}
+
+TEST(BuiltinScenes, LiquidReachesSlightlyIntoItsGlass) {
+  const Scene s = load_scene("liquid");
+  EXPECT_EQ(s.source, "builtin:liquid");
+  EXPECT_TRUE(s.warnings.empty());
+  expect_closed_volumes_framed_before_the_backdrop(s);
+  const Mesh *glass = nullptr, *liquid = nullptr;
+  for (const Mesh& mesh : s.meshes) {
+    if (mesh.name == "tumbler_filled") glass = &mesh;
+    if (mesh.name == "liquid") liquid = &mesh;
+  }
+  ASSERT_TRUE(glass && liquid);
+  EXPECT_EQ(s.material_of(*liquid).ior, 1.33f);
+  EXPECT_LT(s.material_of(*liquid).volume->attenuation_distance, 1.0f);
+  // The glass's inner wall is the smaller radius at the rim; its inner floor the higher
+  // vertex on the axis.
+  float rim = 0.0f, liquid_radius = 0.0f, liquid_bottom = 1e9f, liquid_top = 0.0f;
+  for (const glm::vec3& p : glass->positions) rim = std::max(rim, p.y);
+  float outer = 0.0f, inner = 1e9f, base = 0.0f;
+  for (const glm::vec3& p : glass->positions) {
+    const float r = std::hypot(p.x, p.z);
+    outer = std::max(outer, r);
+    if (p.y == rim) inner = std::min(inner, r);
+    if (r == 0.0f) base = std::max(base, p.y);  // the inner floor's centre
+  }
+  for (const glm::vec3& p : liquid->positions) {
+    liquid_radius = std::max(liquid_radius, std::hypot(p.x, p.z));
+    liquid_bottom = std::min(liquid_bottom, p.y);
+    liquid_top = std::max(liquid_top, p.y);
+  }
+  // The documented overlap: 0.002 into the wall and into the floor, less than the wall.
+  EXPECT_NEAR(liquid_radius - inner, 0.002f, 1e-5f);
+  EXPECT_LT(liquid_radius, outer);
+  EXPECT_NEAR(base - liquid_bottom, 0.002f, 1e-5f);
+  EXPECT_LT(liquid_top, rim - 0.1f);
+  // The same placement (both in the left tumbler).
+  int left = 0;
+  for (const Instance& inst : s.instances) {
+    const std::string& name = s.meshes[std::size_t(inst.mesh)].name;
+    if ((name == "liquid" || name == "tumbler_filled") && inst.transform[3].x < 0.0f) ++left;
+  }
+  EXPECT_EQ(left, 2);
+}
+
+TEST(BuiltinScenes, TransmissionScenesRoundTripThroughGlb) {
+  // `pbrkit scene write` (the validator runs in GltfWriter.BuiltinScenesFollowTheCameraSchema).
+  for (const char* name : {"glass", "liquid"}) {
+    SCOPED_TRACE(name);
+    const Scene a = load_scene(name);
+    const auto path = test::scratch_dir() / (std::string(name) + ".glb");
+    write_glb(a, path);
+    const Scene b = load_scene(path.string());
+    EXPECT_TRUE(b.warnings.empty()) << b.warnings.front();
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    for (std::size_t i = 0; i < a.materials.size(); ++i) {
+      const Material &x = a.materials[i], &y = b.materials[i];
+      SCOPED_TRACE(x.name);
+      EXPECT_EQ(x.ior, y.ior);
+      EXPECT_EQ(x.transmission.has_value(), y.transmission.has_value());
+      ASSERT_EQ(x.volume.has_value(), y.volume.has_value());
+      if (x.volume) {
+        EXPECT_EQ(x.volume->thickness_factor, y.volume->thickness_factor);
+        EXPECT_EQ(x.volume->attenuation_distance, y.volume->attenuation_distance);
+        EXPECT_EQ(x.volume->attenuation_color, y.volume->attenuation_color);
+      }
+      EXPECT_EQ(x.dispersion.has_value(), y.dispersion.has_value());
+    }
+    for (const Mesh& mesh : b.meshes) EXPECT_TRUE(mesh.closed) << mesh.name;
   }
 }
 

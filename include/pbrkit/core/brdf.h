@@ -88,6 +88,10 @@ struct BrdfSample {
   glm::vec3 weight{0.0f};  ///< f(wo, wi) cos(theta_i) / pdf
   float pdf = 0.0f;        ///< combined pdf of all lobes (what MIS needs)
   bool valid = false;      ///< false when the sample fell below the horizon
+  /// A delta lobe's sample (smooth glass, core/transmission.h): `pdf` is infinite (no light
+  /// sample can find this direction, so MIS gives the BSDF sample all the weight) and
+  /// eval() does not contain the lobe.
+  bool delta = false;
 };
 
 class BoundBrdf;

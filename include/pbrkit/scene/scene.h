@@ -111,6 +111,40 @@ struct IridescenceExtension {
   TextureRef thickness_texture;  ///< iridescenceThicknessTexture, G channel
 };
 
+// The transmission extensions (docs/MODEL.md, "Revision 2": glass and volumes).
+
+/// KHR_materials_transmission: the dielectric's specular transmission (a rough dielectric
+/// BTDF with the base roughness), mixed with the diffuse base by the factor.
+struct TransmissionExtension {
+  float factor = 0.0f;  ///< transmissionFactor
+  TextureRef texture;   ///< transmissionTexture, R channel
+};
+
+/// KHR_materials_volume: the mesh bounds a homogeneous absorbing medium (thin-walled when
+/// the thickness is 0).
+struct VolumeExtension {
+  float thickness_factor = 0.0f;  ///< thicknessFactor, in the mesh's object space units
+  TextureRef thickness_texture;   ///< thicknessTexture, G channel
+  /// attenuationDistance: the distance at which light's radiance falls to attenuationColor
+  /// (infinity when absent: no absorption).
+  float attenuation_distance = std::numeric_limits<float>::infinity();
+  glm::vec3 attenuation_color{1.0f};  ///< attenuationColor (linear)
+};
+
+/// KHR_materials_dispersion: the ior varies with wavelength through the Abbe number
+/// V = 20 / dispersion (0: none).
+struct DispersionExtension {
+  float dispersion = 0.0f;  ///< dispersion
+};
+
+/// KHR_materials_diffuse_transmission: a Lambertian transmission lobe beside the diffuse.
+struct DiffuseTransmissionExtension {
+  float factor = 0.0f;           ///< diffuseTransmissionFactor
+  TextureRef texture;            ///< diffuseTransmissionTexture, A channel
+  glm::vec3 color_factor{1.0f};  ///< diffuseTransmissionColorFactor (linear)
+  TextureRef color_texture;      ///< diffuseTransmissionColorTexture, RGB (sRGB)
+};
+
 /// glTF 2.0 metallic-roughness material with the spec's defaults.
 struct Material {
   std::string name;
@@ -137,10 +171,14 @@ struct Material {
   std::optional<AnisotropyExtension> anisotropy;
   std::optional<IridescenceExtension> iridescence;
   bool unlit = false;  ///< KHR_materials_unlit: the base colour is shown as is
+  std::optional<TransmissionExtension> transmission;
+  std::optional<VolumeExtension> volume;
+  std::optional<DispersionExtension> dispersion;
+  std::optional<DiffuseTransmissionExtension> diffuse_transmission;
 
   /// Every texture slot, in the order of TextureSlot / kTextureSlotNames; the slots of an
   /// absent extension point at an empty TextureRef.
-  std::array<const TextureRef*, 15> textures() const;
+  std::array<const TextureRef*, 19> textures() const;
 };
 
 /// Material::textures()'s slots (the GL renderer's HAS_TEXTURE_n bits use these numbers).
@@ -160,8 +198,12 @@ enum class TextureSlot {
   kAnisotropy,
   kIridescence,
   kIridescenceThickness,
+  kTransmission,
+  kThickness,
+  kDiffuseTransmission,
+  kDiffuseTransmissionColor,
 };
-inline constexpr int kTextureSlotCount = 15;
+inline constexpr int kTextureSlotCount = 19;
 
 /// glTF's names of Material::textures()'s slots (extension slots as "<extension>.<name>").
 inline constexpr std::array<const char*, kTextureSlotCount> kTextureSlotNames = {
@@ -180,6 +222,10 @@ inline constexpr std::array<const char*, kTextureSlotCount> kTextureSlotNames = 
     "KHR_materials_anisotropy.anisotropyTexture",
     "KHR_materials_iridescence.iridescenceTexture",
     "KHR_materials_iridescence.iridescenceThicknessTexture",
+    "KHR_materials_transmission.transmissionTexture",
+    "KHR_materials_volume.thicknessTexture",
+    "KHR_materials_diffuse_transmission.diffuseTransmissionTexture",
+    "KHR_materials_diffuse_transmission.diffuseTransmissionColorTexture",
 };
 
 /// One glTF primitive as an indexed triangle list (strips and fans converted), with
@@ -194,6 +240,11 @@ struct Mesh {
   std::vector<glm::vec4> colors0;      ///< COLOR_0 as RGBA (linear)
   std::vector<std::uint32_t> indices;  ///< 3 per triangle
   int material = -1;                   ///< -1: the glTF default material
+  /// Whether the triangles close a volume (every edge shared by exactly two triangles):
+  /// KHR_materials_volume needs it to bound a medium; an open mesh is rendered thin-walled.
+  /// Computed (scene/mesh_closure.h) for meshes whose material has a volume with
+  /// thicknessFactor > 0, by the loader and the built-in scenes; left true for the others.
+  bool closed = true;
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 

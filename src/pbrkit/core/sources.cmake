@@ -5,6 +5,8 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/sheen.cpp
   ${CMAKE_CURRENT_LIST_DIR}/brdf.cpp
   ${CMAKE_CURRENT_LIST_DIR}/bsdf.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/transmission.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/dispersion.cpp
   ${CMAKE_CURRENT_LIST_DIR}/color.cpp
   ${CMAKE_CURRENT_LIST_DIR}/iridescence.cpp)
 target_sources(pbrkit PRIVATE ${CMAKE_CURRENT_LIST_DIR}/brdf_plots.cpp)

@@ -1,5 +1,6 @@
 #include "pbrkit/gl/energy_texture.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -24,29 +25,15 @@ float node_coordinate(int i, int n) {
   return t;
 }
 
-}  // namespace
-
-unsigned create_energy_texture(GeometryModel model) {
-  const EnergyTable& table = EnergyTable::get(model);
-  constexpr int kMu = EnergyTable::kMuSize, kRough = EnergyTable::kRoughnessSize;
-  static_assert(kMu >= kRough, "row kRough holds the averages, one per roughness node");
-  std::vector<float> texels(std::size_t(kMu) * (kRough + 1) * 2, 0.0f);
-  for (int j = 0; j < kRough; ++j) {
-    const float r = node_coordinate(j, kRough);
-    for (int i = 0; i < kMu; ++i) {
-      // At a node the table's interpolation returns the node value (up to rounding).
-      const glm::vec2 ab = table.AB(node_coordinate(i, kMu), r);
-      texels[(std::size_t(j) * kMu + i) * 2 + 0] = ab.x;
-      texels[(std::size_t(j) * kMu + i) * 2 + 1] = ab.y;
-    }
-    const glm::vec2 avg = table.AB_avg(r);
-    texels[(std::size_t(kRough) * kMu + j) * 2 + 0] = avg.x;
-    texels[(std::size_t(kRough) * kMu + j) * 2 + 1] = avg.y;
-  }
+// Each texel holds a node and its neighbour along x (clamped at the last node), so the
+// GLSL's bilinear interpolation, which needs four nodes, reads two texels (one for the
+// sheen table's single channel), not four: on llvmpipe each texelFetch is a full texture
+// instruction, and the compensation reads these tables once per light.
+GLuint create_rgba32f(int width, int height, const std::vector<float>& texels) {
   GLuint texture = 0;
   glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, GL_RG32F, kMu, kRough + 1);
-  glTextureSubImage2D(texture, 0, 0, 0, kMu, kRough + 1, GL_RG, GL_FLOAT, texels.data());
+  glTextureStorage2D(texture, 1, GL_RGBA32F, width, height);
+  glTextureSubImage2D(texture, 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels.data());
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -54,26 +41,51 @@ unsigned create_energy_texture(GeometryModel model) {
   return texture;
 }
 
+}  // namespace
+
+unsigned create_energy_texture(GeometryModel model) {
+  const EnergyTable& table = EnergyTable::get(model);
+  constexpr int kMu = EnergyTable::kMuSize, kRough = EnergyTable::kRoughnessSize;
+  static_assert(kMu >= kRough, "row kRough holds the averages, one per roughness node");
+  // At a node the table's interpolation returns the node value (up to rounding).
+  auto node = [&](int i, int j) {
+    return table.AB(node_coordinate(std::min(i, kMu - 1), kMu),
+                    node_coordinate(std::min(j, kRough - 1), kRough));
+  };
+  // Rows 0..kRough-1: (A, B) at node (i, j) and at (i + 1, j). Row kRough: (A_avg, B_avg)
+  // at roughness node j (x = j) and at j + 1.
+  std::vector<float> texels(std::size_t(kMu) * (kRough + 1) * 4, 0.0f);
+  auto put = [&](int x, int y, glm::vec2 a, glm::vec2 b) {
+    float* t = &texels[(std::size_t(y) * kMu + std::size_t(x)) * 4];
+    t[0] = a.x, t[1] = a.y, t[2] = b.x, t[3] = b.y;
+  };
+  for (int j = 0; j < kRough; ++j) {
+    for (int i = 0; i < kMu; ++i) put(i, j, node(i, j), node(i + 1, j));
+    const float r0 = node_coordinate(j, kRough);
+    const float r1 = node_coordinate(std::min(j + 1, kRough - 1), kRough);
+    put(j, kRough, table.AB_avg(r0), table.AB_avg(r1));
+  }
+  return create_rgba32f(kMu, kRough + 1, texels);
+}
+
 unsigned create_sheen_lut_texture() {
   // SheenTable's nodes, read back through E at each node (bilinear interpolation at a node
-  // is the node's value), so the GLSL interpolates the C++ table's own numbers.
+  // is the node's value), so the GLSL interpolates the C++ table's own numbers. Texel
+  // (i, j) holds the cell's four corners E(i, j), E(i + 1, j), E(i, j + 1), E(i + 1, j + 1)
+  // (clamped at the last node).
   const int nx = SheenTable::kMuSize, ny = SheenTable::kRoughnessSize;
-  std::vector<float> texels(std::size_t(nx) * ny);
+  auto node = [&](int i, int j) {
+    const float t = float(std::min(i, nx - 1)) / float(nx - 1);
+    const float u = float(std::min(j, ny - 1)) / float(ny - 1);
+    return SheenTable::get().E(t * t, kMinSheenRoughness + (1.0f - kMinSheenRoughness) * u * u);
+  };
+  std::vector<float> texels(std::size_t(nx) * ny * 4);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const float t = float(i) / float(nx - 1), u = float(j) / float(ny - 1);
-      texels[std::size_t(j) * nx + i] =
-          SheenTable::get().E(t * t, kMinSheenRoughness + (1.0f - kMinSheenRoughness) * u * u);
+      float* t = &texels[(std::size_t(j) * nx + std::size_t(i)) * 4];
+      t[0] = node(i, j), t[1] = node(i + 1, j), t[2] = node(i, j + 1), t[3] = node(i + 1, j + 1);
     }
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, GL_R32F, nx, ny);
-  glTextureSubImage2D(texture, 0, 0, 0, nx, ny, GL_RED, GL_FLOAT, texels.data());
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return texture;
+  return create_rgba32f(nx, ny, texels);
 }
 
 }  // namespace pbrkit::gl

@@ -6,14 +6,16 @@
 
 namespace pbrkit::gl {
 
-/// A new 32 x 33 GL_RG32F texture (nearest filtering; the shader interpolates by hand):
-/// rows 0..31 are (A, B) at the table's nodes mu = i / 31, roughness = j / 31, and row 32
-/// holds (A_avg, B_avg) at x = j. The caller owns the texture name.
+/// A new 32 x 33 GL_RGBA32F texture (nearest filtering; the shader interpolates by hand):
+/// rows 0..31 hold (A, B) at the table's nodes mu = i / 31, roughness = j / 31 in .xy and
+/// the next node along mu in .zw; row 32 holds (A_avg, B_avg) at x = j and at j + 1. The
+/// caller owns the texture name.
 unsigned create_energy_texture(GeometryModel model);
 
 /// The sheen's directional albedo table (core/sheen.h SheenTable) for sheen.glsl's sheen_E:
-/// a 64 x 48 GL_R32F texture of the table's nodes (nearest filtering; the shader
-/// interpolates by hand). The caller owns the texture name.
+/// a 64 x 48 GL_RGBA32F texture whose texel (i, j) holds the four corners of the table's
+/// cell (i, j) (nearest filtering; the shader interpolates by hand). The caller owns the texture
+/// name.
 unsigned create_sheen_lut_texture();
 
 }  // namespace pbrkit::gl

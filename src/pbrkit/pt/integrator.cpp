@@ -8,6 +8,8 @@
 #include <cmath>
 #include <limits>
 
+#include "pbrkit/core/dispersion.h"
+#include "pbrkit/core/transmission.h"
 #include "pbrkit/pt/environment_sampler.h"
 #include "pbrkit/pt/ray_offset.h"
 #include "pbrkit/pt/shading.h"
@@ -45,14 +47,15 @@ inline float power_heuristic(float f, float g) {
 // The denoiser's features (albedo, normal, depth) are those of the first vertex that is
 // not near-specular, as denoisers expect: seen in a mirror, the mirrored surface's texture
 // and edges are what the image shows. A vertex is near-specular when it is a smooth metal
-// (its reflection is a sharp image of what it faces). The first vertex records its own
+// or smooth glass (its reflection or refraction is a sharp image of what it faces). The first vertex records its own
 // features; a later one replaces them when every vertex before it was near-specular (its
 // albedo tinted by the path throughput, its depth the length of the path to it). A path
 // that escapes records the environment it sees (AovTracker::escape).
 constexpr float kAovSpecularRoughness = 0.1f;
 
 inline bool near_specular_for_aovs(const ShadingInputs& in) {
-  return in.params.base.metallic >= 0.5f && in.params.base.roughness < kAovSpecularRoughness;
+  if (in.params.base.roughness >= kAovSpecularRoughness) return false;
+  return in.params.base.metallic >= 0.5f || in.params.transmission.weight >= 0.5f;
 }
 
 struct AovTracker {
@@ -86,6 +89,14 @@ struct AovTracker {
   }
 };
 
+// Beer-Lambert over `distance` (infinite for a ray that escapes): exp(-sigma_a d) per
+// channel; no NaN for sigma_a = inf or d = inf.
+inline glm::vec3 absorb(glm::vec3 sigma_a, float distance) {
+  glm::vec3 tr;
+  for (int c = 0; c < 3; ++c) tr[c] = sigma_a[c] > 0.0f ? std::exp(-sigma_a[c] * distance) : 1.0f;
+  return tr;
+}
+
 }  // namespace
 
 // Li's helpers below are defined `inline` (they are used in this file only) so that the
@@ -104,11 +115,20 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   EnvironmentSampler::Location env_at;  // where `direction` meets the map (depth > 0)
   const LightStrategy strategy = settings_.strategy;
   AovTracker aov;
+  MediumStack media;  // the volumes the path is inside (empty: vacuum)
+  int channel = -1;   // the colour channel chosen at the first dispersive surface
   for (int depth = 0;; ++depth) {
     SurfaceHit hit;
     const Material* material = nullptr;
+    const glm::vec3 segment_start = origin;
     const bool found = closest_hit(origin, direction, pixel, index, depth, rays, hit, material,
                                    depth == 0 ? &primary : nullptr);
+    // Beer-Lambert absorption along the segment inside a volume (KHR_materials_volume).
+    if (media.size > 0) {
+      beta *= absorb(media.sigma_a(), found ? glm::length(hit.p - segment_start)
+                                            : std::numeric_limits<float>::infinity());
+      if (beta == glm::vec3(0.0f)) break;
+    }
     if (!found) {
       // The environment, weighted against the light sample that could have found it.
       if (env && (depth > 0 || settings_.env_visible)) {
@@ -130,7 +150,8 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     // Double-sided materials shade the side they are seen from; single-sided back
     // faces were culled in closest_hit.
     // (shade_inputs turns the shading normal to the same side.)
-    if (glm::dot(hit.ng, wo) < 0.0f) hit.ng = -hit.ng;
+    const bool front_face = glm::dot(hit.ng, wo) >= 0.0f;  // the ray arrives from outside
+    if (!front_face) hit.ng = -hit.ng;
     // Emission (glTF emission is seen from the front, or from both sides when
     // double-sided; a culled back face never gets here), weighted like the environment's.
     const glm::vec3 Le = material_emission(scene_, *material, hit);
@@ -165,22 +186,42 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
                             ? Frame(in.tangent, glm::cross(in.ns, in.tangent), in.ns)
                             : Frame(in.ns);
     in.params.coat.normal = frame.to_local(in.coat_normal);
-    const Bsdf bsdf(in.params, settings_.brdf);
-    const BoundBsdf brdf = bsdf.at(frame.to_local(wo));
     const std::uint32_t block = kFirstBounceBlock + std::uint32_t(depth) * kBlocksPerBounce;
     const glm::vec4 u_nee = sampler.sample_block(index, block);
     const glm::vec4 u_bsdf = sampler.sample_block(index, block + 1);
 
-    // Direct lighting: one light sample, weighted against BSDF sampling.
-    out.L += sample_ld(hit, frame, brdf, u_nee, beta, rays);
+    // Transmission: the media on both sides of the surface (MODEL.md, "Revision 2:
+    // transmission and volumes"). A volume is behind the surface when the material has a
+    // non-zero thickness and the mesh is closed; otherwise the surface is a thin wall.
+    const bool transmits =
+        in.params.transmission.weight > 0.0f || in.params.diffuse_transmission.weight > 0.0f;
+    bool volume = false;
+    float n_material = 1.0f;
+    glm::vec3 sigma_near(0.0f), sigma_far(0.0f);
+    if (transmits) [[unlikely]]
+      volume = resolve_transmission(in, *material, hit, front_face, media, channel, beta, u_bsdf.w,
+                                    n_material, sigma_near, sigma_far);
+    const Bsdf bsdf(in.params, settings_.brdf);
+    const BoundBsdf brdf = bsdf.at(frame.to_local(wo));
 
-    // Continue the path by sampling the BRDF (visible-normal GGX or cosine).
+    // Direct lighting: one light sample, weighted against BSDF sampling.
+    out.L += sample_ld(hit, frame, brdf, u_nee, beta, rays, transmits, sigma_near, sigma_far);
+
+    // Continue the path by sampling the BSDF (visible-normal GGX, cosine, the dielectric).
     const BrdfSample bs = brdf.sample(u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y));
     if (!bs.valid) break;
     const glm::vec3 wi = frame.to_world(bs.wi);
-    // Reflection only: a direction below the geometric surface would leak light.
-    if (!(glm::dot(wi, hit.ng) > 0.0f)) break;
+    // The shading frame's side must agree with the geometric one: a direction on the other
+    // side of the triangle than its lobe meant would leak light.
+    const bool transmitted = bs.wi.z < 0.0f;
+    if (transmitted ? !(glm::dot(wi, hit.ng) < 0.0f) : !(glm::dot(wi, hit.ng) > 0.0f)) break;
     beta *= bs.weight;
+    if (transmitted && volume) {
+      if (front_face)
+        media.push({hit.geom, n_material, sigma_far});
+      else
+        media.remove(hit.geom);
+    }
     // Russian roulette (pbrt-v4): survive with probability max(beta), at most 1.
     if (depth + 1 >= settings_.rr_start) {
       const float q = std::max(beta.x, std::max(beta.y, beta.z));
@@ -193,9 +234,9 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
       env_at = env->locate(wi);
       env->prefetch(env_at);
     }
-    prev_pdf = bs.pdf;
+    prev_pdf = bs.pdf;  // infinite after a delta lobe: MIS gives it all the weight
     prev_p = hit.p;
-    origin = offset_ray_origin(hit.p, hit.ng);
+    origin = offset_ray_origin(hit.p, transmitted ? -hit.ng : hit.ng);
     direction = wi;
   }
   if (!std::isfinite(out.L.x + out.L.y + out.L.z)) out.L = glm::vec3(0.0f);
@@ -207,9 +248,49 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 // environment are weighted against the BSDF sampling that could have found them (power
 // heuristic); delta lights, which only this strategy reaches, have weight 1. Returns the
 // contribution to the path's radiance, beta f Li tr w / pdf.
+[[gnu::noinline]] bool Integrator::resolve_transmission(ShadingInputs& in, const Material& material,
+                                                        const SurfaceHit& hit, bool front_face,
+                                                        const MediumStack& media, int& channel,
+                                                        glm::vec3& beta, float u_channel,
+                                                        float& n_material, glm::vec3& sigma_near,
+                                                        glm::vec3& sigma_far) const {
+  TransmissionLayer& tl = in.params.transmission;
+  const bool volume =
+      !tl.thin_walled && material.volume && geometry_.meshes()[hit.geom].mesh->closed;
+  tl.thin_walled = !volume;
+  n_material = material.ior;
+  sigma_near = sigma_far = media.sigma_a();
+  if (volume && material.dispersion && material.dispersion->dispersion > 0.0f) {
+    // KHR_materials_dispersion: the path takes one channel's wavelength from here on
+    // (core/dispersion.h); paths that never meet dispersion pay nothing.
+    if (channel < 0) {
+      const ChannelSample cs = sample_channel(u_channel);
+      channel = cs.channel;
+      beta *= cs.weight;
+    }
+    n_material = dispersion_iors(material.ior, material.dispersion->dispersion)[channel];
+  }
+  if (!volume) {
+    tl.eta = n_material / media.ior();
+  } else if (front_face) {
+    tl.eta = n_material / media.ior();
+    sigma_far = volume_absorption(material.volume->attenuation_color,
+                                  material.volume->attenuation_distance);
+  } else {
+    const MediumStack::Entry* beyond = media.outside_of(hit.geom);
+    tl.eta = (beyond ? beyond->ior : 1.0f) / n_material;
+    sigma_far = beyond ? beyond->sigma_a : glm::vec3(0.0f);
+  }
+  return volume;
+}
+
+// Through a transmissive surface the light may be on either side; a refractive (delta)
+// interface has no lobe a light sample can meet, and a shadow ray through glass is blocked
+// by it: light through glass arrives by BSDF sampling only (caustics; MODEL.md).
 inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame,
                                        const BoundBsdf& brdf, glm::vec4 u_nee, glm::vec3 beta,
-                                       std::uint64_t& rays) const {
+                                       std::uint64_t& rays, bool transmits, glm::vec3 sigma_near,
+                                       glm::vec3 sigma_far) const {
   LightSample ls;
   // (The light choice needs no random number when there is a single light.)
   const float u_light = lights_.size() > 1 ? u_nee.x : 0.5f;
@@ -217,15 +298,24 @@ inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame
   // Area lights and the environment are left to BSDF sampling when it is asked for alone.
   const LightStrategy strategy = settings_.strategy;
   if (!ls.delta && strategy == LightStrategy::kBsdfOnly) return glm::vec3(0.0f);
-  if (ls.Li == glm::vec3(0.0f) || !(glm::dot(ls.wi, hit.ng) > 0.0f)) return glm::vec3(0.0f);
+  if (ls.Li == glm::vec3(0.0f)) return glm::vec3(0.0f);
+  const bool above = glm::dot(ls.wi, hit.ng) > 0.0f;
+  if (!above && !transmits) return glm::vec3(0.0f);
   const glm::vec3 wi_local = frame.to_local(ls.wi);
   const bool mis = !ls.delta && strategy == LightStrategy::kMis;
   float bsdf_pdf = 0.0f;
-  const glm::vec3 f = brdf.eval(wi_local, mis ? &bsdf_pdf : nullptr) * std::max(wi_local.z, 0.0f);
+  const float cos_i = transmits ? std::abs(wi_local.z) : std::max(wi_local.z, 0.0f);
+  const glm::vec3 f = brdf.eval(wi_local, mis ? &bsdf_pdf : nullptr) * cos_i;
   if (f == glm::vec3(0.0f)) return glm::vec3(0.0f);
   float w = 1.0f;
   if (mis) w = power_heuristic(ls.pdf, bsdf_pdf);
-  const glm::vec3 tr = transmittance(hit, ls, rays);
+  glm::vec3 tr = transmittance(hit, ls, above ? hit.ng : -hit.ng, rays);
+  if (transmits) {
+    const glm::vec3 sigma = above ? sigma_near : sigma_far;
+    if (sigma != glm::vec3(0.0f))
+      tr *= absorb(sigma, ls.infinite ? std::numeric_limits<float>::infinity()
+                                      : glm::length(ls.light_point - hit.p));
+  }
   return beta * f * ls.Li * tr * (w / ls.pdf);
 }
 
@@ -255,7 +345,10 @@ inline bool Integrator::closest_hit(glm::vec3& origin, glm::vec3 direction, std:
     hit = geometry_.resolve(geom, prim, t, u, v);
     const WorldMesh& wm = geometry_.meshes()[geom];
     material = wm.material;
-    bool skip = !material->double_sided && glm::dot(hit.ng, direction) > 0.0f;
+    // Back faces of single-sided materials are culled (glTF), except where light goes
+    // through the surface: a glass's inside is seen through its back faces.
+    bool skip = !material->double_sided && glm::dot(hit.ng, direction) > 0.0f &&
+                !material->transmission && !material->diffuse_transmission;
     if (!skip && wm.has_alpha) {
       const float alpha = material_alpha(scene_, *material, hit);
       if (material->alpha_mode == AlphaMode::kMask)
@@ -272,8 +365,8 @@ inline bool Integrator::closest_hit(glm::vec3& origin, glm::vec3 direction, std:
 // Visibility of a light sample: 0 or 1 through opaque geometry; through alpha-tested
 // and blended surfaces the expected transmittance (MASK: 0 or 1, BLEND: 1 - alpha).
 inline glm::vec3 Integrator::transmittance(const SurfaceHit& hit, const LightSample& ls,
-                                           std::uint64_t& rays) const {
-  const glm::vec3 o = offset_ray_origin(hit.p, hit.ng);
+                                           glm::vec3 n_side, std::uint64_t& rays) const {
+  const glm::vec3 o = offset_ray_origin(hit.p, n_side);
   float tfar;
   if (ls.infinite) {
     tfar = kInfinity;

@@ -120,6 +120,29 @@ ShadingInputs shade_inputs(const Scene& scene, const Material& m, const SurfaceH
     s.params.sheen.roughness =
         m.sheen->roughness_factor * lookup(scene, m.sheen->roughness_texture, hit).a;
   }
+  // KHR_materials_transmission, _volume, _diffuse_transmission. The ratio of iors across
+  // the surface depends on the medium the ray is in: the integrator sets it (the material's
+  // ior against vacuum here).
+  s.params.transmission.eta = m.ior;
+  if (m.transmission) {
+    s.params.transmission.weight =
+        m.transmission->factor * lookup(scene, m.transmission->texture, hit).r;
+    // Thin-walled unless a volume of non-zero thickness is behind the surface (volume
+    // README); the integrator also makes open meshes thin.
+    float thickness = 0.0f;
+    if (m.volume)
+      thickness =
+          m.volume->thickness_factor * (m.volume->thickness_texture.valid()
+                                            ? lookup(scene, m.volume->thickness_texture, hit).g
+                                            : 1.0f);
+    s.params.transmission.thin_walled = !(thickness > 0.0f);
+  }
+  if (m.diffuse_transmission) {
+    const DiffuseTransmissionExtension& d = *m.diffuse_transmission;
+    s.params.diffuse_transmission.weight = d.factor * lookup(scene, d.texture, hit).a;
+    s.params.diffuse_transmission.color =
+        d.color_factor * glm::vec3(lookup(scene, d.color_texture, hit));
+  }
   if (m.clearcoat) {
     const ClearcoatExtension& cc = *m.clearcoat;
     s.params.coat.weight = cc.factor * lookup(scene, cc.texture, hit).r;

@@ -189,7 +189,7 @@ void put_color(tinygltf::Value::Object& o, const char* name, glm::vec3 value, gl
                                                    tinygltf::Value(double(value.b))});
 }
 
-// The KHR_materials_* surface extensions the material uses, each with the values that differ
+// The KHR_materials_* extensions the material uses, each with the values that differ
 // from the README's defaults. KHR_materials_unlit excludes the others (each of their READMEs
 // says so, and the glTF-Validator reports the combination), so an unlit material is
 // written with KHR_materials_unlit only: what a viewer would show of it.
@@ -255,6 +255,42 @@ tinygltf::ExtensionMap Writer::material_extensions(const Material& m) {
     put_number(o, "iridescenceThicknessMaximum", e.thickness_max, d.thickness_max);
     put_texture(o, "iridescenceThicknessTexture", texture_info(e.thickness_texture));
     out["KHR_materials_iridescence"] = tinygltf::Value(o);
+  }
+  if (m.transmission) {
+    const TransmissionExtension& e = *m.transmission;
+    const TransmissionExtension d;
+    tinygltf::Value::Object o;
+    put_number(o, "transmissionFactor", e.factor, d.factor);
+    put_texture(o, "transmissionTexture", texture_info(e.texture));
+    out["KHR_materials_transmission"] = tinygltf::Value(o);
+  }
+  if (m.volume) {
+    const VolumeExtension& e = *m.volume;
+    const VolumeExtension d;
+    tinygltf::Value::Object o;
+    put_number(o, "thicknessFactor", e.thickness_factor, d.thickness_factor);
+    put_texture(o, "thicknessTexture", texture_info(e.thickness_texture));
+    // Infinity (no absorption) is the README's meaning of an absent distance; JSON has no
+    // number for it.
+    if (std::isfinite(e.attenuation_distance))
+      o["attenuationDistance"] = tinygltf::Value(double(e.attenuation_distance));
+    put_color(o, "attenuationColor", e.attenuation_color, d.attenuation_color);
+    out["KHR_materials_volume"] = tinygltf::Value(o);
+  }
+  if (m.dispersion) {
+    tinygltf::Value::Object o;
+    put_number(o, "dispersion", m.dispersion->dispersion, DispersionExtension{}.dispersion);
+    out["KHR_materials_dispersion"] = tinygltf::Value(o);
+  }
+  if (m.diffuse_transmission) {
+    const DiffuseTransmissionExtension& e = *m.diffuse_transmission;
+    const DiffuseTransmissionExtension d;
+    tinygltf::Value::Object o;
+    put_number(o, "diffuseTransmissionFactor", e.factor, d.factor);
+    put_texture(o, "diffuseTransmissionTexture", texture_info(e.texture));
+    put_color(o, "diffuseTransmissionColorFactor", e.color_factor, d.color_factor);
+    put_texture(o, "diffuseTransmissionColorTexture", texture_info(e.color_texture));
+    out["KHR_materials_diffuse_transmission"] = tinygltf::Value(o);
   }
   return out;
 }

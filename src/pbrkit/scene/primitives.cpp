@@ -1,8 +1,11 @@
 #include "pbrkit/scene/primitives.h"
 
 #include <cmath>
+#include <cstdint>
+#include <utility>
 
 #include "pbrkit/core/math.h"
+#include "pbrkit/scene/mesh_closure.h"
 
 namespace pbrkit {
 
@@ -11,12 +14,15 @@ Mesh make_uv_sphere(float radius, int segments, int rings) {
   mesh.name = "sphere";
   for (int j = 0; j <= rings; ++j) {
     const float v = float(j) / float(rings);
+    // The poles and the seam (u = 1) repeat positions exactly, so that welding equal
+    // positions closes the sphere (mesh_closure.h; sin(float(pi)) is not 0).
     const float theta = v * kPi;
+    const float sin_theta = j == 0 || j == rings ? 0.0f : std::sin(theta);
+    const float cos_theta = j == 0 ? 1.0f : j == rings ? -1.0f : std::cos(theta);
     for (int i = 0; i <= segments; ++i) {
       const float u = float(i) / float(segments);
-      const float phi = u * 2.0f * kPi;
-      const glm::vec3 n(std::sin(theta) * std::sin(phi), std::cos(theta),
-                        std::sin(theta) * std::cos(phi));
+      const float phi = i == segments ? 0.0f : u * 2.0f * kPi;
+      const glm::vec3 n(sin_theta * std::sin(phi), cos_theta, sin_theta * std::cos(phi));
       mesh.positions.push_back(radius * n);
       mesh.normals.push_back(n);
       // d(position)/d(phi) direction: the tangent follows increasing u.
@@ -78,8 +84,116 @@ Mesh make_box(glm::vec3 lo, glm::vec3 hi, bool inward) {
   return box;
 }
 
+// Appends the triangle (a, b, c) of `mesh`, flipped if its face normal points against
+// `outward`; a triangle with two equal corners (on an axis or a pole) is left out.
+void add_triangle(Mesh& mesh, std::uint32_t a, std::uint32_t b, std::uint32_t c,
+                  glm::vec3 outward) {
+  const glm::vec3 pa = mesh.positions[a], pb = mesh.positions[b], pc = mesh.positions[c];
+  if (pa == pb || pb == pc || pc == pa) return;
+  if (glm::dot(glm::cross(pb - pa, pc - pa), outward) < 0.0f) std::swap(b, c);
+  mesh.indices.insert(mesh.indices.end(), {a, b, c});
+}
+
+Mesh make_prism(const std::vector<glm::vec2>& outline, float height) {
+  Mesh mesh;
+  mesh.name = "prism";
+  const std::size_t n = outline.size();
+  glm::vec2 centre(0.0f);
+  for (const glm::vec2& p : outline) centre += p / float(n);
+  auto vertex = [&](glm::vec2 p, float y, glm::vec3 normal, glm::vec3 tangent, glm::vec2 uv) {
+    mesh.positions.push_back({p.x, y, p.y});
+    mesh.normals.push_back(normal);
+    mesh.tangents.push_back(glm::vec4(tangent, 1.0f));
+    mesh.texcoords0.push_back(uv);
+    return std::uint32_t(mesh.positions.size() - 1);
+  };
+  // Side faces: one flat quad per outline edge, its normal away from the centre.
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::vec2 a = outline[i], b = outline[(i + 1) % n];
+    const glm::vec2 mid = 0.5f * (a + b);
+    glm::vec3 normal = glm::normalize(glm::vec3(b.y - a.y, 0.0f, a.x - b.x));
+    if (glm::dot(glm::vec2(normal.x, normal.z), mid - centre) < 0.0f) normal = -normal;
+    const glm::vec3 tangent = glm::normalize(glm::vec3(b.x - a.x, 0.0f, b.y - a.y));
+    const std::uint32_t v0 = vertex(a, 0.0f, normal, tangent, {0, 1});
+    const std::uint32_t v1 = vertex(b, 0.0f, normal, tangent, {1, 1});
+    const std::uint32_t v2 = vertex(b, height, normal, tangent, {1, 0});
+    const std::uint32_t v3 = vertex(a, height, normal, tangent, {0, 0});
+    add_triangle(mesh, v0, v1, v2, normal);
+    add_triangle(mesh, v0, v2, v3, normal);
+  }
+  // Caps: fans over the convex outline.
+  for (const float y : {0.0f, height}) {
+    const glm::vec3 normal(0.0f, y == 0.0f ? -1.0f : 1.0f, 0.0f);
+    const auto first = std::uint32_t(mesh.positions.size());
+    for (const glm::vec2& p : outline)
+      vertex(p, y, normal, {1, 0, 0}, glm::vec2(0.5f) + 0.5f * (p - centre));
+    for (std::uint32_t i = 1; i + 1 < n; ++i)
+      add_triangle(mesh, first, first + i, first + i + 1, normal);
+  }
+  return mesh;
+}
+
+Mesh make_lathe(const std::vector<glm::vec2>& profile, int segments) {
+  Mesh mesh;
+  mesh.name = "lathe";
+  // v runs along the profile's length.
+  std::vector<float> length(profile.size(), 0.0f);
+  for (std::size_t k = 1; k < profile.size(); ++k)
+    length[k] = length[k - 1] + glm::distance(profile[k - 1], profile[k]);
+  for (std::size_t k = 0; k + 1 < profile.size(); ++k) {
+    const glm::vec2 a = profile[k], b = profile[k + 1];
+    if (a == b) continue;
+    // The segment's outward normal in the (radius, y) plane.
+    const glm::vec2 n = glm::normalize(glm::vec2(b.y - a.y, a.x - b.x));
+    const auto first = std::uint32_t(mesh.positions.size());
+    for (int i = 0; i <= segments; ++i) {
+      // The seam (i = segments) repeats i = 0 exactly.
+      const float phi = i == segments ? 0.0f : 2.0f * kPi * float(i) / float(segments);
+      const float s = std::sin(phi), c = std::cos(phi);
+      for (const std::size_t end : {k, k + 1}) {
+        const glm::vec2 p = profile[end];
+        mesh.positions.push_back({p.x * s, p.y, p.x * c});
+        mesh.normals.push_back({n.x * s, n.y, n.x * c});
+        mesh.tangents.push_back({c, 0.0f, -s, 1.0f});
+        mesh.texcoords0.push_back({float(i) / float(segments), 1.0f - length[end] / length.back()});
+      }
+    }
+    for (int i = 0; i < segments; ++i) {
+      const std::uint32_t a0 = first + 2 * std::uint32_t(i), b0 = a0 + 1, a1 = a0 + 2, b1 = a0 + 3;
+      // The face normal of the quad's middle, for add_triangle's orientation check.
+      const float phi = 2.0f * kPi * (float(i) + 0.5f) / float(segments);
+      const glm::vec3 outward(n.x * std::sin(phi), n.y, n.x * std::cos(phi));
+      add_triangle(mesh, a0, a1, b0, outward);
+      add_triangle(mesh, a1, b1, b0, outward);
+    }
+  }
+  return mesh;
+}
+
+Texture make_checker_texture(int size, int checks, glm::vec3 a, glm::vec3 b) {
+  Image image(size, size, 4, 1.0f);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const bool first = ((x * checks / size) + (y * checks / size)) % 2 == 0;
+      const glm::vec3 c = first ? a : b;
+      float* texel = image.pixel(x, y);
+      texel[0] = c.r;
+      texel[1] = c.g;
+      texel[2] = c.b;
+    }
+  Texture texture;
+  texture.name = "checker";
+  texture.srgb = true;
+  texture.mips = make_mip_chain(std::move(image));
+  return texture;
+}
+
 int add_mesh_instance(Scene& scene, Mesh mesh, int material, const glm::mat4& transform) {
   mesh.material = material;
+  if (material >= 0 && std::size_t(material) < scene.materials.size()) {
+    const Material& m = scene.materials[std::size_t(material)];
+    if (m.volume && m.volume->thickness_factor > 0.0f) mesh.closed = count_edges(mesh).closed();
+  }
   scene.meshes.push_back(std::move(mesh));
   const int index = int(scene.meshes.size()) - 1;
   scene.instances.push_back({index, transform, -1});

@@ -12,7 +12,7 @@ Bounds Scene::world_bounds() const {
   return bounds;
 }
 
-std::array<const TextureRef*, 15> Material::textures() const {
+std::array<const TextureRef*, 19> Material::textures() const {
   static const TextureRef kNone;
   auto in = [](const auto& ext, auto member) -> const TextureRef* {
     return ext ? &((*ext).*member) : &kNone;
@@ -31,7 +31,11 @@ std::array<const TextureRef*, 15> Material::textures() const {
           in(sheen, &SheenExtension::roughness_texture),
           in(anisotropy, &AnisotropyExtension::texture),
           in(iridescence, &IridescenceExtension::texture),
-          in(iridescence, &IridescenceExtension::thickness_texture)};
+          in(iridescence, &IridescenceExtension::thickness_texture),
+          in(transmission, &TransmissionExtension::texture),
+          in(volume, &VolumeExtension::thickness_texture),
+          in(diffuse_transmission, &DiffuseTransmissionExtension::texture),
+          in(diffuse_transmission, &DiffuseTransmissionExtension::color_texture)};
 }
 
 const Material& Scene::material_of(const Mesh& mesh) const {

@@ -91,39 +91,30 @@ vec3 multiscatter_fresnel(vec3 F0, float E_avg) {
   return F_avg * F_avg * E_avg / (1.0 - F_avg * (1.0 - E_avg));
 }
 
-// The EnergyTable (core/energy.h) as a 32 x 33 RG32F texture: rows 0..31 hold (A, B) at
-// mu = i / 31 (x) and roughness = j / 31 (y); row 32 holds (A_avg, B_avg) at x = j.
+// The EnergyTable (core/energy.h) as a 32 x 33 RGBA32F texture (gl/energy_texture.cpp):
+// rows 0..31 hold (A, B) at mu = i / 31 (x) and roughness = j / 31 (y) in .xy and the next
+// node along mu in .zw; row 32 holds (A_avg, B_avg) at x = j in .xy and at j + 1 in .zw.
 // Interpolated by hand exactly as EnergyTable::AB / AB_avg do (no hardware filtering, whose
-// fixed-point weights would differ from the C++ table).
+// fixed-point weights would differ from the C++ table); two fetches per lookup.
 const int kEnergyMuSize = 32;
 const int kEnergyRoughnessSize = 32;
-
-// Bilinear interpolation of a table of nodes (a texture read with texelFetch) at the
-// continuous node coordinates (x, y), in [0, nx - 1] x [0, ny - 1]: the C++ tables'
-// (EnergyTable, SheenTable) own interpolation, cell clamped as they clamp it.
-vec4 node_table_bilinear(sampler2D table, float x, float y, int nx, int ny) {
-  int i0 = min(int(x), nx - 2);
-  int j0 = min(int(y), ny - 2);
-  float fx = x - float(i0), fy = y - float(j0);
-  vec4 a00 = texelFetch(table, ivec2(i0, j0), 0);
-  vec4 a10 = texelFetch(table, ivec2(i0 + 1, j0), 0);
-  vec4 a01 = texelFetch(table, ivec2(i0, j0 + 1), 0);
-  vec4 a11 = texelFetch(table, ivec2(i0 + 1, j0 + 1), 0);
-  return mix(mix(a00, a10, fx), mix(a01, a11, fx), fy);
-}
 
 vec2 energy_AB(sampler2D table, float mu, float roughness) {
   float x = clamp(mu, 0.0, 1.0) * float(kEnergyMuSize - 1);
   float y = clamp(roughness, 0.0, 1.0) * float(kEnergyRoughnessSize - 1);
-  return node_table_bilinear(table, x, y, kEnergyMuSize, kEnergyRoughnessSize).xy;
+  int i0 = min(int(x), kEnergyMuSize - 2);
+  int j0 = min(int(y), kEnergyRoughnessSize - 2);
+  float fx = x - float(i0), fy = y - float(j0);
+  vec4 row0 = texelFetch(table, ivec2(i0, j0), 0);
+  vec4 row1 = texelFetch(table, ivec2(i0, j0 + 1), 0);
+  return mix(mix(row0.xy, row0.zw, fx), mix(row1.xy, row1.zw, fx), fy);
 }
 
 vec2 energy_AB_avg(sampler2D table, float roughness) {
   float y = clamp(roughness, 0.0, 1.0) * float(kEnergyRoughnessSize - 1);
   int j0 = min(int(y), kEnergyRoughnessSize - 2);
-  vec2 a0 = texelFetch(table, ivec2(j0, kEnergyRoughnessSize), 0).xy;
-  vec2 a1 = texelFetch(table, ivec2(j0 + 1, kEnergyRoughnessSize), 0).xy;
-  return mix(a0, a1, y - float(j0));
+  vec4 pair = texelFetch(table, ivec2(j0, kEnergyRoughnessSize), 0);
+  return mix(pair.xy, pair.zw, y - float(j0));
 }
 
 float max3(vec3 v) { return max(v.x, max(v.y, v.z)); }
@@ -201,6 +192,7 @@ struct Brdf {
   float E_o;
   float diffuse_o;
   vec3 Es_o;
+  vec2 ab_o;  // the table's (A, B) at mu_o
 };
 
 // Brdf::Brdf. `table` is the EnergyTable of `geometry` (the direct-lighting G); the model
@@ -237,6 +229,7 @@ Brdf make_brdf(BaseLayer layer, int geometry, bool multiscatter, int fresnel, sa
   b.E_o = 0.0;
   b.diffuse_o = 1.0;
   b.Es_o = vec3(0.0);
+  b.ab_o = vec2(0.0);
   if (multiscatter) {
     vec2 ab_avg = energy_AB_avg(table, b.table_roughness);
     b.E_avg = ab_avg.x + ab_avg.y;
@@ -284,6 +277,7 @@ vec3 brdf_specular_albedo(Brdf b, sampler2D table, float mu) {
 Brdf brdf_at(Brdf b, sampler2D table, vec3 wo) {
   if (!b.multiscatter) return b;
   vec2 ab_o = energy_AB(table, max(wo.z, 0.0), b.table_roughness);
+  b.ab_o = ab_o;
   b.E_o = ab_o.x + ab_o.y;
   if (b.reference) {
     // The diffuse lobe under the dielectric's specular (single + multiple scattering).

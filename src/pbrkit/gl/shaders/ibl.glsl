@@ -35,9 +35,9 @@ float roughness_lod(float roughness, int levels) { return roughness * float(leve
 // at n.v times the directional albedo A + B replaces each split-sum Fresnel term by the
 // iridescence factor; the compensated diffuse keeps the plain dielectric's weight, as the
 // C++ Brdf does.
-vec3 ibl_shading(Brdf b, sampler2D ibl_table, float NdotV, vec3 prefiltered, vec3 irradiance) {
-  float mu = max(NdotV, 1e-4);
-  vec2 ab = energy_AB(ibl_table, mu, b.table_roughness);
+// `ab` is the IBL table's (A, B) at mu = max(n.v, 1e-4) (ibl_shading looks it up).
+vec3 ibl_shading_ab(Brdf b, sampler2D ibl_table, float mu, vec2 ab, vec3 prefiltered,
+                    vec3 irradiance) {
   vec3 lambert = (1.0 - b.metallic) * b.base_color;
   float E = ab.x + ab.y;
   if (!b.reference) {
@@ -77,6 +77,12 @@ vec3 ibl_shading(Brdf b, sampler2D ibl_table, float NdotV, vec3 prefiltered, vec
   // b.Fms, b.Fms_d, b.E_avg are the IBL table's (make_brdf was given it).
   vec3 Es_d = brdf_dielectric_albedo(b, ab) + b.Fms_d * (1.0 - E);
   return specular + (b.Fms * (1.0 - E) + lambert * (1.0 - max3(Es_d))) * irradiance * kInvPi;
+}
+
+vec3 ibl_shading(Brdf b, sampler2D ibl_table, float NdotV, vec3 prefiltered, vec3 irradiance) {
+  float mu = max(NdotV, 1e-4);
+  return ibl_shading_ab(b, ibl_table, mu, energy_AB(ibl_table, mu, b.table_roughness),
+                        prefiltered, irradiance);
 }
 
 // KHR_materials_anisotropy's IBL (the Khronos Sample Viewer's getIBLRadianceAnisotropy):

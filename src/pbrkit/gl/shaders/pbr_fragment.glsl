@@ -370,8 +370,16 @@ void main() {
 #else
     vec3 irradiance = textureLod(uIrradianceCube, n_env, 0.0).rgb;
 #endif
+#if GEOMETRY == 0 && MULTISCATTER
+    // reference: the IBL's energy table is the punctual lights' (both height-correlated
+    // Smith), so the bound Brdf is the IBL's too and brdf_at has looked up (A, B) at n.v
+    // already (two of the compensation's fetches and a make_brdf fewer per fragment).
+    vec3 indirect = wo.z >= 1e-4 ? ibl_shading_ab(brdf, uEnergyIBL, wo.z, brdf.ab_o, prefiltered, irradiance)
+                                 : ibl_shading(brdf, uEnergyIBL, wo.z, prefiltered, irradiance);
+#else
     Brdf ibl = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
     vec3 indirect = ibl_shading(ibl, uEnergyIBL, dot(n, v), prefiltered, irradiance);
+#endif
 #if MATERIAL_SHEEN
     {
       // The base under the sheen, scaled by the sheen's albedo at n.v (the README's

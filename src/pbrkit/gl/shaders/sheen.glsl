@@ -39,12 +39,17 @@ float V_Charlie(float NdotV, float NdotL, float roughness) {
 }
 
 // SheenTable::E(mu, roughness), interpolated by hand exactly as the C++ table does: nodes
-// at mu_i = (i / 63)^2 (x) and r_j = 0.07 + 0.93 (j / 47)^2 (y), R channel.
+// at mu_i = (i / 63)^2 (x) and r_j = 0.07 + 0.93 (j / 47)^2 (y); texel (i, j) holds the
+// cell's corners (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1), so one fetch per lookup.
 const int kSheenMuSize = 64;
 const int kSheenRoughnessSize = 48;
 float sheen_E(sampler2D sheen_lut, float mu, float roughness) {
   float x = sqrt(clamp(mu, 0.0, 1.0)) * float(kSheenMuSize - 1);
   float r = clamp(roughness, kMinSheenRoughness, 1.0);
   float y = sqrt((r - kMinSheenRoughness) / (1.0 - kMinSheenRoughness)) * float(kSheenRoughnessSize - 1);
-  return node_table_bilinear(sheen_lut, x, y, kSheenMuSize, kSheenRoughnessSize).r;
+  int i0 = min(int(x), kSheenMuSize - 2);
+  int j0 = min(int(y), kSheenRoughnessSize - 2);
+  float fx = x - float(i0), fy = y - float(j0);
+  vec4 c = texelFetch(sheen_lut, ivec2(i0, j0), 0);
+  return mix(mix(c.x, c.y, fx), mix(c.z, c.w, fx), fy);
 }

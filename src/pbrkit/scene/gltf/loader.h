@@ -91,6 +91,13 @@ class Loader {
   // check_json kept (tinygltf drops extension values that are not objects, and empty
   // objects inside them, so it cannot tell a wrong type from an absent value).
   void read_material_extensions(const json& extensions, const std::string& where, Material& m);
+  // The extension object `name` of a material's extensions, or null when absent (an error
+  // when it is not an object).
+  const json* extension_object(const json& extensions, const char* name,
+                               const std::string& where) const;
+  // transmission_extensions.cpp: KHR_materials_transmission, volume, dispersion and
+  // diffuse_transmission, and the warnings for their combinations.
+  void read_transmission_extensions(const json& extensions, const std::string& where, Material& m);
   float finite_float(const json& v, const std::string& path) const;
   float extension_factor(const json& ext, const char* name, float fallback, float lo, float hi,
                          const std::string& where);

@@ -1,6 +1,8 @@
-// The KHR_materials_* surface extensions of a material: ior, specular, clearcoat, sheen,
-// anisotropy, iridescence and unlit (each README in KhronosGroup/glTF,
-// extensions/2.0/Khronos/). Absent values keep the README's defaults (Material's own).
+// The KHR_materials_* extensions of a material: the surface ones (ior, specular,
+// clearcoat, sheen, anisotropy, iridescence, unlit) and the transmission ones
+// (transmission, volume, dispersion, diffuse_transmission); each README in
+// KhronosGroup/glTF, extensions/2.0/Khronos/. Absent values keep the README's defaults
+// (Material's own).
 //
 // What the loader does with values the schemas do not allow:
 // - a wrong JSON type (an extension that is not an object, a factor that is not a number,
@@ -13,7 +15,17 @@
 //   f0 = ((ior - 1) / (ior + 1))^2 gives; any other value below 1 is a warning and
 //   becomes 1 (the nearest index of the ordinary range);
 // - iridescenceThicknessMinimum may be greater than the maximum (the README allows it:
-//   the thickness texture then interpolates downwards), so that is not a warning.
+//   the thickness texture then interpolates downwards), so that is not a warning;
+// - KHR_materials_volume.attenuationDistance: the README's range is (0, +inf); 0 or a
+//   negative distance is a warning and is ignored (+inf: the medium does not absorb),
+//   since sigma_t = -ln(c) / d has no finite value there;
+// - attenuationColor and diffuseTransmissionColorFactor: the schemas bound them below
+//   only, but a component above 1 makes light (transmittance c^(x/d) grows without bound
+//   with the distance x; a transmission colour above 1 transmits more than arrives), so
+//   it is a warning and is clamped to 1;
+// - combinations that the READMEs give no effect (a volume with neither transmission nor
+//   diffuse transmission, dispersion without a volume, doubleSided on a volume boundary)
+//   are warnings that say so; the values are kept.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -147,17 +159,18 @@ TextureRef Loader::extension_texture(const json& ext, const char* name, bool srg
   return texture_ref(int(texture), texcoord, extensions, srgb, path);
 }
 
+const json* Loader::extension_object(const json& extensions, const char* name,
+                                     const std::string& where) const {
+  const auto it = extensions.find(name);
+  if (it == extensions.end()) return nullptr;
+  if (!it->is_object())
+    error(where + ".extensions." + name, fmt::format("must be an object, not {}", type_name(*it)));
+  return &*it;
+}
+
 void Loader::read_material_extensions(const json& extensions, const std::string& where,
                                       Material& m) {
-  // The extension object named `name`, or null when the material does not use it.
-  auto object = [&](const char* name) -> const json* {
-    const auto it = extensions.find(name);
-    if (it == extensions.end()) return nullptr;
-    if (!it->is_object())
-      error(where + ".extensions." + name,
-            fmt::format("must be an object, not {}", type_name(*it)));
-    return &*it;
-  };
+  auto object = [&](const char* name) { return extension_object(extensions, name, where); };
 
   if (const json* e = object("KHR_materials_ior")) {
     const std::string path = where + ".extensions.KHR_materials_ior";
@@ -231,12 +244,16 @@ void Loader::read_material_extensions(const json& extensions, const std::string&
     m.iridescence = i;
   }
 
+  read_transmission_extensions(extensions, where, m);
+
   if (object("KHR_materials_unlit")) {
     m.unlit = true;
     // Every other extension here names KHR_materials_unlit among its exclusions.
     for (const char* other :
          {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
-          "KHR_materials_sheen", "KHR_materials_anisotropy", "KHR_materials_iridescence"})
+          "KHR_materials_sheen", "KHR_materials_anisotropy", "KHR_materials_iridescence",
+          "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
+          "KHR_materials_diffuse_transmission"})
       if (extensions.contains(other))
         warning(fmt::format(
             "{}.extensions: KHR_materials_unlit must not be combined with {}; the material is "

@@ -6,6 +6,7 @@
 
 #include "pbrkit/scene/gltf/loader.h"
 #include "pbrkit/scene/mesh_attributes.h"
+#include "pbrkit/scene/mesh_closure.h"
 
 namespace pbrkit::gltf {
 
@@ -205,6 +206,19 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
     if (!uv_source && mat.anisotropy && mat.anisotropy->texture.valid())
       uv_source = &mat.anisotropy->texture;
     if (uv_source || mat.anisotropy) generate_tangents(mesh, uv_source ? uv_source->texcoord : 0);
+  }
+  // KHR_materials_volume, "Extending Materials": a thickness above 0 makes the mesh a
+  // volume boundary, which "requires a manifold/closed mesh". Checked per primitive (a
+  // volume's material belongs to one), and only where a volume needs it: the edge count
+  // hashes every vertex.
+  if (mat.volume && mat.volume->thickness_factor > 0.0f) {
+    const EdgeCount edges = count_edges(mesh);
+    mesh.closed = edges.closed();
+    if (!mesh.closed)
+      warning(fmt::format(
+          "{}: the material (materials[{}]) has KHR_materials_volume, but the primitive is not "
+          "closed ({} edges not shared by exactly two triangles); it is rendered thin-walled",
+          where, mesh.material, edges.unpaired));
   }
   scene_.meshes.push_back(std::move(mesh));
   out.push_back(int(scene_.meshes.size()) - 1);
