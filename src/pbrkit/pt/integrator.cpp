@@ -47,10 +47,10 @@ inline float power_heuristic(float f, float g) {
 // The denoiser's features (albedo, normal, depth) are those of the first vertex that is
 // not near-specular, as denoisers expect: seen in a mirror, the mirrored surface's texture
 // and edges are what the image shows. A vertex is near-specular when it is a smooth metal
-// or smooth glass (its reflection or refraction is a sharp image of what it faces). The first vertex records its own
-// features; a later one replaces them when every vertex before it was near-specular (its
-// albedo tinted by the path throughput, its depth the length of the path to it). A path
-// that escapes records the environment it sees (AovTracker::escape).
+// or smooth glass (its reflection or refraction is a sharp image of what it faces). The first
+// vertex records its own features; a later one replaces them when every vertex before it was
+// near-specular (its albedo tinted by the path throughput, its depth the length of the path to it).
+// A path that escapes records the environment it sees (AovTracker::escape).
 constexpr float kAovSpecularRoughness = 0.1f;
 
 inline bool near_specular_for_aovs(const ShadingInputs& in) {
