@@ -9,7 +9,8 @@
 //                      [--only NAME] [--spp-count 1|2] [--skip-timing 1] [--debug 1]
 //                      [DenoiseOptions: --radius --variance-radius --error-radius
 //                       --selection-radius --prefilter-radius --patch-radius --feature-k
-//                       --feature-gradient --candidates k1,k2,...]
+//                       --feature-gradient --candidates k1,k2,... --outlier-k
+//                       --outlier-radius --outlier-spread-radius]
 // --debug 1 prints the pixels with the largest errors and writes heat maps (red: the
 // denoised image's relative squared error, green: the raw one's) into the cache folder.
 // The references (rendered once, cached as float EXRs under --cache, default
@@ -146,6 +147,12 @@ int main(int argc, char** argv) {
       options.raw_candidate = v == "1";
     else if (a == "--feature-gradient")
       options.feature_gradient = std::stof(v);
+    else if (a == "--outlier-k")
+      options.outlier_k = std::stof(v);
+    else if (a == "--outlier-radius")
+      options.outlier_radius = std::stoi(v);
+    else if (a == "--outlier-spread-radius")
+      options.outlier_spread_radius = std::stoi(v);
     else if (a == "--feature-k")
       options.feature_k = std::stof(v);
     else if (a == "--candidates") {
@@ -252,6 +259,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr,
                      "  top 5%% of pixels hold %.0f%% of the error; shares:", 100 * top / total);
         for (double sh : stats.candidate_share) std::fprintf(stderr, " %.2f", sh);
+        std::fprintf(stderr, "; outliers %d", stats.outliers);
         double m[3] = {0, 0, 0};
         for (std::size_t i = 0; i < raw.data.size(); ++i) {
           m[0] += raw.data[i];

@@ -57,6 +57,14 @@ struct DenoiseOptions {
   float feature_gradient = 0.25f;
   /// Candidates, from detail-keeping to smoothest (Rousselle et al. 2013's FIRST..THIRD).
   std::vector<DenoiseCandidate> candidates{{0.45f}, {1.0f}, {0.0f}};
+  /// Firefly treatment (docs/DENOISER.md): a half's pixel more than outlier_k robust
+  /// standard deviations above the second largest value of both halves in its
+  /// (2 outlier_radius + 1)^2 window (and above the other half) is scaled down and its
+  /// excess spread over the feature-alike pixels within outlier_spread_radius (energy is
+  /// kept). outlier_k <= 0 turns it off.
+  float outlier_k = 3.0f;
+  int outlier_radius = 2;
+  int outlier_spread_radius = 7;
   int variance_radius = 2;   ///< box radius smoothing the half-buffer variance estimates
   int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
   int error_radius = 2;      ///< box radius smoothing the per-candidate error estimates
@@ -70,6 +78,7 @@ struct DenoiseOptions {
 struct DenoiseStats {
   double seconds = 0.0;
   std::vector<double> candidate_share;  ///< fraction of the image each candidate won
+  int outliers = 0;                     ///< half-buffer pixels the firefly treatment changed
 };
 
 /// Checks `input`: eight images present, one size, the channel counts above, every value

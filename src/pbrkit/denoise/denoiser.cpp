@@ -73,8 +73,6 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
     return keep_going;
   };
 
-  Channels color[2] = {channels_from(input.color[0], pad), channels_from(input.color[1], pad)};
-  const Channels variance = half_variance(color[0], color[1], options.variance_radius);
   // Features: albedo, normal and depth, the last normalised by its largest value so that
   // the feature floor tau means the same in every scene.
   float depth_max = 0.0f;
@@ -91,13 +89,19 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
                                        channels_from(input.normal[1], pad), options));
   features.push_back(prefilter_feature(channels_from(depth_scaled[0], pad),
                                        channels_from(depth_scaled[1], pad), options));
+  // Fireflies first: the variance, the weights and the averages all see the treated halves.
+  Channels color[2] = {channels_from(input.color[0], pad), channels_from(input.color[1], pad)};
+  std::vector<const Feature*> feature_list;
+  for (const Feature& f : features) feature_list.push_back(&f);
+  const int outliers = spread_outliers(color, feature_list, options);
+  const Channels variance = half_variance(color[0], color[1], options.variance_radius);
   if (!report(0.1)) fail("denoising was interrupted");
 
   CrossFilterInput cf;
   cf.color[0] = &color[0];
   cf.color[1] = &color[1];
   cf.variance[0] = cf.variance[1] = &variance;  // equal halves: the same variance
-  for (const Feature& f : features) cf.features.push_back(&f);
+  cf.features = feature_list;
   int strips = 1;
   std::atomic<int> done{0};
   Candidates candidates = cross_filter(
@@ -130,6 +134,7 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->candidate_share = share;
+    stats->outliers = outliers;
   }
   return out;
 }

@@ -38,6 +38,13 @@ struct Feature {
 /// variance (Rousselle et al. 2013, section 4.1). The halves carry the output's padding.
 Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOptions& options);
 
+/// Energy-conserving firefly treatment (outliers.cpp): per half, pixels far above a robust
+/// estimate from their neighbourhood and the other half are scaled down and their excess
+/// is spread over the feature-alike pixels of the window, half into each half buffer, so
+/// the mean of the halves keeps its energy. Returns the number of outliers treated.
+int spread_outliers(Channels color[2], const std::vector<const Feature*>& features,
+                    const DenoiseOptions& options);
+
 /// The candidates' outputs: per candidate the RGB mean of the two filtered halves and the
 /// estimated squared error (SURE, channel mean) per pixel.
 struct Candidates {
