@@ -147,6 +147,8 @@ int main(int argc, char** argv) {
       options.raw_candidate = v == "1";
     else if (a == "--feature-gradient")
       options.feature_gradient = std::stof(v);
+    else if (a == "--relative-variance")
+      options.relative_variance = v == "1";
     else if (a == "--outlier-k")
       options.outlier_k = std::stof(v);
     else if (a == "--outlier-radius")

@@ -65,7 +65,10 @@ struct DenoiseOptions {
   float outlier_k = 3.0f;
   int outlier_radius = 2;
   int outlier_spread_radius = 7;
-  int variance_radius = 2;   ///< box radius smoothing the half-buffer variance estimates
+  int variance_radius = 2;  ///< box radius smoothing the half-buffer variance estimates
+  /// Smooth the colour's relative variance and scale it by each pixel's own level
+  /// (docs/DENOISER.md), rather than the variance itself
+  bool relative_variance = true;
   int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
   int error_radius = 2;      ///< box radius smoothing the per-candidate error estimates
   int selection_radius = 1;  ///< box radius smoothing the per-pixel choice of candidate

@@ -94,7 +94,10 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   std::vector<const Feature*> feature_list;
   for (const Feature& f : features) feature_list.push_back(&f);
   const int outliers = spread_outliers(color, feature_list, options);
-  const Channels variance = half_variance(color[0], color[1], options.variance_radius);
+  const Channels variance =
+      options.relative_variance
+          ? half_variance_relative(color[0], color[1], options.variance_radius)
+          : half_variance(color[0], color[1], options.variance_radius);
   if (!report(0.1)) fail("denoising was interrupted");
 
   CrossFilterInput cf;

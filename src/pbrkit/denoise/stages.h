@@ -21,6 +21,12 @@ Channels channels_from(const Image& image, int pad);
 /// box_r((a - b)^2 / 2), per channel. The variance of the mean of the two halves is half
 /// of it.
 Channels half_variance(const Channels& a, const Channels& b, int r);
+/// As half_variance, but box-smooths the relative variance (a - b)^2 / 2 / (m^2 + floor),
+/// m the pixel's mean of the halves, and scales the result back by the pixel's own m^2 +
+/// floor: Monte Carlo noise grows with the signal, so across an intensity edge the relative
+/// variance is the smoother quantity, and a dim pixel next to a bright one does not take
+/// the bright one's variance.
+Channels half_variance_relative(const Channels& a, const Channels& b, int r);
 /// The mean over channels of `per_channel` (one plane, same padding).
 Plane channel_mean(const Channels& per_channel);
 
