@@ -9,7 +9,7 @@
 //                      [--only NAME] [--spp-count 1|2] [--skip-timing 1] [--debug 1]
 //                      [DenoiseOptions: --radius --variance-radius --error-radius
 //                       --selection-radius --prefilter-radius --patch-radius --feature-k
-//                       --feature-gradient --candidates k1,k2,... --outlier-k
+//                       --feature-gradient --candidates k1[:r1],k2,... --outlier-k
 //                       --outlier-radius --outlier-spread-radius]
 // --debug 1 prints the pixels with the largest errors and writes heat maps (red: the
 // denoised image's relative squared error, green: the raw one's) into the cache folder.
@@ -161,7 +161,12 @@ int main(int argc, char** argv) {
       options.candidates.clear();
       for (std::size_t p = 0; p < v.size();) {
         const std::size_t q = v.find(',', p);
-        options.candidates.push_back({std::stof(v.substr(p, q - p))});
+        // k or k:radius
+        const std::string item = v.substr(p, q - p);
+        const std::size_t colon = item.find(':');
+        options.candidates.push_back(
+            {std::stof(item.substr(0, colon)),
+             colon == std::string::npos ? 0 : std::stoi(item.substr(colon + 1))});
         p = q == std::string::npos ? v.size() : q + 1;
       }
     } else if (a == "--spp-count")

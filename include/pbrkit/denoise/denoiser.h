@@ -45,6 +45,9 @@ struct DenoiseInput {
 /// means infinity, a filter guided by the features alone).
 struct DenoiseCandidate {
   float color_k = 0.45f;
+  /// Its window radius (0: DenoiseOptions::radius, at most that): a smaller spatial
+  /// bandwidth where neither features nor colour separate what should stay apart
+  int radius = 0;
 };
 
 struct DenoiseOptions {
@@ -55,8 +58,10 @@ struct DenoiseOptions {
   /// Scale of the squared feature gradient in the normalisation (1: Rousselle et al.;
   /// less keeps silhouettes from leaking, docs/DENOISER.md)
   float feature_gradient = 0.25f;
-  /// Candidates, from detail-keeping to smoothest (Rousselle et al. 2013's FIRST..THIRD).
-  std::vector<DenoiseCandidate> candidates{{0.45f}, {1.0f}, {0.0f}};
+  /// Candidates: two with a 7x7 window (a smaller spatial bandwidth, as the filters
+  /// SURE chooses among in Li et al. 2012) and Rousselle et al. 2013's FIRST..THIRD with
+  /// the full window, from detail-keeping to smoothest (docs/DENOISER.md).
+  std::vector<DenoiseCandidate> candidates{{1.0f, 3}, {0.45f}, {1.0f}, {0.0f}};
   /// Firefly treatment (docs/DENOISER.md): a half's pixel more than outlier_k robust
   /// standard deviations above the second largest value of both halves in its
   /// (2 outlier_radius + 1)^2 window (and above the other half) is scaled down and its

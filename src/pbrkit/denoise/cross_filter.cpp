@@ -30,9 +30,12 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
       guide_variance[g].push_back(&(*input.variance[g])[std::size_t(c)]);
     }
   std::vector<float> inv_k2(std::size_t(k_count), 0.0f);
+  std::vector<int> k_radius;
   for (int k = 0; k < k_count; ++k) {
     const float kc = options.candidates[std::size_t(k)].color_k;
     inv_k2[std::size_t(k)] = kc > 0.0f ? 1.0f / (kc * kc) : 0.0f;
+    const int rk = options.candidates[std::size_t(k)].radius;
+    k_radius.push_back(rk > 0 ? std::min(rk, r) : r);
   }
 
   Candidates out;
@@ -94,6 +97,8 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
           const float* q_var[2] = {mean_variance[0].row(y + dy) + dx,
                                    mean_variance[1].row(y + dy) + dx};
           for (int k = 0; k < k_count; ++k) {
+            const int rk = k_radius[std::size_t(k)];
+            if (dx < -rk || dx > rk || dy < -rk || dy > rk) continue;
             const float ik2 = inv_k2[std::size_t(k)];
             for (int half = 0; half < 2; ++half) {
               // Half `half` is filtered with the colour distance of the other half; one
