@@ -128,6 +128,44 @@ TEST(Denoiser, RegionMeansArePreserved) {
     }
 }
 
+// Fireflies: a constant noisy image with a few single-sample outliers of known energy in
+// one half. The denoised image must keep their energy (the sum over the image of the mean
+// of the halves) within the noise of that sum, and stay near the constant away from them.
+TEST(Denoiser, FireflyEnergyIsKeptAndStaysLocal) {
+  const float c = 0.5f, sigma_half = 0.1f, excess = 200.0f;
+  DenoiseInput in =
+      synthetic([&](int, int) { return c; }, [](int, int) { return 0.5f; }, sigma_half, 3);
+  const int fireflies[4][2] = {{12, 12}, {50, 14}, {14, 49}, {48, 50}};
+  for (const auto& f : fireflies)
+    for (int ch = 0; ch < 3; ++ch) in.color[0].pixel(f[0], f[1])[ch] += excess;
+  DenoiseStats stats;
+  const Image out = denoise(in, {}, {}, &stats);
+  EXPECT_GE(stats.outliers, 4);
+  // The truth: every pixel c, plus each firefly's excess once in one half (half of it in
+  // the mean of the halves). The sum of the raw mean has noise sigma_half / sqrt 2 per
+  // pixel, so sigma_half / sqrt 2 * kSize over the image; a weighted mean of it no more
+  // than twice that. Dropping the fireflies (clamping) misses by 400.
+  const double n = double(kSize) * kSize;
+  const double truth = c * n + 4 * 0.5 * excess;
+  const double sigma_sum = sigma_half / std::sqrt(2.0) * kSize;
+  EXPECT_NEAR(region_mean(out, 0, 0, kSize, kSize) * n, truth, 4.0 * 2.0 * sigma_sum);
+  // Away from them (the cross (x or y in [24, 40)) is more than 10 pixels from every
+  // firefly): the constant, within a raw pixel's noise, as without fireflies.
+  const float sigma_raw = sigma_half / std::sqrt(2.0f);
+  double worst = 0.0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const bool far = (x >= 24 && x < 40) || (y >= 24 && y < 40);
+      if (far) worst = std::max(worst, std::abs(double(out.pixel(x, y)[0]) - c));
+    }
+  EXPECT_LT(worst, sigma_raw);
+  // Near them the excess is spread, not left as a spike: no pixel keeps more than a
+  // tenth of a firefly's contribution to the mean (excess / 2).
+  float peak = 0.0f;
+  for (float v : out.data) peak = std::max(peak, v);
+  EXPECT_LT(peak, c + 0.1f * 0.5f * excess);
+}
+
 TEST(Denoiser, SameOutputWithAnyThreadCount) {
   auto ramp = [](int x, int y) { return 0.01f * float(x + y); };
   const DenoiseInput in = synthetic(

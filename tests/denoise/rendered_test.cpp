@@ -44,9 +44,10 @@ TEST(DenoiserRendered, LowSppCornellComesCloserToItsReference) {
   const double after = rel_mse(denoised, reference);
   RecordProperty("raw_rel_mse", std::to_string(raw));
   RecordProperty("denoised_rel_mse", std::to_string(after));
-  // The 1024-spp reference's own error (about raw / 64) bounds what can be measured; the
-  // denoised image must come at least 3x closer to it than the raw one.
-  EXPECT_LT(after, raw / 3.0) << "raw relMSE " << raw << ", denoised " << after;
+  // The 1024-spp reference's own error (about raw / 64) bounds what can be measured. The
+  // denoised image must come at least 4x closer to it than the raw one (measured, with
+  // these seeds: raw 0.085, denoised 0.016, 5.2x).
+  EXPECT_LT(after, raw / 4.0) << "raw relMSE " << raw << ", denoised " << after;
 }
 
 }  // namespace

@@ -45,25 +45,48 @@ struct DenoiseInput {
 /// means infinity, a filter guided by the features alone).
 struct DenoiseCandidate {
   float color_k = 0.45f;
+  /// Its window radius (0: DenoiseOptions::radius, at most that): a smaller spatial
+  /// bandwidth where neither features nor colour separate what should stay apart
+  int radius = 0;
 };
 
 struct DenoiseOptions {
   int radius = 7;             ///< filter window radius in pixels ((2r+1)^2 neighbours)
   int patch_radius = 1;       ///< NL-means colour patch radius
-  float feature_k = 0.6f;     ///< feature sensitivity (Rousselle et al. 2013's k_f)
+  float feature_k = 1.0f;     ///< feature sensitivity (Rousselle et al. 2013's k_f; they use 0.6)
   float feature_tau = 1e-3f;  ///< floor of the feature normalisation (their tau)
-  /// Candidates, from detail-keeping to smoothest (Rousselle et al. 2013's FIRST..THIRD).
-  std::vector<DenoiseCandidate> candidates{{0.45f}, {1.0f}, {0.0f}};
-  int variance_radius = 3;   ///< box radius smoothing the half-buffer variance estimates
+  /// Scale of the squared feature gradient in the normalisation (1: Rousselle et al.;
+  /// less keeps silhouettes from leaking, docs/DENOISER.md)
+  float feature_gradient = 0.25f;
+  /// Candidates: two with a 7x7 window (a smaller spatial bandwidth, as the filters
+  /// SURE chooses among in Li et al. 2012) and Rousselle et al. 2013's FIRST..THIRD with
+  /// the full window, from detail-keeping to smoothest (docs/DENOISER.md).
+  std::vector<DenoiseCandidate> candidates{{1.0f, 3}, {0.45f}, {1.0f}, {0.0f}};
+  /// Firefly treatment (docs/DENOISER.md): a half's pixel more than outlier_k robust
+  /// standard deviations above the second largest value of both halves in its
+  /// (2 outlier_radius + 1)^2 window (and above the other half) is scaled down and its
+  /// excess spread over the feature-alike pixels within outlier_spread_radius (energy is
+  /// kept). outlier_k <= 0 turns it off.
+  float outlier_k = 3.0f;
+  int outlier_radius = 2;
+  int outlier_spread_radius = 7;
+  int variance_radius = 2;  ///< box radius smoothing the half-buffer variance estimates
+  /// Smooth the colour's relative variance and scale it by each pixel's own level
+  /// (docs/DENOISER.md), rather than the variance itself
+  bool relative_variance = true;
   int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
-  int error_radius = 3;      ///< box radius smoothing the per-candidate error estimates
+  int error_radius = 2;      ///< box radius smoothing the per-candidate error estimates
   int selection_radius = 1;  ///< box radius smoothing the per-pixel choice of candidate
+  /// Also offer the unfiltered image as a candidate (last in DenoiseStats::candidate_share);
+  /// off: it changed no scene of denoise_bench measurably (BENCHMARKS.md, issue 13)
+  bool raw_candidate = false;
 };
 
 /// Diagnostics of one run.
 struct DenoiseStats {
   double seconds = 0.0;
   std::vector<double> candidate_share;  ///< fraction of the image each candidate won
+  int outliers = 0;                     ///< half-buffer pixels the firefly treatment changed
 };
 
 /// Checks `input`: eight images present, one size, the channel counts above, every value

@@ -30,9 +30,12 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
       guide_variance[g].push_back(&(*input.variance[g])[std::size_t(c)]);
     }
   std::vector<float> inv_k2(std::size_t(k_count), 0.0f);
+  std::vector<int> k_radius;
   for (int k = 0; k < k_count; ++k) {
     const float kc = options.candidates[std::size_t(k)].color_k;
     inv_k2[std::size_t(k)] = kc > 0.0f ? 1.0f / (kc * kc) : 0.0f;
+    const int rk = options.candidates[std::size_t(k)].radius;
+    k_radius.push_back(rk > 0 ? std::min(rk, r) : r);
   }
 
   Candidates out;
@@ -94,28 +97,40 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
           const float* q_var[2] = {mean_variance[0].row(y + dy) + dx,
                                    mean_variance[1].row(y + dy) + dx};
           for (int k = 0; k < k_count; ++k) {
+            const int rk = k_radius[std::size_t(k)];
+            if (dx < -rk || dx > rk || dy < -rk || dy > rk) continue;
             const float ik2 = inv_k2[std::size_t(k)];
             for (int half = 0; half < 2; ++half) {
-              // Half `half` is filtered with the colour distance of the other half.
+              // Half `half` is filtered with the colour distance of the other half; one
+              // fused pass per candidate and half computes the weight and all five sums.
               float* wt = weight.data() + o;
-              if (ik2 > 0.0f) {
-                const float* cd = dist[1 - half].data() + o;
-                for (int x = x0; x < x1; ++x) wt[x] = exp_neg(std::max(cd[x] * ik2, fd[x]));
-              } else if (half == 0) {  // features alone: one weight for both halves
-                for (int x = x0; x < x1; ++x) wt[x] = exp_neg(fd[x]);
-              }
+              const float* cd = dist[1 - half].data() + o;
               const Channels& data = *input.color[half];
+              const float* q0 = data[0].row(y + dy) + dx;
+              const float* q1 = data[1].row(y + dy) + dx;
+              const float* q2 = data[2].row(y + dy) + dx;
+              float* s0 = sum(k, half, 0) + o;
+              float* s1 = sum(k, half, 1) + o;
+              float* s2 = sum(k, half, 2) + o;
               float* s_w = sum(k, half, 3) + o;
               float* s_v = sum(k, half, 4) + o;
               const float* qv = q_var[half];
-              for (int x = x0; x < x1; ++x) {
-                s_w[x] += wt[x];
-                s_v[x] += wt[x] * wt[x] * qv[x];
-              }
-              for (int c = 0; c < 3; ++c) {
-                const float* q = data[std::size_t(c)].row(y + dy) + dx;
-                float* s_c = sum(k, half, c) + o;
-                for (int x = x0; x < x1; ++x) s_c[x] += wt[x] * q[x];
+              auto accumulate = [&](int x, float wx) {
+                s0[x] += wx * q0[x];
+                s1[x] += wx * q1[x];
+                s2[x] += wx * q2[x];
+                s_w[x] += wx;
+                s_v[x] += wx * wx * qv[x];
+              };
+              if (ik2 > 0.0f) {
+                for (int x = x0; x < x1; ++x) accumulate(x, exp_neg(std::max(cd[x] * ik2, fd[x])));
+              } else if (half == 0) {  // features alone: one weight for both halves
+                for (int x = x0; x < x1; ++x) {
+                  wt[x] = exp_neg(fd[x]);
+                  accumulate(x, wt[x]);
+                }
+              } else {
+                for (int x = x0; x < x1; ++x) accumulate(x, wt[x]);
               }
             }
           }

@@ -60,6 +60,7 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   if (options.radius < 0 || options.patch_radius < 0 || options.variance_radius < 0 ||
       options.prefilter_radius < 0 || options.candidates.empty())
     fail("denoise: radii must be >= 0 and there must be at least one candidate");
+  const int w = input.color[0].width, h = input.color[0].height;
   const int pad = std::max({options.radius + options.patch_radius, options.prefilter_radius + 1,
                             options.variance_radius, 1}) +
                   1;
@@ -72,8 +73,6 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
     return keep_going;
   };
 
-  Channels color[2] = {channels_from(input.color[0], pad), channels_from(input.color[1], pad)};
-  const Channels variance = half_variance(color[0], color[1], options.variance_radius);
   // Features: albedo, normal and depth, the last normalised by its largest value so that
   // the feature floor tau means the same in every scene.
   float depth_max = 0.0f;
@@ -90,18 +89,47 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
                                        channels_from(input.normal[1], pad), options));
   features.push_back(prefilter_feature(channels_from(depth_scaled[0], pad),
                                        channels_from(depth_scaled[1], pad), options));
+  // Fireflies first: the variance, the weights and the averages all see the treated halves.
+  Channels color[2] = {channels_from(input.color[0], pad), channels_from(input.color[1], pad)};
+  std::vector<const Feature*> feature_list;
+  for (const Feature& f : features) feature_list.push_back(&f);
+  const int outliers = spread_outliers(color, feature_list, options);
+  const Channels variance =
+      options.relative_variance
+          ? half_variance_relative(color[0], color[1], options.variance_radius)
+          : half_variance(color[0], color[1], options.variance_radius);
   if (!report(0.1)) fail("denoising was interrupted");
 
   CrossFilterInput cf;
   cf.color[0] = &color[0];
   cf.color[1] = &color[1];
   cf.variance[0] = cf.variance[1] = &variance;  // equal halves: the same variance
-  for (const Feature& f : features) cf.features.push_back(&f);
+  cf.features = feature_list;
   int strips = 1;
   std::atomic<int> done{0};
-  const Candidates candidates = cross_filter(
+  Candidates candidates = cross_filter(
       cf, options,
       [&] { return report(0.1 + 0.85 * double(++done) / double(std::max(1, strips))); }, &strips);
+  if (options.raw_candidate) {
+    // The unfiltered mean of the halves: its error is its variance, exactly (half a half's),
+    // so where every filter would blur more than it removes (converged or noise-free
+    // pixels: a sharp environment seen directly) the selection keeps the input.
+    Channels raw;
+    Plane error(w, h, 0);
+    const Plane half_variance_mean = channel_mean(variance);
+    for (int c = 0; c < 3; ++c) {
+      Plane m(w, h, 0);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          m.at(x, y) =
+              0.5f * (color[0][std::size_t(c)].at(x, y) + color[1][std::size_t(c)].at(x, y));
+      raw.push_back(std::move(m));
+    }
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) error.at(x, y) = 0.5f * half_variance_mean.at(x, y);
+    candidates.color.push_back(std::move(raw));
+    candidates.error.push_back(std::move(error));
+  }
   std::vector<double> share;
   Image out = select_candidates(candidates, options, &share);
   report(1.0);
@@ -109,6 +137,7 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     stats->candidate_share = share;
+    stats->outliers = outliers;
   }
   return out;
 }

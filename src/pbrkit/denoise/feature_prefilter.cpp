@@ -107,7 +107,7 @@ Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOpt
         const float gy = 0.5f * (p.at(x, y + 1) - p.at(x, y - 1));
         g2 += gx * gx + gy * gy;
       }
-      g2 /= float(channels);
+      g2 *= options.feature_gradient / float(channels);
       const float norm = std::max({options.feature_tau, out.variance.at(x, y), g2});
       out.inv_norm.at(x, y) = 1.0f / (k2 * norm);
     }

@@ -33,6 +33,38 @@ Channels half_variance(const Channels& a, const Channels& b, int r) {
   return out;
 }
 
+Channels half_variance_relative(const Channels& a, const Channels& b, int r) {
+  Channels out;
+  constexpr float kFloor = 1e-2f;  // (a level of 0.1): dark pixels keep a variance
+  for (std::size_t c = 0; c < a.size(); ++c) {
+    Plane d(a[c].width, a[c].height, a[c].pad);
+    for (int y = 0; y < d.height; ++y) {
+      const float* pa = a[c].row(y);
+      const float* pb = b[c].row(y);
+      float* pd = d.row(y);
+      for (int x = 0; x < d.width; ++x) {
+        const float diff = pa[x] - pb[x];
+        const float m = 0.5f * (pa[x] + pb[x]);
+        pd[x] = 0.5f * diff * diff / (m * m + kFloor);
+      }
+    }
+    fill_padding(d);
+    Plane s = r > 0 ? box_filter(d, r) : std::move(d);
+    for (int y = 0; y < s.height; ++y) {
+      const float* pa = a[c].row(y);
+      const float* pb = b[c].row(y);
+      float* ps = s.row(y);
+      for (int x = 0; x < s.width; ++x) {
+        const float m = 0.5f * (pa[x] + pb[x]);
+        ps[x] *= m * m + kFloor;
+      }
+    }
+    fill_padding(s);
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
 Plane channel_mean(const Channels& per_channel) {
   const Plane& first = per_channel.front();
   Plane out(first.width, first.height, first.pad);

@@ -4,5 +4,6 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/feature_prefilter.cpp
   ${CMAKE_CURRENT_LIST_DIR}/half_buffer_variance.cpp
   ${CMAKE_CURRENT_LIST_DIR}/inputs.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/outliers.cpp
   ${CMAKE_CURRENT_LIST_DIR}/planes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/selection.cpp)

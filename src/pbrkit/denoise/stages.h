@@ -21,6 +21,12 @@ Channels channels_from(const Image& image, int pad);
 /// box_r((a - b)^2 / 2), per channel. The variance of the mean of the two halves is half
 /// of it.
 Channels half_variance(const Channels& a, const Channels& b, int r);
+/// As half_variance, but box-smooths the relative variance (a - b)^2 / 2 / (m^2 + floor),
+/// m the pixel's mean of the halves, and scales the result back by the pixel's own m^2 +
+/// floor: Monte Carlo noise grows with the signal, so across an intensity edge the relative
+/// variance is the smoother quantity, and a dim pixel next to a bright one does not take
+/// the bright one's variance.
+Channels half_variance_relative(const Channels& a, const Channels& b, int r);
 /// The mean over channels of `per_channel` (one plane, same padding).
 Plane channel_mean(const Channels& per_channel);
 
@@ -37,6 +43,13 @@ struct Feature {
 /// NL-means prefilter of one feature's halves with weights from their mean and its
 /// variance (Rousselle et al. 2013, section 4.1). The halves carry the output's padding.
 Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOptions& options);
+
+/// Energy-conserving firefly treatment (outliers.cpp): per half, pixels far above a robust
+/// estimate from their neighbourhood and the other half are scaled down and their excess
+/// is spread over the feature-alike pixels of the window, half into each half buffer, so
+/// the mean of the halves keeps its energy. Returns the number of outliers treated.
+int spread_outliers(Channels color[2], const std::vector<const Feature*>& features,
+                    const DenoiseOptions& options);
 
 /// The candidates' outputs: per candidate the RGB mean of the two filtered halves and the
 /// estimated squared error (SURE, channel mean) per pixel.

@@ -50,6 +50,7 @@ inline float power_heuristic(float f, float g) {
 // or smooth glass (its reflection or refraction is a sharp image of what it faces). The first
 // vertex records its own features; a later one replaces them when every vertex before it was
 // near-specular (its albedo tinted by the path throughput, its depth the length of the path to it).
+// A path that escapes records the environment it sees (AovTracker::escape).
 constexpr float kAovSpecularRoughness = 0.1f;
 
 inline bool near_specular_for_aovs(const ShadingInputs& in) {
@@ -72,6 +73,19 @@ struct AovTracker {
       out.depth = distance;
     }
     through_specular = through_specular && specular;
+  }
+
+  // Called when the ray escapes to the environment, whose radiance `Le` it sees: the
+  // features of the sky are its radiance compressed to [0, 1) (Le / (1 + Le)), as an
+  // albedo, and a normal facing the ray, so that the denoiser keeps the environment's
+  // detail as it keeps a texture's.
+  void escape(PathSample& out, int depth, glm::vec3 Le, glm::vec3 beta, glm::vec3 direction) {
+    if (depth == 0 || through_specular) {
+      const glm::vec3 a = Le / (1.0f + Le);
+      out.albedo = depth == 0 ? a : glm::clamp(beta * a, 0.0f, 1.0f);
+      out.normal = -direction * 0.5f + 0.5f;
+      out.depth = distance;
+    }
   }
 };
 
@@ -129,6 +143,7 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
           if (mis) w = power_heuristic(prev_pdf, lights_.environment_probability() * env_pdf);
         }
         out.L += beta * Le * w;
+        if (std::isfinite(Le.x + Le.y + Le.z)) aov.escape(out, depth, Le, beta, direction);
       }
       break;
     }

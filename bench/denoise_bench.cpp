@@ -1,0 +1,339 @@
+// The denoiser's quality and speed (issue 13), the figures of BENCHMARKS.md's "Issue 13"
+// section: relative MSE of the raw and the denoised image against converged references,
+// at 16 and 64 spp and at equal time, for the built-in spheres and cornell and for two
+// shared models under two shared HDRIs; the mean of every 1/8 x 1/8 block against the
+// reference; the time to denoise 512x512. Also writes a grid of crops (raw, denoised,
+// reference) as a PNG.
+//
+// Usage: denoise_bench [--size N] [--ref-spp N] [--cache DIR] [--crops PNG] [--threads N]
+//                      [--only NAME] [--spp-count 1|2] [--skip-timing 1] [--debug 1]
+//                      [DenoiseOptions: --radius --variance-radius --error-radius
+//                       --selection-radius --prefilter-radius --patch-radius --feature-k
+//                       --feature-gradient --candidates k1[:r1],k2,... --outlier-k
+//                       --outlier-radius --outlier-spread-radius]
+// --debug 1 prints the pixels with the largest errors and writes heat maps (red: the
+// denoised image's relative squared error, green: the raw one's) into the cache folder.
+// The references (rendered once, cached as float EXRs under --cache, default
+// build/denoise_refs) take minutes each on two cores.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <tbb/global_control.h>
+
+#include "pbrkit/denoise/denoiser.h"
+#include "pbrkit/denoise/inputs.h"
+#include "pbrkit/image/display.h"
+#include "pbrkit/image/environment.h"
+#include "pbrkit/image/image_io.h"
+#include "pbrkit/pt/path_tracer.h"
+#include "pbrkit/scene/camera.h"
+#include "pbrkit/scene/load.h"
+
+namespace fs = std::filesystem;
+using namespace pbrkit;
+
+namespace {
+
+struct BenchScene {
+  std::string name;   // table label and cache key
+  std::string scene;  // built-in name or model path
+  std::string env;    // "" = the built-in default
+};
+
+double rel_mse(const Image& x, const Image& ref) {
+  double s = 0.0;
+  for (std::size_t i = 0; i < x.data.size(); ++i) {
+    const double d = double(x.data[i]) - ref.data[i];
+    s += d * d / (double(ref.data[i]) * ref.data[i] + 0.01);
+  }
+  return s / double(x.data.size());
+}
+
+// The largest relative difference of a block mean (8 x 8 blocks, luminance-free: the mean
+// of the channels) from the reference's, over blocks whose reference mean is above 0.01.
+double worst_block_mean_error(const Image& x, const Image& ref) {
+  double worst = 0.0;
+  const int n = 8;
+  for (int by = 0; by < n; ++by)
+    for (int bx = 0; bx < n; ++bx) {
+      double a = 0.0, b = 0.0;
+      for (int y = by * ref.height / n; y < (by + 1) * ref.height / n; ++y)
+        for (int x0 = bx * ref.width / n; x0 < (bx + 1) * ref.width / n; ++x0)
+          for (int c = 0; c < 3; ++c) {
+            a += x.pixel(x0, y)[c];
+            b += ref.pixel(x0, y)[c];
+          }
+      const double area = double(ref.width / n) * double(ref.height / n) * 3.0;
+      if (b / area > 0.01) worst = std::max(worst, std::abs(a - b) / b);
+    }
+  return worst;
+}
+
+struct Renderer {
+  Scene scene;
+  Environment env;
+  RenderView view;
+  int threads = 2;
+
+  PathTracerResult render(std::uint32_t spp, std::uint32_t seed) const {
+    PathTracerSettings s;
+    s.width = view.size.width;
+    s.height = view.size.height;
+    s.spp = spp;
+    s.seed = seed;
+    s.noise_threshold = 0.0f;
+    s.threads = threads;
+    return render_path(scene, &env, view.camera, s);
+  }
+};
+
+Image crop(const Image& image, int x0, int y0, int size) {
+  Image out(size, size, 3);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x)
+      out.set_rgb(x, y,
+                  image.rgb(std::min(image.width - 1, x0 + x), std::min(image.height - 1, y0 + y)));
+  return out;
+}
+
+void paste(Image& dst, const Image& src, int x0, int y0, int scale) {
+  for (int y = 0; y < src.height * scale; ++y)
+    for (int x = 0; x < src.width * scale; ++x)
+      dst.set_rgb(x0 + x, y0 + y, src.rgb(x / scale, y / scale));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int size = 128, threads = 2;
+  bool skip_timing = false, debug = false;
+  DenoiseOptions options;
+  int spp_count = 2;
+  std::string only;
+  std::uint32_t ref_spp = 4096;
+  fs::path cache = "build/denoise_refs", crops_path;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string a = argv[i], v = argv[i + 1];
+    if (a == "--size")
+      size = std::stoi(v);
+    else if (a == "--ref-spp")
+      ref_spp = std::uint32_t(std::stoul(v));
+    else if (a == "--cache")
+      cache = v;
+    else if (a == "--crops")
+      crops_path = v;
+    else if (a == "--threads")
+      threads = std::stoi(v);
+    else if (a == "--radius")
+      options.radius = std::stoi(v);
+    else if (a == "--variance-radius")
+      options.variance_radius = std::stoi(v);
+    else if (a == "--error-radius")
+      options.error_radius = std::stoi(v);
+    else if (a == "--selection-radius")
+      options.selection_radius = std::stoi(v);
+    else if (a == "--prefilter-radius")
+      options.prefilter_radius = std::stoi(v);
+    else if (a == "--patch-radius")
+      options.patch_radius = std::stoi(v);
+    else if (a == "--raw-candidate")
+      options.raw_candidate = v == "1";
+    else if (a == "--feature-gradient")
+      options.feature_gradient = std::stof(v);
+    else if (a == "--relative-variance")
+      options.relative_variance = v == "1";
+    else if (a == "--outlier-k")
+      options.outlier_k = std::stof(v);
+    else if (a == "--outlier-radius")
+      options.outlier_radius = std::stoi(v);
+    else if (a == "--outlier-spread-radius")
+      options.outlier_spread_radius = std::stoi(v);
+    else if (a == "--feature-k")
+      options.feature_k = std::stof(v);
+    else if (a == "--candidates") {
+      options.candidates.clear();
+      for (std::size_t p = 0; p < v.size();) {
+        const std::size_t q = v.find(',', p);
+        // k or k:radius
+        const std::string item = v.substr(p, q - p);
+        const std::size_t colon = item.find(':');
+        options.candidates.push_back(
+            {std::stof(item.substr(0, colon)),
+             colon == std::string::npos ? 0 : std::stoi(item.substr(colon + 1))});
+        p = q == std::string::npos ? v.size() : q + 1;
+      }
+    } else if (a == "--spp-count")
+      spp_count = std::stoi(v);
+    else if (a == "--debug")
+      debug = v == "1";
+    else if (a == "--only")
+      only = v;
+    else if (a == "--skip-timing")
+      skip_timing = v == "1";
+    else {
+      std::fprintf(stderr, "unknown option %s\n", a.c_str());
+      return 2;
+    }
+  }
+  tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
+  const std::string assets = PBRKIT_ASSETS_DIR;
+  const std::vector<BenchScene> scenes = {
+      {"spheres", "spheres", ""},
+      {"cornell", "cornell", ""},
+      {"suzi / studio", assets + "/models/suzi.glb", assets + "/hdri/studio.exr"},
+      {"suzi / sunset", assets + "/models/suzi.glb", assets + "/hdri/sunset.exr"},
+      {"bunny / studio", assets + "/models/bunny.glb", assets + "/hdri/studio.exr"},
+      {"bunny / sunset", assets + "/models/bunny.glb", assets + "/hdri/sunset.exr"},
+  };
+  fs::create_directories(cache);
+  std::printf("%dx%d, references %u spp, %d threads\n\n", size, size, ref_spp, threads);
+  std::printf(
+      "| scene | spp | raw relMSE | denoised relMSE | ratio | raw at equal time (spp) | "
+      "its relMSE | ratio | worst block mean, raw | denoised | denoise s |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::vector<Image> crop_rows;
+  double log_ratio[2] = {0.0, 0.0};
+  int scenes_run = 0;
+  for (const BenchScene& bs : scenes) {
+    if (!only.empty() && bs.name.find(only) == std::string::npos) continue;
+    ++scenes_run;
+    Renderer r;
+    r.scene = load_scene(bs.scene);
+    r.env = load_environment_or_default(bs.env, 0.0f, 1.0f);
+    r.view = select_view(r.scene, std::nullopt, size, size);
+    r.threads = threads;
+    std::string key = bs.name;
+    for (char& c : key)
+      if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+    const fs::path ref_path =
+        cache / (key + "_" + std::to_string(size) + "_" + std::to_string(ref_spp) + ".exr");
+    Image reference;
+    if (fs::exists(ref_path)) {
+      reference = read_image(ref_path);
+    } else {
+      std::fprintf(stderr, "rendering the reference of %s (%u spp)...\n", bs.name.c_str(), ref_spp);
+      reference = r.render(ref_spp, 12345).film.color();
+      write_exr(ref_path, reference, ExrPixelType::kFloat);
+    }
+    for (int k = 0; k < spp_count; ++k) {
+      const std::uint32_t spp = k == 0 ? 16 : 64;
+      const PathTracerResult noisy = r.render(spp, 1);
+      const Image raw = noisy.film.color();
+      DenoiseStats stats;
+      const Image denoised = denoise(denoise_input(noisy.film), options, {}, &stats);
+      const double e_raw = rel_mse(raw, reference), e_dn = rel_mse(denoised, reference);
+      // Equal time: the raw render given the render and the denoising time.
+      const double t = noisy.stats.render_seconds;
+      const auto equal_spp = std::uint32_t(std::lround(spp * (t + stats.seconds) / t));
+      const Image equal = r.render(equal_spp, 2).film.color();
+      const double e_equal = rel_mse(equal, reference);
+      log_ratio[k] += std::log(e_raw / e_dn);
+      if (debug) {
+        std::vector<std::pair<double, std::size_t>> worst;
+        for (std::size_t i = 0; i < raw.pixel_count(); ++i) {
+          double e = 0.0;
+          for (int c = 0; c < 3; ++c) {
+            const double d = double(denoised.data[i * 3 + c]) - reference.data[i * 3 + c];
+            e += d * d / (double(reference.data[i * 3 + c]) * reference.data[i * 3 + c] + 0.01);
+          }
+          worst.push_back({e, i});
+        }
+        {
+          Image heat(size, size, 3);
+          for (std::size_t i = 0; i < raw.pixel_count(); ++i) {
+            double er = 0.0;
+            for (int c = 0; c < 3; ++c) {
+              const double d = double(raw.data[i * 3 + c]) - reference.data[i * 3 + c];
+              er += d * d / (double(reference.data[i * 3 + c]) * reference.data[i * 3 + c] + 0.01);
+            }
+            heat.data[i * 3] = float(worst[i].first * 20.0);
+            heat.data[i * 3 + 1] = float(er * 20.0);
+          }
+          write_display_png(cache / ("heat_" + key + "_" + std::to_string(spp) + ".png"), heat, {});
+        }
+        std::sort(worst.rbegin(), worst.rend());
+        double total = 0.0;
+        for (const auto& [e, i] : worst) total += e;
+        double top = 0.0;
+        for (std::size_t j = 0; j < worst.size() / 20; ++j) top += worst[j].first;
+        std::fprintf(stderr,
+                     "  top 5%% of pixels hold %.0f%% of the error; shares:", 100 * top / total);
+        for (double sh : stats.candidate_share) std::fprintf(stderr, " %.2f", sh);
+        std::fprintf(stderr, "; outliers %d", stats.outliers);
+        double m[3] = {0, 0, 0};
+        for (std::size_t i = 0; i < raw.data.size(); ++i) {
+          m[0] += raw.data[i];
+          m[1] += denoised.data[i];
+          m[2] += reference.data[i];
+        }
+        std::fprintf(stderr, "; means raw %.4f dn %.4f ref %.4f\n", m[0] / double(raw.data.size()),
+                     m[1] / double(raw.data.size()), m[2] / double(raw.data.size()));
+        for (int j = 0; j < 8; ++j) {
+          const std::size_t i = worst[std::size_t(j)].second;
+          std::fprintf(stderr, "  (%zu,%zu) err %.3f raw %.3f dn %.3f ref %.3f\n",
+                       i % std::size_t(size), i / std::size_t(size), worst[std::size_t(j)].first,
+                       raw.data[i * 3], denoised.data[i * 3], reference.data[i * 3]);
+        }
+      }
+      std::printf(
+          "| %s | %u | %.4g | %.4g | %.1fx | %u | %.4g | %.1fx | %.2f%% | %.2f%% | %.3f |\n",
+          bs.name.c_str(), spp, e_raw, e_dn, e_raw / e_dn, equal_spp, e_equal, e_equal / e_dn,
+          100.0 * worst_block_mean_error(raw, reference),
+          100.0 * worst_block_mean_error(denoised, reference), stats.seconds);
+      std::fflush(stdout);
+      if (k == 0 && !crops_path.empty()) {
+        const int cs = std::min(64, size), x0 = (size - cs) / 2, y0 = (size - cs) / 2;
+        Image row(3 * cs * 2 + 8, cs * 2, 3);
+        paste(row, crop(raw, x0, y0, cs), 0, 0, 2);
+        paste(row, crop(denoised, x0, y0, cs), cs * 2 + 4, 0, 2);
+        paste(row, crop(reference, x0, y0, cs), cs * 4 + 8, 0, 2);
+        crop_rows.push_back(std::move(row));
+      }
+    }
+  }
+  const double n = double(std::max(1, scenes_run));
+  std::printf("\ngeometric mean of raw / denoised relMSE: 16 spp %.1fx, 64 spp %.1fx\n",
+              std::exp(log_ratio[0] / n), std::exp(log_ratio[1] / n));
+  if (!crop_rows.empty()) {
+    const int w = crop_rows.front().width, h = crop_rows.front().height;
+    Image grid(w, int(crop_rows.size()) * (h + 4), 3);
+    for (std::size_t i = 0; i < crop_rows.size(); ++i)
+      paste(grid, crop_rows[i], 0, int(i) * (h + 4), 1);
+    write_display_png(crops_path, grid, {});
+    std::printf("wrote %s (per row: raw 16 spp, denoised, reference)\n",
+                crops_path.string().c_str());
+  }
+  // The time of 512x512: a cornell film at 16 spp, denoised three times.
+  if (!skip_timing) {
+    Renderer r;
+    r.scene = load_scene("cornell");
+    r.env = load_environment_or_default("", 0.0f, 1.0f);
+    r.view = select_view(r.scene, std::nullopt, 512, 512);
+    r.threads = threads;
+    const DenoiseInput in = denoise_input(r.render(16, 1).film);
+    std::vector<double> times, cpu;
+    for (int i = 0; i < 3; ++i) {
+      const auto t0 = std::chrono::steady_clock::now();
+      const std::clock_t c0 = std::clock();
+      const Image out = denoise(in, options);
+      cpu.push_back(double(std::clock() - c0) / CLOCKS_PER_SEC);
+      times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(times.begin(), times.end());
+    std::sort(cpu.begin(), cpu.end());
+    // CPU time (all threads) is what the cores spent; on a machine shared with other
+    // work, wall time / (CPU time / threads) says how much of them the run got.
+    std::printf(
+        "512x512 denoise on %d threads: wall min %.3f s, median %.3f s; CPU time min "
+        "%.3f s, median %.3f s (3 runs)\n",
+        threads, times[0], times[1], cpu[0], cpu[1]);
+  }
+  return 0;
+}
