@@ -87,18 +87,29 @@ glm::vec3 dielectric_half_vector(glm::vec3 wo, glm::vec3 wi, float eta) {
   return hn.z < 0.0f ? -hn : hn;
 }
 
+namespace {
+
+// A thin wall seen from above (o.z > 0): a transmission is the reflection mirrored through
+// the plane, weighted by 1 - F. Sets o, i to the pair as a reflection; returns whether wi
+// was transmitted.
+bool thin_wall_pair(glm::vec3 wo, glm::vec3 wi, glm::vec3& o, glm::vec3& i) {
+  const float s = wo.z < 0.0f ? -1.0f : 1.0f;
+  o = glm::vec3(wo.x, wo.y, s * wo.z);
+  i = glm::vec3(wi.x, wi.y, s * wi.z);
+  const bool transmitted = i.z < 0.0f;
+  if (transmitted) i = flip_z(i);
+  return transmitted;
+}
+
+}  // namespace
+
 float dielectric_eval(const Dielectric& d, glm::vec3 wo, glm::vec3 wi, TransportMode mode) {
   if (dielectric_is_smooth(d) || wo.z == 0.0f || wi.z == 0.0f) return 0.0f;
   const float eta = sane_eta(d.eta);
   const float ax = d.alpha_x, ay = d.alpha_y;
   if (d.thin_walled) {
-    // The wall seen from above; a transmission is the reflection mirrored through the
-    // plane, weighted by 1 - F.
-    const float s = wo.z < 0.0f ? -1.0f : 1.0f;
-    const glm::vec3 o(wo.x, wo.y, s * wo.z);
-    glm::vec3 i(wi.x, wi.y, s * wi.z);
-    const bool transmitted = i.z < 0.0f;
-    if (transmitted) i = flip_z(i);
+    glm::vec3 o, i;
+    const bool transmitted = thin_wall_pair(wo, wi, o, i);
     const glm::vec3 h = glm::normalize(o + i);
     const float F = fresnel_dielectric(glm::dot(o, h), eta);
     const float D = DistributionGGXAniso(h, ax, ay);
@@ -131,11 +142,8 @@ float dielectric_pdf(const Dielectric& d, glm::vec3 wo, glm::vec3 wi) {
   const float eta = sane_eta(d.eta);
   const float ax = d.alpha_x, ay = d.alpha_y;
   if (d.thin_walled) {
-    const float s = wo.z < 0.0f ? -1.0f : 1.0f;
-    const glm::vec3 o(wo.x, wo.y, s * wo.z);
-    glm::vec3 i(wi.x, wi.y, s * wi.z);
-    const bool transmitted = i.z < 0.0f;
-    if (transmitted) i = flip_z(i);
+    glm::vec3 o, i;
+    const bool transmitted = thin_wall_pair(wo, wi, o, i);
     const glm::vec3 h = glm::normalize(o + i);
     const float oh = glm::dot(o, h);
     const float F = fresnel_dielectric(oh, eta);
