@@ -1,8 +1,10 @@
 #pragma once
 // The denoiser: feature-guided cross-filtering of a Monte Carlo render's two interleaved
 // half buffers, after Rousselle, Manzi and Zwicker 2013, "Robust Denoising using Feature
-// and Color Information" (Pacific Graphics 2013). docs/DENOISER.md says what each stage
-// does and why this method was chosen.
+// and Color Information" (Pacific Graphics 2013), with a first-order candidate after
+// Bitterli et al. 2016, "Nonlinearly Weighted First-order Regression for Denoising Monte
+// Carlo Renderings" (EGSR 2016). docs/DENOISER.md says what each stage does and why this
+// method was chosen.
 //
 //  1. Variance from the half buffers: the squared difference of the two halves' means,
 //     box-smoothed, estimates each pixel's noise (colour and every feature).
@@ -12,9 +14,11 @@
 //  3. Candidate filters: each half is filtered with weights from the other half's colour
 //     (NL-means patch distance normalised by the variance) and from the features (their
 //     distance normalised by their variance and gradient); the weight is the smaller of
-//     the two. A few colour sensitivities give a few candidates, from detail-keeping to
-//     feature-only. Weights are normalised, so every output is a weighted mean of input
-//     pixels: no energy is added and the mean of a region is kept.
+//     the two. Zero-order candidates are weighted means (normalised weights: no energy is
+//     added and the mean of a region is kept); the first-order one fits the colour as a
+//     linear function of the normal, depth and screen position with the same weights
+//     (less the normal's), which follows shading across curved surfaces, clamped to the
+//     input's range.
 //  4. Selection: Stein's unbiased risk estimate (SURE) of each candidate's error, which
 //     is exact for a cross filter (its weights do not depend on the half it filters),
 //     smoothed; the per-pixel best is chosen and the choice is smoothed.
@@ -55,13 +59,24 @@ struct DenoiseOptions {
   int patch_radius = 1;       ///< NL-means colour patch radius
   float feature_k = 1.0f;     ///< feature sensitivity (Rousselle et al. 2013's k_f; they use 0.6)
   float feature_tau = 1e-3f;  ///< floor of the feature normalisation (their tau)
+  /// The normal's own floor (0: feature_tau): shading changes slowly with the normal on
+  /// curved surfaces (docs/DENOISER.md)
+  float normal_tau = 3e-3f;
   /// Scale of the squared feature gradient in the normalisation (1: Rousselle et al.;
   /// less keeps silhouettes from leaking, docs/DENOISER.md)
   float feature_gradient = 0.25f;
-  /// Candidates: two with a 7x7 window (a smaller spatial bandwidth, as the filters
-  /// SURE chooses among in Li et al. 2012) and Rousselle et al. 2013's FIRST..THIRD with
-  /// the full window, from detail-keeping to smoothest (docs/DENOISER.md).
-  std::vector<DenoiseCandidate> candidates{{1.0f, 3}, {0.45f}, {1.0f}, {0.0f}};
+  /// Zero-order candidates (weighted means): one with a 7x7 window (a smaller spatial
+  /// bandwidth, as the filters SURE chooses among in Li et al. 2012) and Rousselle et al.
+  /// 2013's detail-keeping FIRST with the full window (docs/DENOISER.md)
+  std::vector<DenoiseCandidate> candidates{{1.0f, 3}, {0.45f}};
+  /// First-order candidates (Bitterli et al. 2016): the colour fitted as a linear function
+  /// of the normal, the depth and the screen position over the full window, one per colour
+  /// sensitivity (0: the features alone); they come after `candidates` in
+  /// DenoiseStats::candidate_share
+  std::vector<float> first_order_k{1.0f};
+  /// Ridge of the first-order fits, relative to the sum of the weights: where a regressor
+  /// does not vary over the window its slope goes to 0 and the fit to the weighted mean
+  float first_order_ridge = 1e-3f;
   /// Firefly treatment (docs/DENOISER.md): a half's pixel more than outlier_k robust
   /// standard deviations above the second largest value of both halves in its
   /// (2 outlier_radius + 1)^2 window (and above the other half) is scaled down and its

@@ -13,6 +13,7 @@ namespace pbrkit::denoising {
 
 namespace {
 constexpr int kStrip = 8;  // rows per parallel work item
+
 }
 
 Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& options,
@@ -38,8 +39,16 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
     k_radius.push_back(rk > 0 ? std::min(rk, r) : r);
   }
 
+  // First-order candidates (first_order.cpp) share the distances of the offset loop.
+  const int fo_count = int(options.first_order_k.size());
+  const bool first_order = fo_count > 0 && input.normal >= 0 && input.depth >= 0;
+  std::vector<float> fo_inv_k2;
+  for (float kc : options.first_order_k) fo_inv_k2.push_back(kc > 0.0f ? 1.0f / (kc * kc) : 0.0f);
+  const Feature* normal = first_order ? input.features[std::size_t(input.normal)] : nullptr;
+  const Feature* depth = first_order ? input.features[std::size_t(input.depth)] : nullptr;
+
   Candidates out;
-  for (int k = 0; k < k_count; ++k) {
+  for (int k = 0; k < k_count + (first_order ? fo_count : 0); ++k) {
     out.color.emplace_back();
     for (int c = 0; c < 3; ++c) out.color.back().emplace_back(w, h, 0);
     out.error.emplace_back(w, h, 0);
@@ -60,6 +69,71 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
     };
     std::vector<float> dist[2] = {std::vector<float>(n), std::vector<float>(n)};
     std::vector<float> feature_dist(n), weight(n), scratch;
+    // First order: per candidate and half, the normal equations' sums, one row of n per sum.
+    using first_order::kDim;
+    constexpr int kFoSums = first_order::kSums;
+    std::vector<float> fo_sums(first_order ? n * kFoSums * 2 * std::size_t(fo_count) : 0, 0.0f);
+    auto fo_sum = [&](int k, int half, int which) {
+      return fo_sums.data() + n * (std::size_t((k * 2 + half) * kFoSums + which));
+    };
+    std::vector<float> other_dist(first_order ? n : 0),
+        regressors(first_order ? std::size_t(w) * kDim : 0),
+        weighted(first_order ? std::size_t(w) * kDim : 0);
+    // Adds offset (dx, dy) of row y to the first-order sums: with v the regressors of q
+    // relative to p (first_order::kDim) and w_pq the weight, A += w v v^T and
+    // b_c += w v c_q. Rows of w floats per regressor, so the loops over x vectorise.
+    auto accumulate_first_order = [&](int y, int dx, int dy, int x0, int x1, std::size_t o) {
+      float* v[kDim];
+      float* wv[kDim];
+      for (int i = 0; i < kDim; ++i) {
+        v[i] = regressors.data() + std::size_t(i) * w;
+        wv[i] = weighted.data() + std::size_t(i) * w;
+      }
+      for (int c = 0; c < 3; ++c) {
+        const float* np = normal->mean[std::size_t(c)].row(y);
+        const float* nq = normal->mean[std::size_t(c)].row(y + dy) + dx;
+        for (int x = x0; x < x1; ++x) v[1 + c][x] = nq[x] - np[x];
+      }
+      const float* dp = depth->mean[0].row(y);
+      const float* dq = depth->mean[0].row(y + dy) + dx;
+      for (int x = x0; x < x1; ++x) v[4][x] = (dq[x] - dp[x]) * first_order::kDepthScale;
+      const float px = float(dx) / float(r), py = float(dy) / float(r);
+      for (int x = x0; x < x1; ++x) {
+        v[5][x] = px;
+        v[6][x] = py;
+      }
+      const float* od = other_dist.data() + o;
+      for (int k = 0; k < fo_count; ++k) {
+        const float ik2 = fo_inv_k2[std::size_t(k)];
+        for (int half = 0; half < 2; ++half) {
+          const float* cd = dist[1 - half].data() + o;
+          if (ik2 > 0.0f)
+            for (int x = x0; x < x1; ++x) wv[0][x] = exp_neg(std::max(cd[x] * ik2, od[x]));
+          else
+            for (int x = x0; x < x1; ++x) wv[0][x] = exp_neg(od[x]);
+          for (int i = 1; i < kDim; ++i)
+            for (int x = x0; x < x1; ++x) wv[i][x] = wv[0][x] * v[i][x];
+          int which = 0;
+          for (int i = 0; i < kDim; ++i)
+            for (int j = i; j < kDim; ++j) {
+              float* s_ij = fo_sum(k, half, which++) + o;
+              if (j == 0) {
+                for (int x = x0; x < x1; ++x) s_ij[x] += wv[0][x];
+              } else {
+                for (int x = x0; x < x1; ++x) s_ij[x] += wv[i][x] * v[j][x];
+              }
+            }
+          const Channels& data = *input.color[half];
+          for (int c = 0; c < 3; ++c) {
+            const float* q = data[std::size_t(c)].row(y + dy) + dx;
+            for (int i = 0; i < kDim; ++i) {
+              float* s_ic = fo_sum(k, half, which++) + o;
+              for (int x = x0; x < x1; ++x) s_ic[x] += wv[i][x] * q[x];
+            }
+          }
+        }
+      }
+    };
     for (int dy = -r; dy <= r; ++dy)
       for (int dx = -r; dx <= r; ++dx) {
         for (int g = 0; g < 2; ++g)
@@ -74,7 +148,13 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
           // |grad_p|^2)).
           float* fd = feature_dist.data() + o;
           for (int x = x0; x < x1; ++x) fd[x] = 0.0f;
-          for (const Feature* f : input.features) {
+          // For the first-order candidates: the same distance without the normal's (it
+          // enters the fit instead of the weight).
+          float* od = first_order ? other_dist.data() + o : nullptr;
+          if (od)
+            for (int x = x0; x < x1; ++x) od[x] = 0.0f;
+          for (std::size_t fi = 0; fi < input.features.size(); ++fi) {
+            const Feature* f = input.features[fi];
             const float inv_channels = 1.0f / float(f->mean.size());
             const float* vp = f->variance.row(y);
             const float* vq = f->variance.row(y + dy) + dx;
@@ -91,9 +171,13 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
             }
             for (int x = x0; x < x1; ++x) {
               const float d = (tmp[x] * inv_channels - (vp[x] + std::min(vp[x], vq[x]))) * norm[x];
+              tmp[x] = d;
               fd[x] = std::max(fd[x], d);
             }
+            if (od && int(fi) != input.normal)
+              for (int x = x0; x < x1; ++x) od[x] = std::max(od[x], tmp[x]);
           }
+          if (first_order) accumulate_first_order(y, dx, dy, x0, x1, o);
           const float* q_var[2] = {mean_variance[0].row(y + dy) + dx,
                                    mean_variance[1].row(y + dy) + dx};
           for (int k = 0; k < k_count; ++k) {
@@ -165,6 +249,36 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
             out.color[std::size_t(k)][std::size_t(c)].at(x, y) =
                 0.5f * (filtered[0][c] + filtered[1][c]);
           out.error[std::size_t(k)].at(x, y) = err;
+        }
+      }
+    // The first-order candidates: solve each pixel's normal equations; the intercept is
+    // the fit at the pixel and [A^-1]_00 its derivative in c_p, so the same SURE applies;
+    // the variance of the fit is approximated by s_p^2 [A^-1]_00 (exact for 0/1 weights
+    // and equal variances, as Sum w^2 s^2 / W^2 is for the weighted mean).
+    for (int k = 0; first_order && k < fo_count; ++k)
+      for (int y = y0; y < y1; ++y) {
+        const std::size_t o = std::size_t(y - y0) * w;
+        for (int x = 0; x < w; ++x) {
+          float err = 0.0f;
+          float filtered[2][3];
+          for (int half = 0; half < 2; ++half) {
+            float a[kFoSums];
+            for (int i = 0; i < kFoSums; ++i) a[i] = fo_sum(k, half, i)[o + x];
+            float dfdc = 0.0f;
+            first_order::solve(a, options.first_order_ridge, filtered[half], dfdc);
+            const float s2 = mean_variance[half].at(x, y);
+            float sq = 0.0f;
+            for (int c = 0; c < 3; ++c) {
+              filtered[half][c] = std::clamp(filtered[half][c], input.lowest, input.highest);
+              const float d = filtered[half][c] - (*input.color[half])[std::size_t(c)].at(x, y);
+              sq += d * d;
+            }
+            err += 0.5f * (sq / 3.0f - s2 + 2.0f * s2 * dfdc) - 0.25f * s2 * dfdc;
+          }
+          const auto kk = std::size_t(k_count + k);
+          for (int c = 0; c < 3; ++c)
+            out.color[kk][std::size_t(c)].at(x, y) = 0.5f * (filtered[0][c] + filtered[1][c]);
+          out.error[kk].at(x, y) = err;
         }
       }
     if (tick && !tick()) stopped.store(true, std::memory_order_relaxed);

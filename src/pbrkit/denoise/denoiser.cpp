@@ -58,7 +58,7 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   const auto start = std::chrono::steady_clock::now();
   validate_denoise_input(input);
   if (options.radius < 0 || options.patch_radius < 0 || options.variance_radius < 0 ||
-      options.prefilter_radius < 0 || options.candidates.empty())
+      options.prefilter_radius < 0 || (options.candidates.empty() && options.first_order_k.empty()))
     fail("denoise: radii must be >= 0 and there must be at least one candidate");
   const int w = input.color[0].width, h = input.color[0].height;
   const int pad = std::max({options.radius + options.patch_radius, options.prefilter_radius + 1,
@@ -84,11 +84,14 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
       for (float& v : d.data) v /= depth_max;
   std::vector<Feature> features;
   features.push_back(prefilter_feature(channels_from(input.albedo[0], pad),
-                                       channels_from(input.albedo[1], pad), options));
-  features.push_back(prefilter_feature(channels_from(input.normal[0], pad),
-                                       channels_from(input.normal[1], pad), options));
+                                       channels_from(input.albedo[1], pad), options,
+                                       options.feature_tau));
+  features.push_back(prefilter_feature(
+      channels_from(input.normal[0], pad), channels_from(input.normal[1], pad), options,
+      options.normal_tau > 0 ? options.normal_tau : options.feature_tau));
   features.push_back(prefilter_feature(channels_from(depth_scaled[0], pad),
-                                       channels_from(depth_scaled[1], pad), options));
+                                       channels_from(depth_scaled[1], pad), options,
+                                       options.feature_tau));
   // Fireflies first: the variance, the weights and the averages all see the treated halves.
   Channels color[2] = {channels_from(input.color[0], pad), channels_from(input.color[1], pad)};
   std::vector<const Feature*> feature_list;
@@ -105,6 +108,14 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   cf.color[1] = &color[1];
   cf.variance[0] = cf.variance[1] = &variance;  // equal halves: the same variance
   cf.features = feature_list;
+  cf.normal = 1;
+  cf.depth = 2;
+  cf.lowest = cf.highest = input.color[0].data.front();
+  for (const Image* c : {&input.color[0], &input.color[1]})
+    for (float v : c->data) {
+      cf.lowest = std::min(cf.lowest, v);
+      cf.highest = std::max(cf.highest, v);
+    }
   int strips = 1;
   std::atomic<int> done{0};
   Candidates candidates = cross_filter(

@@ -15,7 +15,8 @@ constexpr int kStrip = 16;       // rows per parallel work item
 constexpr int kPatchRadius = 1;  // 3x3 patches for the features
 }  // namespace
 
-Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOptions& options) {
+Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOptions& options,
+                          float tau) {
   const int w = a.front().width, h = a.front().height, pad = a.front().pad;
   const int channels = int(a.size());
   const int r = options.prefilter_radius;
@@ -108,7 +109,7 @@ Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOpt
         g2 += gx * gx + gy * gy;
       }
       g2 *= options.feature_gradient / float(channels);
-      const float norm = std::max({options.feature_tau, out.variance.at(x, y), g2});
+      const float norm = std::max({tau, out.variance.at(x, y), g2});
       out.inv_norm.at(x, y) = 1.0f / (k2 * norm);
     }
   return out;

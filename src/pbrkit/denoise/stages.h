@@ -41,8 +41,10 @@ struct Feature {
 };
 
 /// NL-means prefilter of one feature's halves with weights from their mean and its
-/// variance (Rousselle et al. 2013, section 4.1). The halves carry the output's padding.
-Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOptions& options);
+/// variance (Rousselle et al. 2013, section 4.1). The halves carry the output's padding;
+/// `tau` is the floor of the feature's distance normalisation.
+Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOptions& options,
+                          float tau);
 
 /// Energy-conserving firefly treatment (outliers.cpp): per half, pixels far above a robust
 /// estimate from their neighbourhood and the other half are scaled down and their excess
@@ -62,7 +64,33 @@ struct CrossFilterInput {
   const Channels* color[2];     ///< the halves
   const Channels* variance[2];  ///< the variance of each half's mean, per channel
   std::vector<const Feature*> features;
+  /// The features the first-order candidates regress on (indices into `features`; -1:
+  /// no first-order candidates), and the range their fits are clamped to (the input
+  /// colour's). The normal leaves their weights; the depth stays a weight too (across a
+  /// silhouette nothing is linear).
+  int normal = -1, depth = -1;
+  float lowest = 0.0f, highest = 0.0f;
 };
+
+/// First-order candidates (Bitterli et al. 2016; first_order.cpp): per pixel the colour is
+/// fitted as a linear function of the normal, the depth and the screen position over the
+/// window, by weighted least squares with the cross filter's weights (without the
+/// normal's distance); the fit's value at the pixel is the output.
+namespace first_order {
+/// The regressors of q relative to p: 1, n_q - n_p (3), (d_q - d_p) kDepthScale, dx / r,
+/// dy / r. Depth is normalised by its largest value; the scale brings a few per cent of
+/// depth across the window to the spread of the other regressors, so that the ridge
+/// treats them alike (the benchmark is insensitive to it between 3 and 30).
+constexpr int kDim = 7;
+constexpr float kDepthScale = 10.0f;
+constexpr int kUpper = kDim * (kDim + 1) / 2;  ///< the normal matrix's upper triangle
+constexpr int kSums = kUpper + 3 * kDim;       ///< + the right-hand sides of 3 channels
+/// From one pixel's sums (A's upper triangle row by row, then b per channel), the fitted
+/// colour at the pixel (the intercept) and its derivative in c_p ([A^-1]_00). `ridge`
+/// times A_00 is added to the slopes' diagonal, so that where a regressor does not vary
+/// the fit falls back to the weighted mean.
+void solve(const float sums[kSums], float ridge, float rgb[3], float& dfdc);
+}  // namespace first_order
 
 /// Filters each half with weights from the other half's colour and from the features
 /// (min of the two, Rousselle et al. 2013, eq. 10), once per candidate. `tick` is called
