@@ -174,8 +174,9 @@ TEST(Denoiser, ShadingThatFollowsTheNormalIsFitted) {
   fit_only.candidates.clear();
   fit_only.first_order_k = {0.0f};
   mean_only.first_order_k.clear();
-  mean_only.candidates = {{0.0f}};
-  const double fit = rms_error(fit_only), mean = rms_error(mean_only), both = rms_error({});
+  mean_only.candidates = {DenoiseCandidate{0.0f, 0}};
+  const DenoiseOptions defaults;
+  const double fit = rms_error(fit_only), mean = rms_error(mean_only), both = rms_error(defaults);
   // Without colour weights the fit is ordinary least squares over the whole 15x15 window
   // (albedo and depth agree everywhere): its intercept's noise is sigma_raw / 15 where the
   // pixel's regressors sit mid-range and up to about 2-3x that where it is an extrapolation

@@ -54,6 +54,11 @@ struct DenoiseCandidate {
   int radius = 0;
 };
 
+/// The default zero-order candidates: k_c 1.0 with a 7x7 window and k_c 0.45 with the full
+/// one. (A function rather than a braced initialiser: GCC 12 at -O2 reports the copy of an
+/// initializer_list of this struct as maybe-uninitialized in callers that edit the list.)
+std::vector<DenoiseCandidate> default_denoise_candidates();
+
 struct DenoiseOptions {
   int radius = 7;             ///< filter window radius in pixels ((2r+1)^2 neighbours)
   int patch_radius = 1;       ///< NL-means colour patch radius
@@ -68,7 +73,7 @@ struct DenoiseOptions {
   /// Zero-order candidates (weighted means): one with a 7x7 window (a smaller spatial
   /// bandwidth, as the filters SURE chooses among in Li et al. 2012) and Rousselle et al.
   /// 2013's detail-keeping FIRST with the full window (docs/DENOISER.md)
-  std::vector<DenoiseCandidate> candidates{{1.0f, 3}, {0.45f}};
+  std::vector<DenoiseCandidate> candidates = default_denoise_candidates();
   /// First-order candidates (Bitterli et al. 2016): the colour fitted as a linear function
   /// of the normal, the depth and the screen position over the full window, one per colour
   /// sensitivity (0: the features alone); they come after `candidates` in

@@ -12,6 +12,10 @@
 
 namespace pbrkit {
 
+std::vector<DenoiseCandidate> default_denoise_candidates() {
+  return {DenoiseCandidate{1.0f, 3}, DenoiseCandidate{0.45f, 0}};
+}
+
 std::vector<std::string> denoise_layer_names() {
   return {"color_a",  "color_b",  "albedo_a", "albedo_b",
           "normal_a", "normal_b", "depth_a",  "depth_b"};
