@@ -14,7 +14,35 @@ namespace pbrkit::denoising {
 namespace {
 constexpr int kStrip = 8;  // rows per parallel work item
 
+// One filtered half at one pixel: its colour, its derivative in the pixel's own value and
+// its variance.
+struct HalfEstimate {
+  float rgb[3];
+  float dfdc, variance;
+};
+
+// Stores a candidate's output at (x, y), the mean of its two filtered halves, and its SURE
+// estimate (Stein 1981; Li et al. 2012): for a filter F linear in data of variance s^2,
+// E[|F - mu|^2] = E[|F - c_p|^2] - s_p^2 + 2 s_p^2 dF/dc_p. The error of the average of
+// the two filtered halves: its bias is theirs, its variance a quarter of their sum.
+void store_candidate(const CrossFilterInput& input, const Plane mean_variance[2], int x, int y,
+                     const HalfEstimate halves[2], Candidates& out, std::size_t k) {
+  float err = 0.0f;
+  for (int half = 0; half < 2; ++half) {
+    const HalfEstimate& e = halves[half];
+    const float s2 = mean_variance[half].at(x, y);
+    float sq = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+      const float d = e.rgb[c] - (*input.color[half])[std::size_t(c)].at(x, y);
+      sq += d * d;
+    }
+    err += 0.5f * (sq / 3.0f - s2 + 2.0f * s2 * e.dfdc) - 0.25f * e.variance;
+  }
+  for (int c = 0; c < 3; ++c)
+    out.color[k][std::size_t(c)].at(x, y) = 0.5f * (halves[0].rgb[c] + halves[1].rgb[c]);
+  out.error[k].at(x, y) = err;
 }
+}  // namespace
 
 Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& options,
                         const std::function<bool()>& tick, int* strip_count) {
@@ -220,67 +248,38 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
           }
         }
       }
-    // Each candidate's output and SURE estimate (Stein 1981; Li et al. 2012): for a linear
-    // filter F = sum_q w_q c_q / W of data with variance s^2, E[|F - mu|^2] =
-    // E[|F - c_p|^2] - s_p^2 + 2 s_p^2 dF/dc_p, and dF/dc_p = w_pp / W = 1 / W. The error
-    // of the average of the two filtered halves: its bias is theirs, its variance
-    // (sum w^2 s^2 / W^2 per half) a quarter of their sum.
+    // Every candidate's output and error estimate, from each pixel's two HalfEstimates.
+    auto store_strip = [&](std::size_t k_out, const auto& estimate) {
+      for (int y = y0; y < y1; ++y)
+        for (int x = 0; x < w; ++x) {
+          const std::size_t i = std::size_t(y - y0) * w + std::size_t(x);
+          HalfEstimate halves[2];
+          for (int half = 0; half < 2; ++half) estimate(half, x, y, i, halves[half]);
+          store_candidate(input, mean_variance, x, y, halves, out, k_out);
+        }
+    };
+    // A weighted mean F = sum_q w_q c_q / W: dF/dc_p = w_pp / W = 1 / W, and its variance
+    // is sum w^2 s^2 / W^2.
     for (int k = 0; k < k_count; ++k)
-      for (int y = y0; y < y1; ++y) {
-        const std::size_t o = std::size_t(y - y0) * w;
-        for (int x = 0; x < w; ++x) {
-          float err = 0.0f;
-          float filtered[2][3];
-          for (int half = 0; half < 2; ++half) {
-            const float W = sum(k, half, 3)[o + x];  // >= 1: the pixel itself weighs 1
-            const float inv_W = 1.0f / W;
-            const float s2 = mean_variance[half].at(x, y);
-            float sq = 0.0f;
-            for (int c = 0; c < 3; ++c) {
-              filtered[half][c] = sum(k, half, c)[o + x] * inv_W;
-              const float d = filtered[half][c] - (*input.color[half])[std::size_t(c)].at(x, y);
-              sq += d * d;
-            }
-            const float sure = sq / 3.0f - s2 + 2.0f * s2 * inv_W;
-            const float variance = sum(k, half, 4)[o + x] * inv_W * inv_W;
-            err += 0.5f * sure - 0.25f * variance;
-          }
-          for (int c = 0; c < 3; ++c)
-            out.color[std::size_t(k)][std::size_t(c)].at(x, y) =
-                0.5f * (filtered[0][c] + filtered[1][c]);
-          out.error[std::size_t(k)].at(x, y) = err;
-        }
-      }
-    // The first-order candidates: solve each pixel's normal equations; the intercept is
-    // the fit at the pixel and [A^-1]_00 its derivative in c_p, so the same SURE applies;
-    // the variance of the fit is approximated by s_p^2 [A^-1]_00 (exact for 0/1 weights
-    // and equal variances, as Sum w^2 s^2 / W^2 is for the weighted mean).
+      store_strip(std::size_t(k), [&](int half, int, int, std::size_t i, HalfEstimate& e) {
+        const float inv_W = 1.0f / sum(k, half, 3)[i];  // W >= 1: the pixel itself weighs 1
+        for (int c = 0; c < 3; ++c) e.rgb[c] = sum(k, half, c)[i] * inv_W;
+        e.dfdc = inv_W;
+        e.variance = sum(k, half, 4)[i] * inv_W * inv_W;
+      });
+    // The first-order fits: solve each pixel's normal equations; the intercept is the fit
+    // at the pixel and [A^-1]_00 its derivative in c_p; the variance of the fit is
+    // approximated by s_p^2 [A^-1]_00 (exact for 0/1 weights and equal variances, as
+    // sum w^2 s^2 / W^2 is for the weighted mean).
     for (int k = 0; first_order && k < fo_count; ++k)
-      for (int y = y0; y < y1; ++y) {
-        const std::size_t o = std::size_t(y - y0) * w;
-        for (int x = 0; x < w; ++x) {
-          float err = 0.0f;
-          float filtered[2][3];
-          for (int half = 0; half < 2; ++half) {
-            float a[kFoSums];
-            for (int i = 0; i < kFoSums; ++i) a[i] = fo_sum(k, half, i)[o + x];
-            float dfdc = 0.0f;
-            first_order::solve(a, options.first_order_ridge, filtered[half], dfdc);
-            const float s2 = mean_variance[half].at(x, y);
-            float sq = 0.0f;
-            for (int c = 0; c < 3; ++c) {
-              filtered[half][c] = std::clamp(filtered[half][c], input.lowest, input.highest);
-              const float d = filtered[half][c] - (*input.color[half])[std::size_t(c)].at(x, y);
-              sq += d * d;
-            }
-            err += 0.5f * (sq / 3.0f - s2 + 2.0f * s2 * dfdc) - 0.25f * s2 * dfdc;
-          }
-          const auto kk = std::size_t(k_count + k);
-          for (int c = 0; c < 3; ++c)
-            out.color[kk][std::size_t(c)].at(x, y) = 0.5f * (filtered[0][c] + filtered[1][c]);
-          out.error[kk].at(x, y) = err;
-        }
-      }
+      store_strip(std::size_t(k_count + k),
+                  [&](int half, int x, int y, std::size_t i, HalfEstimate& e) {
+                    float a[kFoSums];
+                    for (int j = 0; j < kFoSums; ++j) a[j] = fo_sum(k, half, j)[i];
+                    first_order::solve(a, options.first_order_ridge, e.rgb, e.dfdc);
+                    for (float& v : e.rgb) v = std::clamp(v, input.lowest, input.highest);
+                    e.variance = mean_variance[half].at(x, y) * e.dfdc;
+                  });
     if (tick && !tick()) stopped.store(true, std::memory_order_relaxed);
   });
   (void)pad;
