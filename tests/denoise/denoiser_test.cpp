@@ -266,6 +266,24 @@ TEST(Denoiser, BadInputGivesClearErrors) {
     feature.depth[0].pixel(3, 4)[0] = bad;
     EXPECT_NE(message(feature).find("'depth_a' has a non-finite value"), std::string::npos);
   }
+  // Options that cannot work: no candidate at all, a negative or NaN ridge.
+  auto option_message = [&](const DenoiseOptions& options) -> std::string {
+    try {
+      denoise(good, options);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  DenoiseOptions none;
+  none.candidates.clear();
+  none.first_order_k.clear();
+  EXPECT_NE(option_message(none).find("at least one candidate"), std::string::npos);
+  for (float ridge : {-1e-3f, std::nanf("")}) {
+    DenoiseOptions bad_ridge;
+    bad_ridge.first_order_ridge = ridge;
+    EXPECT_NE(option_message(bad_ridge).find("first_order_ridge must be >= 0"), std::string::npos);
+  }
 }
 
 TEST(Denoiser, HugeValuesGiveFiniteOutput) {

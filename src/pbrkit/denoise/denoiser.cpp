@@ -64,6 +64,8 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   if (options.radius < 0 || options.patch_radius < 0 || options.variance_radius < 0 ||
       options.prefilter_radius < 0 || (options.candidates.empty() && options.first_order_k.empty()))
     fail("denoise: radii must be >= 0 and there must be at least one candidate");
+  if (!(options.first_order_ridge >= 0.0f))
+    fail("denoise: first_order_ridge must be >= 0 (it is {})", options.first_order_ridge);
   const int w = input.color[0].width, h = input.color[0].height;
   const int pad = std::max({options.radius + options.patch_radius, options.prefilter_radius + 1,
                             options.variance_radius, 1}) +

@@ -1,8 +1,8 @@
 // The first-order candidates' per-pixel solve (Bitterli et al. 2016, "Nonlinearly Weighted
 // First-order Regression for Denoising Monte Carlo Renderings", EGSR 2016). Instead of
 // averaging the neighbours that look alike, the colour is fitted as a linear function of
-// the shading normal, the depth and the screen position over the window, with the cross filter's
-// weights, and the fit's value at the pixel is the output. On curved surfaces shading
+// the shading normal, the depth and the screen position over the window, with the cross
+// filter's weights, and the fit's value at the pixel is the output. On curved surfaces shading
 // follows the normal smoothly, so the normal need not keep the window small (as a feature
 // weight it must, or the average mixes shades); albedo and depth stay weights, since
 // across their edges nothing is linear. cross_filter.cpp accumulates the sums.
