@@ -12,9 +12,10 @@
 //                       --feature-gradient --candidates k1[:r1],k2,... --outlier-k
 //                       --outlier-radius --outlier-spread-radius
 //                       --feature-tau --normal-tau --first-order k1,k2,...
-//                       --first-order-ridge]
-// --debug 1 prints the pixels with the largest errors and writes heat maps (red: the
-// denoised image's relative squared error, green: the raw one's) into the cache folder.
+//                       --first-order-ridge --first-order-energy-radius]
+// --debug 1 prints the pixels with the largest errors and each object's signed mean
+// deviation, and writes heat maps (red: the denoised image's relative squared error,
+// green: the raw one's) into the cache folder.
 // The references (rendered once, cached as float EXRs under --cache, default
 // build/denoise_refs) take minutes each on two cores.
 #include <algorithm>
@@ -216,7 +217,9 @@ int main(int argc, char** argv) {
         options.first_order_k.push_back(std::stof(v.substr(at, end - at)));
         at = end + 1;
       }
-    } else if (a == "--first-order-ridge")
+    } else if (a == "--first-order-energy-radius")
+      options.first_order_energy_radius = std::stoi(v);
+    else if (a == "--first-order-ridge")
       options.first_order_ridge = std::stof(v);
     else if (a == "--normal-tau")
       options.normal_tau = std::stof(v);
@@ -359,6 +362,30 @@ int main(int argc, char** argv) {
       }
       const ObjectMeans om_raw = object_mean_errors(raw, reference, ids);
       const ObjectMeans om_dn = object_mean_errors(denoised, reference, ids);
+      if (debug) {
+        // Each object's signed deviation from the reference, raw and denoised: a bias
+        // shows as one sign for most objects.
+        int count = 0;
+        for (int id : ids) count = std::max(count, id + 1);
+        const auto objects = std::size_t(count);
+        std::vector<double> sum_raw(objects, 0.0), sum_dn(objects, 0.0), sum_ref(objects, 0.0);
+        std::vector<int> pixels(objects, 0);
+        for (std::size_t i = 0; i < ids.size(); ++i) {
+          if (ids[i] < 0) continue;
+          const auto k = std::size_t(ids[i]);
+          for (std::size_t ch = 0; ch < 3; ++ch) {
+            sum_raw[k] += raw.data[i * 3 + ch];
+            sum_dn[k] += denoised.data[i * 3 + ch];
+            sum_ref[k] += reference.data[i * 3 + ch];
+          }
+          ++pixels[k];
+        }
+        for (std::size_t k = 0; k < objects; ++k)
+          if (pixels[k] >= 16 && sum_ref[k] > 0.0)
+            std::fprintf(stderr, "  object %zu: %d px, raw %+.2f%%, denoised %+.2f%%\n", k,
+                         pixels[k], 100.0 * (sum_raw[k] / sum_ref[k] - 1.0),
+                         100.0 * (sum_dn[k] / sum_ref[k] - 1.0));
+      }
       std::printf(
           "| %s | %u | %.4g | %.4g | %.1fx | %u | %.4g | %.1fx | %.2f%% | %.2f%% | %.2f%% | "
           "%.2f%% | %d/%d | %d/%d | %.3f |\n",

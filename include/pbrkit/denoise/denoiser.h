@@ -82,6 +82,10 @@ struct DenoiseOptions {
   /// Ridge of the first-order fits, relative to the sum of the weights: where a regressor
   /// does not vary over the window its slope goes to 0 and the fit to the weighted mean
   float first_order_ridge = 1e-3f;
+  /// Box radius over which each first-order fit gets back the energy it lost against the
+  /// first zero-order candidate (docs/DENOISER.md; 0: off): the mean of a region larger
+  /// than the box is kept
+  int first_order_energy_radius = 7;
   /// Firefly treatment (docs/DENOISER.md): a half's pixel more than outlier_k robust
   /// standard deviations above the second largest value of both halves in its
   /// (2 outlier_radius + 1)^2 window (and above the other half) is scaled down and its

@@ -64,6 +64,8 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   if (options.radius < 0 || options.patch_radius < 0 || options.variance_radius < 0 ||
       options.prefilter_radius < 0 || (options.candidates.empty() && options.first_order_k.empty()))
     fail("denoise: radii must be >= 0 and there must be at least one candidate");
+  if (options.first_order_energy_radius < 0)
+    fail("denoise: first_order_energy_radius must be >= 0");
   if (!(options.first_order_ridge >= 0.0f))
     fail("denoise: first_order_ridge must be >= 0 (it is {})", options.first_order_ridge);
   const int w = input.color[0].width, h = input.color[0].height;
@@ -122,11 +124,26 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
       cf.lowest = std::min(cf.lowest, v);
       cf.highest = std::max(cf.highest, v);
     }
+  Channels mean_of_halves;
+  if (options.candidates.empty())
+    for (int c = 0; c < 3; ++c) {
+      Plane m(w, h, 0);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+          m.at(x, y) =
+              0.5f * (color[0][std::size_t(c)].at(x, y) + color[1][std::size_t(c)].at(x, y));
+      mean_of_halves.push_back(std::move(m));
+    }
   int strips = 1;
   std::atomic<int> done{0};
   Candidates candidates = cross_filter(
       cf, options,
       [&] { return report(0.1 + 0.85 * double(++done) / double(std::max(1, strips))); }, &strips);
+  // The fits keep energy against a weighted mean (first_order.cpp).
+  for (std::size_t k = options.candidates.size(); k < candidates.color.size(); ++k)
+    first_order::restore_energy(candidates.color[k],
+                                options.candidates.empty() ? mean_of_halves : candidates.color[0],
+                                options.first_order_energy_radius);
   if (options.raw_candidate) {
     // The unfiltered mean of the halves: its error is its variance, exactly (half a half's),
     // so where every filter would blur more than it removes (converged or noise-free

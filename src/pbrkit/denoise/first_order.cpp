@@ -60,4 +60,19 @@ void solve(const float sums[kSums], float ridge, float rgb[3], float& dfdc) {
   dfdc = float(b[0][3]);
 }
 
+void restore_energy(Channels& fit, const Channels& reference, int radius) {
+  if (radius <= 0) return;
+  const int w = fit.front().width, h = fit.front().height;
+  for (std::size_t c = 0; c < fit.size(); ++c) {
+    Plane residual(w, h, radius);
+    Plane& f = fit[c];
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) residual.at(x, y) = reference[c].at(x, y) - f.at(x, y);
+    fill_padding(residual);
+    const Plane local = box_filter(residual, radius);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) f.at(x, y) += local.at(x, y);
+  }
+}
+
 }  // namespace pbrkit::denoising::first_order

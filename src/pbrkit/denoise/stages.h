@@ -90,6 +90,14 @@ constexpr int kSums = kUpper + 3 * kDim;       ///< + the right-hand sides of 3 
 /// times A_00 is added to the slopes' diagonal, so that where a regressor does not vary
 /// the fit falls back to the weighted mean.
 void solve(const float sums[kSums], float ridge, float rgb[3], float& dfdc);
+/// Adds to the fit the box mean (radius `radius`) of its difference from `reference`, an
+/// estimate that keeps energy (the first zero-order candidate, a weighted mean; the mean of
+/// the halves when there is none): a linear fit is not a weighted mean and loses energy
+/// where the colour is concave in the regressors (a highlight's peak is under-fitted and
+/// nothing raises its neighbours in exchange). The difference of two filtered images is
+/// mostly that loss, not noise, so giving it back locally keeps the mean of a region much
+/// larger than the box without adding the input's noise again. Unpadded planes.
+void restore_energy(Channels& fit, const Channels& reference, int radius);
 }  // namespace first_order
 
 /// Filters each half with weights from the other half's colour and from the features
