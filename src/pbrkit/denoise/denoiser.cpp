@@ -56,6 +56,20 @@ void validate_denoise_input(const DenoiseInput& in) {
   if (w < 1 || h < 1) fail("denoise: the image is empty");
 }
 
+namespace {
+// The unfiltered estimate: the mean of the two halves, unpadded.
+denoising::Channels mean_of_halves(const denoising::Channels color[2], int w, int h) {
+  denoising::Channels out;
+  for (std::size_t c = 0; c < 3; ++c) {
+    denoising::Plane m(w, h, 0);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) m.at(x, y) = 0.5f * (color[0][c].at(x, y) + color[1][c].at(x, y));
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+}  // namespace
+
 Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
               const ProgressCallback& progress, DenoiseStats* stats) {
   using namespace denoising;
@@ -124,41 +138,26 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
       cf.lowest = std::min(cf.lowest, v);
       cf.highest = std::max(cf.highest, v);
     }
-  Channels mean_of_halves;
-  if (options.candidates.empty())
-    for (int c = 0; c < 3; ++c) {
-      Plane m(w, h, 0);
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-          m.at(x, y) =
-              0.5f * (color[0][std::size_t(c)].at(x, y) + color[1][std::size_t(c)].at(x, y));
-      mean_of_halves.push_back(std::move(m));
-    }
   int strips = 1;
   std::atomic<int> done{0};
   Candidates candidates = cross_filter(
       cf, options,
       [&] { return report(0.1 + 0.85 * double(++done) / double(std::max(1, strips))); }, &strips);
   // The fits keep energy against a weighted mean (first_order.cpp).
-  for (std::size_t k = options.candidates.size(); k < candidates.color.size(); ++k)
-    first_order::restore_energy(candidates.color[k],
-                                options.candidates.empty() ? mean_of_halves : candidates.color[0],
-                                options.first_order_energy_radius);
+  if (candidates.color.size() > options.candidates.size()) {
+    const Channels reference =
+        options.candidates.empty() ? mean_of_halves(color, w, h) : candidates.color[0];
+    for (std::size_t k = options.candidates.size(); k < candidates.color.size(); ++k)
+      first_order::restore_energy(candidates.color[k], reference,
+                                  options.first_order_energy_radius);
+  }
   if (options.raw_candidate) {
     // The unfiltered mean of the halves: its error is its variance, exactly (half a half's),
     // so where every filter would blur more than it removes (converged or noise-free
     // pixels: a sharp environment seen directly) the selection keeps the input.
-    Channels raw;
+    Channels raw = mean_of_halves(color, w, h);
     Plane error(w, h, 0);
     const Plane half_variance_mean = channel_mean(variance);
-    for (int c = 0; c < 3; ++c) {
-      Plane m(w, h, 0);
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-          m.at(x, y) =
-              0.5f * (color[0][std::size_t(c)].at(x, y) + color[1][std::size_t(c)].at(x, y));
-      raw.push_back(std::move(m));
-    }
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) error.at(x, y) = 0.5f * half_variance_mean.at(x, y);
     candidates.color.push_back(std::move(raw));
