@@ -148,8 +148,8 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
     const Channels reference =
         options.candidates.empty() ? mean_of_halves(color, w, h) : candidates.color[0];
     for (std::size_t k = options.candidates.size(); k < candidates.color.size(); ++k)
-      first_order::restore_energy(candidates.color[k], reference,
-                                  options.first_order_energy_radius);
+      first_order::restore_energy(candidates.color[k], reference, options.first_order_energy_radius,
+                                  cf.lowest, cf.highest);
   }
   if (options.raw_candidate) {
     // The unfiltered mean of the halves: its error is its variance, exactly (half a half's),

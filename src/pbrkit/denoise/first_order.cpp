@@ -6,6 +6,7 @@
 // follows the normal smoothly, so the normal need not keep the window small (as a feature
 // weight it must, or the average mixes shades); albedo and depth stay weights, since
 // across their edges nothing is linear. cross_filter.cpp accumulates the sums.
+#include <algorithm>
 #include <cmath>
 
 #include "stages.h"
@@ -60,7 +61,8 @@ void solve(const float sums[kSums], float ridge, float rgb[3], float& dfdc) {
   dfdc = float(b[0][3]);
 }
 
-void restore_energy(Channels& fit, const Channels& reference, int radius) {
+void restore_energy(Channels& fit, const Channels& reference, int radius, float lowest,
+                    float highest) {
   if (radius <= 0) return;
   const int w = fit.front().width, h = fit.front().height;
   for (std::size_t c = 0; c < fit.size(); ++c) {
@@ -71,7 +73,8 @@ void restore_energy(Channels& fit, const Channels& reference, int radius) {
     fill_padding(residual);
     const Plane local = box_filter(residual, radius);
     for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) f.at(x, y) += local.at(x, y);
+      for (int x = 0; x < w; ++x)
+        f.at(x, y) = std::clamp(f.at(x, y) + local.at(x, y), lowest, highest);
   }
 }
 

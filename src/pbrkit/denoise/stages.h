@@ -96,8 +96,10 @@ void solve(const float sums[kSums], float ridge, float rgb[3], float& dfdc);
 /// where the colour is concave in the regressors (a highlight's peak is under-fitted and
 /// nothing raises its neighbours in exchange). The difference of two filtered images is
 /// mostly that loss, not noise, so giving it back locally keeps the mean of a region much
-/// larger than the box without adding the input's noise again. Unpadded planes.
-void restore_energy(Channels& fit, const Channels& reference, int radius);
+/// larger than the box without adding the input's noise again. The result is clamped to
+/// [lowest, highest], the input's range, as the fit is. Unpadded planes.
+void restore_energy(Channels& fit, const Channels& reference, int radius, float lowest,
+                    float highest);
 }  // namespace first_order
 
 /// Filters each half with weights from the other half's colour and from the features
