@@ -50,23 +50,19 @@ BakeOptions viewer_bake() {
   return gl::realtime_bake_options();  // what `pbrkit render --renderer gl` uses by default
 }
 
-void BM_GlFrameSpheresIblTwoLights(benchmark::State& state) {
-  const int width = int(state.range(0)), height = int(state.range(1));
-  gl::HeadlessContext context;
+// Times frames of `scene` at width x height with the default environment and the viewer's
+// bake (a current GL context is needed): one warm-up frame (llvmpipe compiles the shaders'
+// machine code at the first draw), then the timed frames, with the GPU timer's and the
+// process CPU time per frame as counters.
+void time_frames(benchmark::State& state, const Scene& scene, int width, int height,
+                 const gl::RenderSettings& settings) {
   gl::Renderer renderer;
-  const Scene scene = spheres_with_two_lights();
   const Environment env = load_environment_or_default("", 0.0f, 1.0f);
   const gl::IblMaps maps = gl::ibl_maps_from_bake(bake_environment(env, viewer_bake()), env);
   renderer.set_scene(scene);
   renderer.set_environment(&env);
   renderer.set_ibl(&maps);
   const Camera camera = select_camera(scene, std::nullopt, float(width) / float(height));
-  gl::RenderSettings settings;  // SH irradiance, reference model
-  settings.msaa = int(state.range(2));
-  // A fourth argument 0: no compensation (the default before issue 11, to compare like
-  // with like across that change).
-  if (state.range(3) == 0) settings.brdf.multiscatter = false;
-  // Warm-up: llvmpipe compiles the shaders' machine code at the first draw.
   renderer.render(camera, width, height, settings);
   glFinish();
   double gpu_ms = 0.0;
@@ -78,6 +74,17 @@ void BM_GlFrameSpheresIblTwoLights(benchmark::State& state) {
   }
   state.counters["gpu_ms"] = gpu_ms / double(state.iterations());
   state.counters["cpu_ms"] = (process_cpu_seconds() - cpu0) * 1e3 / double(state.iterations());
+}
+
+void BM_GlFrameSpheresIblTwoLights(benchmark::State& state) {
+  const int width = int(state.range(0)), height = int(state.range(1));
+  gl::HeadlessContext context;
+  gl::RenderSettings settings;  // SH irradiance, reference model
+  settings.msaa = int(state.range(2));
+  // A fourth argument 0: no compensation (the default before issue 11, to compare like
+  // with like across that change).
+  if (state.range(3) == 0) settings.brdf.multiscatter = false;
+  time_frames(state, spheres_with_two_lights(), width, height, settings);
   state.SetLabel(gl::describe_current_context());
 }
 // width, height, MSAA samples (4 is the renderer's default).
@@ -146,7 +153,6 @@ BENCHMARK(BM_GlFrameBreakdown)
 void BM_GlFrameLayers(benchmark::State& state) {
   constexpr int kWidth = 1280, kHeight = 720;
   gl::HeadlessContext context;
-  gl::Renderer renderer;
   Scene scene = spheres_with_two_lights();
   if (state.range(0) == 1)
     for (Material& m : scene.materials) {
@@ -159,22 +165,9 @@ void BM_GlFrameLayers(benchmark::State& state) {
       sheen.roughness_factor = 0.5f;
       m.sheen = sheen;
     }
-  const Camera camera = select_camera(scene, std::nullopt, float(kWidth) / float(kHeight));
-  const Environment env = load_environment_or_default("", 0.0f, 1.0f);
-  const gl::IblMaps maps = gl::ibl_maps_from_bake(bake_environment(env, viewer_bake()), env);
-  renderer.set_scene(scene);
-  renderer.set_environment(&env);
-  renderer.set_ibl(&maps);
   gl::RenderSettings settings;
   settings.msaa = 1;
-  renderer.render(camera, kWidth, kHeight, settings);
-  glFinish();
-  const double cpu0 = process_cpu_seconds();
-  for (auto _ : state) {
-    renderer.render(camera, kWidth, kHeight, settings);
-    glFinish();
-  }
-  state.counters["cpu_ms"] = (process_cpu_seconds() - cpu0) * 1e3 / double(state.iterations());
+  time_frames(state, scene, kWidth, kHeight, settings);
   state.SetLabel(state.range(0) == 1 ? "clearcoat + sheen" : "plain");
 }
 BENCHMARK(BM_GlFrameLayers)
@@ -193,7 +186,6 @@ BENCHMARK(BM_GlFrameLayers)
 void BM_GlFrameTransmission(benchmark::State& state) {
   constexpr int kWidth = 1280, kHeight = 720;
   gl::HeadlessContext context;
-  gl::Renderer renderer;
   const int variant = int(state.range(0));
   Scene scene = variant == 3   ? builtin_scene("glass")
                 : variant == 4 ? builtin_scene("liquid")
@@ -209,22 +201,9 @@ void BM_GlFrameTransmission(benchmark::State& state) {
       }
     }
   }
-  const Camera camera = select_camera(scene, std::nullopt, float(kWidth) / float(kHeight));
-  const Environment env = load_environment_or_default("", 0.0f, 1.0f);
-  const gl::IblMaps maps = gl::ibl_maps_from_bake(bake_environment(env, viewer_bake()), env);
-  renderer.set_scene(scene);
-  renderer.set_environment(&env);
-  renderer.set_ibl(&maps);
   gl::RenderSettings settings;
   settings.msaa = 1;
-  renderer.render(camera, kWidth, kHeight, settings);
-  glFinish();
-  const double cpu0 = process_cpu_seconds();
-  for (auto _ : state) {
-    renderer.render(camera, kWidth, kHeight, settings);
-    glFinish();
-  }
-  state.counters["cpu_ms"] = (process_cpu_seconds() - cpu0) * 1e3 / double(state.iterations());
+  time_frames(state, scene, kWidth, kHeight, settings);
   static const char* const kNames[] = {"opaque", "half thin glass", "half thick dispersive glass",
                                        "builtin glass", "builtin liquid"};
   state.SetLabel(kNames[variant]);

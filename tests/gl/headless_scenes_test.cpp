@@ -17,15 +17,7 @@ namespace pbrkit::gl {
 namespace {
 
 const IblMaps& small_ibl(const Environment& env) {
-  static const IblMaps maps = [&] {
-    BakeOptions bake;
-    bake.face_size = 16;
-    bake.min_face_size = 4;
-    bake.samples = 16;
-    bake.irradiance_size = 4;
-    bake.lut_size = 8;
-    return ibl_maps_from_bake(bake_environment(env, bake), env);
-  }();
+  static const IblMaps maps = testing::small_ibl_maps(env);
   return maps;
 }
 

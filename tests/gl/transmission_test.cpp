@@ -185,13 +185,7 @@ TEST(GlTransmission, DiffuseTransmissionCarriesTheLightBehind) {
 TEST(GlTransmission, WhiteGlassDisappearsInAWhiteFurnace) {
   testing::context();
   const Environment env = Environment::constant(glm::vec3(1.0f));
-  BakeOptions bake;
-  bake.face_size = 16;
-  bake.min_face_size = 4;
-  bake.samples = 16;
-  bake.irradiance_size = 4;
-  bake.lut_size = 8;
-  const IblMaps maps = ibl_maps_from_bake(bake_environment(env, bake), env);
+  const IblMaps maps = testing::small_ibl_maps(env);
   struct Variant {
     float roughness, thickness, dispersion;
   };
