@@ -239,7 +239,8 @@ void run_info(const InfoOptions& opt) {
                              {"width", t.width()},
                              {"height", t.height()},
                              {"srgb", t.srgb},
-                             {"mips", t.mips.size()}});
+                             {"mips", t.levels.size()},
+                             {"bytes", t.bytes()}});
   j["lights"] = nlohmann::json::array();
   for (const Light& l : scene.lights)
     j["lights"].push_back(
@@ -301,8 +302,8 @@ void run_info(const InfoOptions& opt) {
   }
   std::printf("  textures     %zu\n", scene.textures.size());
   for (const Texture& t : scene.textures)
-    std::printf("    %-30s %5d x %-5d %s, %zu mips\n", t.name.c_str(), t.width(), t.height(),
-                t.srgb ? "sRGB  " : "linear", t.mips.size());
+    std::printf("    %-30s %5d x %-5d %s, %zu mips, %zu bytes\n", t.name.c_str(), t.width(),
+                t.height(), t.srgb ? "sRGB  " : "linear", t.levels.size(), t.bytes());
   std::printf("  lights       %zu\n", scene.lights.size());
   for (const Light& l : scene.lights)
     std::printf("    %-30s %s, intensity %g\n", l.name.c_str(), light_type(l.type), l.intensity);

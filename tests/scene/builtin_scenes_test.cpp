@@ -275,8 +275,8 @@ void expect_closed_volumes_framed_before_the_backdrop(const Scene& s) {
   // The backdrop is a checker (refraction shows as bent edges).
   const TextureRef& checker = named(s, "backdrop").base_color_texture;
   ASSERT_TRUE(checker.valid());
-  const Image& texels = s.textures[std::size_t(checker.texture)].mips[0];
-  EXPECT_GT(texels.pixel(0, 0)[0], 10.0f * texels.pixel(texels.width - 1, 0)[0]);
+  const Texture& texels = s.textures[std::size_t(checker.texture)];
+  EXPECT_GT(texels.texel(0, 0, 0).r, 10.0f * texels.texel(0, texels.width() - 1, 0).r);
 }
 
 TEST(BuiltinScenes, GlassHasEachKindOfGlassBeforeACheckerBackdrop) {

@@ -65,7 +65,7 @@ TEST(GltfLoader, TexturedQuadSamplesTheRightTexel) {
   EXPECT_EQ(tex.sampler.wrap_s, WrapMode::kClampToEdge);
   EXPECT_EQ(tex.sampler.wrap_t, WrapMode::kMirroredRepeat);
   EXPECT_FALSE(tex.sampler.min_mipmap);
-  EXPECT_EQ(tex.mips.size(), 3u);
+  EXPECT_EQ(tex.levels.size(), 3u);
   // Texel (x, y) holds sRGB bytes (60x, 60y, 200); uv (0, 0) is the top-left texel.
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) {

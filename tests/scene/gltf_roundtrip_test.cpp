@@ -156,10 +156,8 @@ TEST(GltfRoundTrip, OptionalFeatures) {
   s.source = "test";
   Image img(2, 2, 4, 1.0f);
   img.pixel(1, 0)[0] = 0.0f;
-  Texture tex;
+  Texture tex = Texture::from_linear(img, true);
   tex.name = "tex";
-  tex.mips = make_mip_chain(img);
-  tex.srgb = true;
   tex.sampler.wrap_s = WrapMode::kMirroredRepeat;
   s.textures.push_back(tex);
   Material m;
@@ -211,8 +209,9 @@ TEST(GltfRoundTrip, OptionalFeatures) {
   EXPECT_FALSE(loaded.textures[1].srgb);
   EXPECT_EQ(loaded.textures[0].sampler.wrap_s, WrapMode::kMirroredRepeat);
   // 8-bit sRGB storage: 1 and 0 are exact.
-  EXPECT_EQ(loaded.textures[0].mips[0].pixel(1, 0)[0], 0.0f);
-  EXPECT_EQ(loaded.textures[0].mips[0].pixel(0, 0)[0], 1.0f);
+  EXPECT_EQ(loaded.textures[0].format, TexelFormat::kUnorm8);
+  EXPECT_EQ(loaded.textures[0].texel(0, 1, 0).r, 0.0f);
+  EXPECT_EQ(loaded.textures[0].texel(0, 0, 0).r, 1.0f);
 }
 
 }  // namespace

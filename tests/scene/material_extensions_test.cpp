@@ -430,10 +430,8 @@ Scene scene_with_every_extension() {
   s.source = "test";
   Image img(2, 2, 4, 1.0f);
   img.pixel(1, 0)[0] = 0.0f;
-  Texture color;
+  Texture color = Texture::from_linear(img, true);
   color.name = "color";
-  color.mips = make_mip_chain(img);
-  color.srgb = true;
   Texture data = color;
   data.name = "data";
   data.srgb = false;

@@ -23,9 +23,7 @@ Texture rgba_texture(float a) {
   Image image(2, 2, 4);
   for (float& v : image.data) v = 1.0f;
   image.data.back() = a;
-  Texture t;
-  t.mips = make_mip_chain(image);
-  return t;
+  return Texture::from_linear(image, false);
 }
 
 TEST(HasAlpha, OpaqueAndMaskFollowTheMode) {

@@ -2,6 +2,7 @@
 // Reading and writing images. Inputs: OpenEXR (all compressions, DWAB included, through
 // OpenEXR), Radiance .hdr, PNG, JPEG. Outputs: EXR (half or float, linear, optionally
 // several named layers) and PNG (8 or 16 bit, display-referred). Every write is atomic.
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -39,6 +40,34 @@ Image read_image(const std::filesystem::path& path, const ImageReadOptions& opti
 /// in error messages (e.g. "model.glb: image 3").
 Image decode_image(const void* bytes, std::size_t size, const std::string& name,
                    const ImageReadOptions& options = {}, ImageReadReport* report = nullptr);
+
+/// What an image's header says, read without decoding it.
+struct ImageHeader {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  int bits = 8;  ///< bits per sample as decoded: 8 or 16 (PNG, JPEG), 32 (float: HDR)
+};
+/// Reads the size, channel count and sample depth of a PNG, JPEG or Radiance HDR from its
+/// header alone (nothing is allocated for pixels). False for other formats (OpenEXR, whose
+/// header decode_image checks itself) or an unreadable header.
+bool read_image_header(const void* bytes, std::size_t size, ImageHeader& out);
+
+/// An 8- or 16-bit image's samples exactly as stored (no transfer function applied), for
+/// textures kept at their source's precision.
+struct IntegerImage {
+  int width = 0;
+  int height = 0;
+  int channels = 0;                ///< 1 grey, 2 grey-alpha, 3 RGB, 4 RGBA
+  int bits = 8;                    ///< 8: samples in u8, 16: samples in u16
+  std::vector<std::uint8_t> u8;    ///< width * height * channels, row-major, top row first
+  std::vector<std::uint16_t> u16;  ///< the same for 16-bit sources
+};
+/// Decodes a PNG or JPEG to its stored 8/16-bit samples, with decode_image's checks (size
+/// limit, PNG chunk structure). Returns false, decoding nothing, for float formats (OpenEXR,
+/// Radiance HDR), which decode_image reads.
+bool decode_integer_image(const void* bytes, std::size_t size, const std::string& name,
+                          const ImageReadOptions& options, IntegerImage& out);
 
 /// Applies the input policy in place: negative/NaN/Inf -> 0, counted into `report`.
 void sanitize_image(Image& image, ImageReadReport& report);

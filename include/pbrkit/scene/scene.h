@@ -27,24 +27,63 @@ struct Sampler {
   bool min_mipmap = true;
 };
 
-/// A texture: linear float RGBA texels (sRGB-encoded inputs already decoded), with a
-/// full mip chain (mips[0] is the full-resolution image, 4 channels each).
+/// How a texture keeps its texels: at its source's precision.
+enum class TexelFormat : std::uint8_t {
+  kUnorm8,   ///< 8-bit PNG/JPEG samples (sRGB-encoded colour when `srgb`)
+  kUnorm16,  ///< 16-bit PNG samples (sRGB-encoded colour when `srgb`)
+  kFloat32,  ///< linear floats (OpenEXR, Radiance HDR, generated images)
+};
+
+/// One level of a texture's mip chain: its size and where its samples start in the
+/// texture's storage (in samples, not bytes).
+struct TextureLevel {
+  int width = 0;
+  int height = 0;
+  std::size_t offset = 0;
+};
+
+/// A texture kept at its source's precision, with a full mip chain in the same precision
+/// (levels[0] is the full-resolution image). 8/16-bit colour textures (`srgb`) hold
+/// sRGB-encoded samples, decoded at lookup (8-bit through a 256-entry table); their mips
+/// are box-filtered in linear space and re-encoded. Alpha is always linear. Channels are
+/// the source's: 1 grey, 2 grey-alpha, 3 RGB, 4 RGBA; lookups expand them to RGBA.
 struct Texture {
   std::string name;
-  std::vector<Image> mips;
   Sampler sampler;
-  bool srgb = false;  ///< whether the source was decoded from sRGB (baseColor, emissive)
+  /// Colour data (baseColor, emissive, ...): integer samples are sRGB-encoded. Float
+  /// samples are linear either way.
+  bool srgb = false;
+  TexelFormat format = TexelFormat::kFloat32;
+  int channels = 0;
+  std::vector<TextureLevel> levels;
+  std::vector<std::uint8_t> texels8;    ///< kUnorm8 samples of every level
+  std::vector<std::uint16_t> texels16;  ///< kUnorm16 samples of every level
+  std::vector<float> texels32;          ///< kFloat32 samples of every level
 
-  int width() const { return mips.empty() ? 0 : mips[0].width; }
-  int height() const { return mips.empty() ? 0 : mips[0].height; }
+  /// A float texture from linear `level0` (1 to 4 channels) and its box-filtered mips.
+  static Texture from_linear(Image level0, bool srgb);
+  /// An 8-bit texture from `channels`-interleaved samples (sRGB-encoded when `srgb`).
+  static Texture from_unorm8(int width, int height, int channels, std::vector<std::uint8_t> samples,
+                             bool srgb);
+  /// A 16-bit texture, as from_unorm8.
+  static Texture from_unorm16(int width, int height, int channels,
+                              std::vector<std::uint16_t> samples, bool srgb);
+
+  bool empty() const { return levels.empty(); }
+  int width() const { return levels.empty() ? 0 : levels[0].width; }
+  int height() const { return levels.empty() ? 0 : levels[0].height; }
+  /// Memory the texels take, every level included (bytes).
+  std::size_t bytes() const;
+  /// The linear RGBA value of texel (x, y) of `level` (in range; no wrapping).
+  glm::vec4 texel(int level, int x, int y) const;
+  /// A level as a linear float RGBA image (for writers and float uploads).
+  Image level_image(int level) const;
+  /// The smallest alpha of the full-resolution level (1 without an alpha channel).
+  float min_alpha() const;
   /// Filtered lookup (bilinear, or trilinear between mips at `lod`), honouring the wrap
   /// modes; uv origin is the top-left of the image, as glTF specifies.
   glm::vec4 sample(glm::vec2 uv, float lod = 0.0f) const;
 };
-
-/// A full mip chain for `level0` (box-filtered in linear space down to 1x1); mips[0] is
-/// `level0` itself.
-std::vector<Image> make_mip_chain(Image level0);
 
 /// KHR_texture_transform: uv' = T * R * S * uv.
 struct TextureTransform {

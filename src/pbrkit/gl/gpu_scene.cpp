@@ -1,6 +1,8 @@
 #include "pbrkit/gl/gpu_scene.h"
 
 #include <cstdint>
+#include <limits>
+#include <vector>
 
 namespace pbrkit::gl {
 
@@ -29,6 +31,53 @@ GLint wrap_mode(WrapMode w) {
       break;
   }
   return GL_REPEAT;
+}
+
+// Uploads one level of integer samples as RGBA: RGB and RGBA as they are (GL sets a
+// missing alpha to 1); grey and grey-alpha expanded to (g, g, g, a) as Texture's lookups
+// expand them (GL's own RED/RG would leave green and blue 0).
+template <class T>
+void upload_level(GLuint tex, const Texture& t, int level, const T* src, GLenum type) {
+  const TextureLevel& l = t.levels[std::size_t(level)];
+  if (t.channels >= 3) {
+    glTextureSubImage2D(tex, level, 0, 0, l.width, l.height, pixel_format(t.channels), type, src);
+    return;
+  }
+  const std::size_t n = std::size_t(l.width) * std::size_t(l.height);
+  std::vector<T> rgba(n * 4);
+  for (std::size_t i = 0; i < n; ++i) {
+    const T g = src[i * std::size_t(t.channels)];
+    rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = g;
+    rgba[4 * i + 3] = t.channels == 2 ? src[i * 2 + 1] : std::numeric_limits<T>::max();
+  }
+  glTextureSubImage2D(tex, level, 0, 0, l.width, l.height, GL_RGBA, type, rgba.data());
+}
+
+// A texture's own mip chain at its precision: 8-bit as GL_SRGB8_ALPHA8 (colour) or
+// GL_RGBA8, which GL decodes to linear before filtering as Texture::sample does (OpenGL 4.6
+// section 8.24); 16-bit data as GL_RGBA16; 16-bit colour (GL has no 16-bit sRGB format)
+// and float as GL_RGBA32F, decoded here.
+void upload_texture(GLuint tex, const Texture& t) {
+  const GLsizei levels = GLsizei(t.levels.size());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  if (t.format == TexelFormat::kUnorm8) {
+    glTextureStorage2D(tex, levels, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width(), t.height());
+    for (GLsizei level = 0; level < levels; ++level)
+      upload_level(tex, t, level, t.texels8.data() + t.levels[std::size_t(level)].offset,
+                   GL_UNSIGNED_BYTE);
+  } else if (t.format == TexelFormat::kUnorm16 && !t.srgb) {
+    glTextureStorage2D(tex, levels, GL_RGBA16, t.width(), t.height());
+    for (GLsizei level = 0; level < levels; ++level)
+      upload_level(tex, t, level, t.texels16.data() + t.levels[std::size_t(level)].offset,
+                   GL_UNSIGNED_SHORT);
+  } else {
+    glTextureStorage2D(tex, levels, GL_RGBA32F, t.width(), t.height());
+    for (GLsizei level = 0; level < levels; ++level) {
+      const Image img = t.level_image(level);
+      glTextureSubImage2D(tex, level, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT,
+                          img.data.data());
+    }
+  }
 }
 
 // One cube texture with every level of `cube` (RGB float), or a 1x1 black one.
@@ -101,19 +150,14 @@ void GpuScene::upload(const Scene& scene) {
   for (const Texture& t : scene.textures) {
     GLuint tex = 0;
     glCreateTextures(GL_TEXTURE_2D, 1, &tex);
-    if (t.mips.empty()) {
+    if (t.empty()) {
       glTextureStorage2D(tex, 1, GL_RGBA32F, 1, 1);
       const float white[4] = {1, 1, 1, 1};
       glTextureSubImage2D(tex, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, white);
     } else {
-      glTextureStorage2D(tex, GLsizei(t.mips.size()), GL_RGBA32F, t.width(), t.height());
-      for (std::size_t level = 0; level < t.mips.size(); ++level) {
-        const Image& img = t.mips[level];
-        glTextureSubImage2D(tex, GLint(level), 0, 0, img.width, img.height,
-                            pixel_format(img.channels), GL_FLOAT, img.data.data());
-      }
+      upload_texture(tex, t);
     }
-    const bool mip = t.sampler.min_mipmap && t.mips.size() > 1;
+    const bool mip = t.sampler.min_mipmap && t.levels.size() > 1;
     const bool lin = t.sampler.min == FilterMode::kLinear;
     glTextureParameteri(tex, GL_TEXTURE_MIN_FILTER,
                         mip ? (lin ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR)

@@ -428,6 +428,81 @@ Image decode_image(const void* bytes, std::size_t size, const std::string& name,
   return image;
 }
 
+bool read_image_header(const void* bytes, std::size_t size, ImageHeader& out) {
+  const auto* b = static_cast<const unsigned char*>(bytes);
+  const Format format = detect_format(b, size);
+  if (format != Format::kPng && format != Format::kJpeg && format != Format::kHdr) return false;
+  if (format == Format::kPng) {
+    // The IHDR chunk, which the PNG specification (section 11.2.2) puts first: width and
+    // height (4 bytes each, big-endian), bit depth, colour type. Read here rather than by
+    // stb_image, which refuses a header whose size it finds absurd without saying so.
+    if (size < 26) return false;
+    auto be32 = [&](std::size_t at) {
+      return int(std::min<std::uint32_t>((std::uint32_t(b[at]) << 24) |
+                                             (std::uint32_t(b[at + 1]) << 16) |
+                                             (std::uint32_t(b[at + 2]) << 8) | b[at + 3],
+                                         std::uint32_t(INT32_MAX)));
+    };
+    out.width = be32(16);
+    out.height = be32(20);
+    out.bits = b[24] == 16 ? 16 : 8;
+    // Grey, RGB, palette (expanded to RGBA at most), grey-alpha, RGBA.
+    const int channels[7] = {1, 0, 3, 4, 2, 0, 4};
+    out.channels = b[25] < 7 && channels[b[25]] > 0 ? channels[b[25]] : 4;
+    return true;
+  }
+  if (size > static_cast<std::size_t>(INT32_MAX)) return false;
+  const int len = static_cast<int>(size);
+  int w = 0, h = 0, comp = 0;
+  if (!stbi_info_from_memory(b, len, &w, &h, &comp)) return false;
+  out.width = w;
+  out.height = h;
+  out.channels = comp;
+  out.bits = format == Format::kHdr ? 32 : stbi_is_16_bit_from_memory(b, len) ? 16 : 8;
+  return true;
+}
+
+bool decode_integer_image(const void* bytes, std::size_t size, const std::string& name,
+                          const ImageReadOptions& options, IntegerImage& out) {
+  const auto* b = static_cast<const unsigned char*>(bytes);
+  if (size == 0) fail("{}: empty file", name);
+  const Format format = detect_format(b, size);
+  if (format == Format::kUnknown)
+    fail("{}: unknown image format (expected OpenEXR, Radiance HDR, PNG or JPEG)", name);
+  if (format != Format::kPng && format != Format::kJpeg) return false;
+  if (size > static_cast<std::size_t>(INT32_MAX)) fail("{}: file is too large", name);
+  const int len = static_cast<int>(size);
+  if (format == Format::kPng) check_png_chunks(b, size, name);
+  int w = 0, h = 0, comp = 0;
+  if (!stbi_info_from_memory(b, len, &w, &h, &comp))
+    fail("{}: cannot read image header: {}", name, stbi_failure_reason());
+  check_size(name, w, h, options);
+  const bool is16 = stbi_is_16_bit_from_memory(b, len) != 0;
+  void* data = is16 ? static_cast<void*>(stbi_load_16_from_memory(b, len, &w, &h, &comp, 0))
+                    : static_cast<void*>(stbi_load_from_memory(b, len, &w, &h, &comp, 0));
+  if (!data) fail("{}: cannot decode image: {}", name, stbi_failure_reason());
+  if (comp < 1 || comp > 4) {
+    stbi_image_free(data);
+    fail("{}: unsupported channel count {}", name, comp);
+  }
+  out.width = w;
+  out.height = h;
+  out.channels = comp;
+  out.bits = is16 ? 16 : 8;
+  const std::size_t n = std::size_t(w) * std::size_t(h) * std::size_t(comp);
+  out.u8.clear();
+  out.u16.clear();
+  if (is16) {
+    const auto* p = static_cast<const std::uint16_t*>(data);
+    out.u16.assign(p, p + n);
+  } else {
+    const auto* p = static_cast<const std::uint8_t*>(data);
+    out.u8.assign(p, p + n);
+  }
+  stbi_image_free(data);
+  return true;
+}
+
 Image read_image(const std::filesystem::path& path, const ImageReadOptions& options,
                  ImageReadReport* report) {
   const std::string bytes = read_file_bytes(path);

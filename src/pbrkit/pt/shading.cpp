@@ -9,7 +9,7 @@ namespace {
 glm::vec4 lookup(const Scene& scene, const TextureRef& ref, const SurfaceHit& hit) {
   if (!ref.valid() || ref.texture >= int(scene.textures.size())) return glm::vec4(1.0f);
   const Texture& tex = scene.textures[std::size_t(ref.texture)];
-  if (tex.mips.empty()) return glm::vec4(1.0f);
+  if (tex.empty()) return glm::vec4(1.0f);
   return tex.sample(texture_uv(ref, hit), 0.0f);
 }
 

@@ -97,8 +97,8 @@ void append_bytes(void* context, void* data, int size) {
 
 int Writer::add_texture(const Texture& t) {
   // 8-bit PNG of the top mip, sRGB-encoded for colour textures (glTF's convention).
-  if (t.mips.empty()) fail("write_glb: texture '{}' has no pixels", t.name);
-  const Image& img = t.mips[0];
+  if (t.empty()) fail("write_glb: texture '{}' has no pixels", t.name);
+  const Image img = t.level_image(0);
   std::vector<unsigned char> pixels(img.pixel_count() * 4);
   for (std::size_t i = 0; i < img.pixel_count(); ++i)
     for (int c = 0; c < 4; ++c) {

@@ -187,10 +187,8 @@ Texture make_checker_texture(int size, int checks, glm::vec3 a, glm::vec3 b) {
       texel[1] = c.g;
       texel[2] = c.b;
     }
-  Texture texture;
+  Texture texture = Texture::from_linear(std::move(image), true);
   texture.name = "checker";
-  texture.srgb = true;
-  texture.mips = make_mip_chain(std::move(image));
   return texture;
 }
 

@@ -61,13 +61,7 @@ bool has_alpha(const Scene& scene, const Mesh& mesh) {
   const TextureRef& ref = m.base_color_texture;
   if (!ref.valid() || std::size_t(ref.texture) >= scene.textures.size()) return false;
   // Smaller mips average the level above, so level 0 holds every alpha below 1.
-  const Texture& t = scene.textures[std::size_t(ref.texture)];
-  if (t.mips.empty()) return false;
-  const Image& level0 = t.mips[0];
-  if (level0.channels != 4) return false;
-  for (std::size_t i = 3; i < level0.data.size(); i += 4)
-    if (level0.data[i] < 1.0f) return true;
-  return false;
+  return scene.textures[std::size_t(ref.texture)].min_alpha() < 1.0f;
 }
 
 const Material& Scene::default_material() {

@@ -1,8 +1,9 @@
-// Textures (glTF 2.0 section 3.8): an image is decoded once per colour space (sRGB for
-// colour, linear for data), after its PNG header's size is checked against the pixel
-// limit; decoded texels count against the total texture budget.
+// Textures (glTF 2.0 section 3.8): an image becomes one texture per colour space it is used
+// in (sRGB for colour, linear for data: the mips are filtered in that space), kept at its
+// source's precision, after its header's size is checked against the pixel limit and the
+// total texture budget; the kept texels count against that budget.
+#include <algorithm>
 #include <cstdint>
-#include <cstring>
 
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/scene/asset_uri.h"
@@ -29,59 +30,49 @@ int Loader::texture_for(int texture_index, bool srgb, const std::string& where) 
   const auto& gimg = model_.images[std::size_t(gtex.source)];
   const std::string ipath = fmt::format("images[{}]", gtex.source);
   if (gimg.image.empty()) error(ipath, "has no image data");
-  // Refuse absurd PNG sizes from the header alone, before any decoder allocates.
-  if (gimg.image.size() >= 24 && std::memcmp(gimg.image.data(), "\x89PNG", 4) == 0) {
-    auto be32 = [&](std::size_t at) {
-      const unsigned char* p = gimg.image.data() + at;
-      return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) |
-             (std::uint32_t(p[2]) << 8) | p[3];
-    };
-    const std::uint64_t w = be32(16), h = be32(20);
+  // Refuse images whose decoded texels (with the mip chain, 4/3 of the top level) would
+  // not fit, from the header alone, before any decoder allocates.
+  ImageHeader header;
+  if (read_image_header(gimg.image.data(), gimg.image.size(), header)) {
+    const std::uint64_t w = std::uint64_t(std::max(header.width, 0));
+    const std::uint64_t h = std::uint64_t(std::max(header.height, 0));
     if (w * h > options_.limits.max_image_pixels)
       error(ipath, fmt::format("image size {} x {} exceeds the limit of {} pixels", w, h,
                                options_.limits.max_image_pixels));
+    const std::uint64_t need =
+        w * h * std::uint64_t(header.channels) * std::uint64_t(header.bits / 8) * 4 / 3;
+    if (texture_bytes_ + need > options_.limits.max_total_texture_bytes)
+      error(ipath, fmt::format("image {} x {} with {} channels of {} bits needs {} bytes with "
+                               "its mips; with the {} bytes of the textures before it, that "
+                               "exceeds the limit of {} bytes of decoded textures",
+                               w, h, header.channels, header.bits, need, texture_bytes_,
+                               options_.limits.max_total_texture_bytes));
   }
   ImageReadOptions opts;
   opts.decode_srgb = srgb;
   opts.max_pixels = options_.limits.max_image_pixels;
-  ImageReadReport report;
-  Image img = decode_image(gimg.image.data(), gimg.image.size(),
-                           fmt::format("{}: {}", file_, ipath), opts, &report);
-  if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4)
-    error(ipath, "decoded to an empty image");
-  Image rgba(img.width, img.height, 4);
-  for (std::size_t i = 0; i < img.pixel_count(); ++i) {
-    const float* s = img.data.data() + i * std::size_t(img.channels);
-    float* d = rgba.data.data() + i * 4;
-    switch (img.channels) {
-      case 1:
-        d[0] = d[1] = d[2] = s[0];
-        d[3] = 1.0f;
-        break;
-      case 2:
-        d[0] = d[1] = d[2] = s[0];
-        d[3] = s[1];
-        break;
-      case 3:
-        d[0] = s[0];
-        d[1] = s[1];
-        d[2] = s[2];
-        d[3] = 1.0f;
-        break;
-      default:
-        std::memcpy(d, s, 4 * sizeof(float));
-    }
+  const std::string name = fmt::format("{}: {}", file_, ipath);
+  // 8/16-bit sources stay at their precision (sRGB decoded at lookup); float ones stay float.
+  Texture tex;
+  IntegerImage stored;
+  if (decode_integer_image(gimg.image.data(), gimg.image.size(), name, opts, stored)) {
+    tex = stored.bits == 16 ? Texture::from_unorm16(stored.width, stored.height, stored.channels,
+                                                    std::move(stored.u16), srgb)
+                            : Texture::from_unorm8(stored.width, stored.height, stored.channels,
+                                                   std::move(stored.u8), srgb);
+  } else {
+    ImageReadReport report;
+    Image img = decode_image(gimg.image.data(), gimg.image.size(), name, opts, &report);
+    if (img.width <= 0 || img.height <= 0 || img.channels < 1 || img.channels > 4)
+      error(ipath, "decoded to an empty image");
+    tex = Texture::from_linear(std::move(img), srgb);
   }
-  // A full mip chain is 4/3 of the top level.
-  texture_bytes_ += rgba.data.size() * sizeof(float) * 4 / 3;
+  texture_bytes_ += tex.bytes();
   if (texture_bytes_ > options_.limits.max_total_texture_bytes)
     error(ipath, fmt::format("decoded textures exceed the limit of {} bytes",
                              options_.limits.max_total_texture_bytes));
-  Texture tex;
   tex.name = gimg.name.empty() ? (gimg.uri.empty() || is_data_uri(gimg.uri) ? ipath : gimg.uri)
                                : gimg.name;
-  tex.srgb = srgb;
-  tex.mips = make_mip_chain(std::move(rgba));
   if (gtex.sampler >= 0) {
     if (std::size_t(gtex.sampler) >= model_.samplers.size())
       error(tpath + ".sampler", fmt::format("sampler {} does not exist", gtex.sampler));
