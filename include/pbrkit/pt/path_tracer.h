@@ -76,6 +76,10 @@ struct PathTracerSettings {
   PixelFilter filter = PixelFilter::kTent;
   /// Show the environment to camera rays (false: black background, light still counts).
   bool env_visible = true;
+  /// Texture level of detail from ray cones (Akenine-Moller et al., "Improved Shader and
+  /// Texture Level of Detail Using Ray Cones", JCGT 2021): lookups are filtered to the
+  /// pixel's footprint, through specular bounces (false: every lookup reads level 0).
+  bool texture_lod = true;
 
   // --- execution ----------------------------------------------------------------------
   std::uint32_t seed = 0;

@@ -11,6 +11,13 @@
 
 namespace pbrkit {
 
+/// A ray cone (Akenine-Moller et al., "Improved Shader and Texture Level of Detail Using
+/// Ray Cones", JCGT 2021): the footprint's width at the ray's origin and its spread angle.
+struct RayCone {
+  float width = 0.0f;
+  float spread = 0.0f;
+};
+
 class CameraRays {
  public:
   CameraRays(const Camera& camera, float aspect)
@@ -18,6 +25,14 @@ class CameraRays {
         orthographic_(camera.type == Camera::Type::kOrthographic) {
     half_ = image_plane_half_extent(camera, aspect);
     forward_ = glm::normalize(-glm::vec3(to_world_[2]));
+  }
+
+  /// The cone of one pixel of an image `height` pixels high (the paper's section 4.2): a
+  /// pinhole's cones start as a point and spread by the angle a pixel subtends,
+  /// atan(2 tan(yfov / 2) / height); an orthographic camera's are a pixel wide and parallel.
+  RayCone pixel_cone(int height) const {
+    const float pixel = 2.0f * half_.y / float(height);
+    return orthographic_ ? RayCone{pixel, 0.0f} : RayCone{0.0f, std::atan(pixel)};
   }
 
   /// generate_ray(camera, aspect, ndc).

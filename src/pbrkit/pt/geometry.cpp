@@ -199,10 +199,18 @@ SurfaceHit SceneGeometry::resolve(std::uint32_t geom, std::uint32_t prim, float 
   }
   if (!wm.tangents.empty())
     hit.tangent = w * wm.tangents[i0] + u * wm.tangents[i1] + v * wm.tangents[i2];
-  if (!mesh.texcoords0.empty())
+  const auto uv_area = [&](const std::vector<glm::vec2>& t) {
+    const glm::vec2 a = t[i1] - t[i0], b = t[i2] - t[i0];
+    return 0.5f * std::abs(a.x * b.y - a.y * b.x);
+  };
+  if (!mesh.texcoords0.empty()) {
     hit.uv[0] = w * mesh.texcoords0[i0] + u * mesh.texcoords0[i1] + v * mesh.texcoords0[i2];
-  if (!mesh.texcoords1.empty())
+    hit.uv_area[0] = uv_area(mesh.texcoords0);
+  }
+  if (!mesh.texcoords1.empty()) {
     hit.uv[1] = w * mesh.texcoords1[i0] + u * mesh.texcoords1[i1] + v * mesh.texcoords1[i2];
+    hit.uv_area[1] = uv_area(mesh.texcoords1);
+  }
   if (!mesh.colors0.empty())
     hit.color = w * mesh.colors0[i0] + u * mesh.colors0[i1] + v * mesh.colors0[i2];
   return hit;

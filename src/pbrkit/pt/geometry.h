@@ -45,6 +45,10 @@ struct SurfaceHit {
   glm::vec2 uv[2]{};        ///< TEXCOORD_0 / TEXCOORD_1
   glm::vec4 color{1.0f};    ///< COLOR_0
   float area = 0.0f;        ///< world-space triangle area
+  float uv_area[2]{};       ///< the triangle's area in TEXCOORD_0 / TEXCOORD_1 space
+  /// Width of the ray's footprint across the surface, w / |n.d| (ray cones, for texture
+  /// level of detail; set by the integrator). 0: textures are read at level 0.
+  float footprint = 0.0f;
   std::uint32_t geom = 0, prim = 0;
 };
 

@@ -118,6 +118,12 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   AovTracker aov;
   MediumStack media;  // the volumes the path is inside (empty: vacuum)
   int channel = -1;   // the colour channel chosen at the first dispersive surface
+  // The ray cone's width at the ray's origin (texture level of detail). It grows by the
+  // pixel's spread over each segment and passes through specular bounces unchanged, as off
+  // a plane (the paper's curvature term is left out); after any other bounce it is -1 and
+  // textures are read at level 0, unfiltered: a rough lobe's spread is no cone, and level 0
+  // keeps indirect lighting unbiased.
+  float cone = settings_.texture_lod && !scene_.textures.empty() ? pixel_cone_.width : -1.0f;
   for (int depth = 0;; ++depth) {
     SurfaceHit hit;
     const Material* material = nullptr;
@@ -153,6 +159,10 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     // (shade_inputs turns the shading normal to the same side.)
     const bool front_face = glm::dot(hit.ng, wo) >= 0.0f;  // the ray arrives from outside
     if (!front_face) hit.ng = -hit.ng;
+    if (cone >= 0.0f) {
+      cone += pixel_cone_.spread * glm::length(hit.p - segment_start);
+      hit.footprint = cone / std::max(glm::dot(hit.ng, wo), 1e-6f);
+    }
     // Emission (glTF emission is seen from the front, or from both sides when
     // double-sided; a culled back face never gets here), weighted like the environment's.
     const glm::vec3 Le = material_emission(scene_, *material, hit);
@@ -239,6 +249,11 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
       env->prefetch(env_at);
     }
     prev_pdf = bs.pdf;  // infinite after a delta lobe: MIS gives it all the weight
+    // A bounce is specular for the cone when its lobe is narrower than a pixel's cone (the
+    // sampled direction's solid angle 1 / pdf below pi spread^2): smooth glass's delta lobe,
+    // a mirror-smooth metal's. A wider lobe blurs over more than a pixel by itself.
+    const float spread = pixel_cone_.spread;
+    if (!(std::isinf(bs.pdf) || kPi * spread * spread * bs.pdf >= 1.0f)) cone = -1.0f;
     prev_p = hit.p;
     origin = offset_ray_origin(hit.p, transmitted ? -hit.ng : hit.ng);
     direction = wi;

@@ -10,6 +10,7 @@
 #include "pbrkit/core/bsdf.h"
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
+#include "pbrkit/pt/camera_rays.h"
 #include "pbrkit/pt/geometry.h"
 #include "pbrkit/pt/lights.h"
 #include "pbrkit/pt/path_tracer.h"
@@ -82,9 +83,14 @@ struct PathSample {
 
 class Integrator {
  public:
+  /// `pixel_cone`: a camera ray's cone (texture level of detail, settings.texture_lod).
   Integrator(const Scene& scene, const SceneGeometry& geometry, const LightSet& lights,
-             const PathTracerSettings& settings)
-      : scene_(scene), geometry_(geometry), lights_(lights), settings_(settings) {}
+             const PathTracerSettings& settings, RayCone pixel_cone = {})
+      : scene_(scene),
+        geometry_(geometry),
+        lights_(lights),
+        settings_(settings),
+        pixel_cone_(pixel_cone) {}
 
   /// The radiance arriving along the camera ray (origin, direction) for sample `index` of
   /// pixel `pixel`, whose sequence is `sampler`; `primary` is the ray's intersection,
@@ -127,6 +133,7 @@ class Integrator {
   const SceneGeometry& geometry_;
   const LightSet& lights_;
   const PathTracerSettings& settings_;
+  RayCone pixel_cone_;
 };
 
 }  // namespace pbrkit

@@ -99,9 +99,10 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
   film.sample_begin = begin;
   film.seed = settings.seed;
 
-  const Integrator integrator(scene, *geometry, *lights, settings);
-  const OwenSobolSampler sampler(settings.seed);
   const CameraRays camera_rays(camera, float(settings.width) / float(settings.height));
+  const Integrator integrator(scene, *geometry, *lights, settings,
+                              camera_rays.pixel_cone(settings.height));
+  const OwenSobolSampler sampler(settings.seed);
   const int tiles_x = (settings.width + kTileSize - 1) / kTileSize;
   const int tiles_y = (settings.height + kTileSize - 1) / kTileSize;
 

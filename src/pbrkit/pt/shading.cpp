@@ -6,11 +6,25 @@ namespace pbrkit {
 
 namespace {
 
+// The ray-cone level of detail of `tex` at the hit (Akenine-Moller et al. 2021, eq. 34):
+// lambda = Delta + log2(w / |n.d|), with Delta = 0.5 log2(t_a / p_a) the triangle's texel
+// area t_a (uv area x texture size, KHR_texture_transform's scale included) over its world
+// area p_a. 0 (level 0) without a footprint or for a degenerate triangle.
+float texture_lod(const Texture& tex, const TextureRef& ref, const SurfaceHit& hit) {
+  if (!(hit.footprint > 0.0f) || !(hit.area > 0.0f)) return 0.0f;
+  float uv_area = hit.uv_area[ref.texcoord == 1 ? 1 : 0];
+  if (ref.transform) uv_area *= std::abs(ref.transform->scale.x * ref.transform->scale.y);
+  const float texel_area = uv_area * float(tex.width()) * float(tex.height());
+  if (!(texel_area > 0.0f)) return 0.0f;
+  const float lod = 0.5f * std::log2(texel_area / hit.area) + std::log2(hit.footprint);
+  return std::isfinite(lod) ? lod : 0.0f;
+}
+
 glm::vec4 lookup(const Scene& scene, const TextureRef& ref, const SurfaceHit& hit) {
   if (!ref.valid() || ref.texture >= int(scene.textures.size())) return glm::vec4(1.0f);
   const Texture& tex = scene.textures[std::size_t(ref.texture)];
   if (tex.empty()) return glm::vec4(1.0f);
-  return tex.sample(texture_uv(ref, hit), 0.0f);
+  return tex.sample(texture_uv(ref, hit), texture_lod(tex, ref, hit));
 }
 
 }  // namespace

@@ -1,8 +1,7 @@
 #pragma once
-// glTF material evaluation at a path-tracer hit: texture lookups (level of detail 0, i.e.
-// the full-resolution texture filtered bilinearly; at the sample counts the path tracer
-// uses, pixel footprint filtering comes from supersampling), alpha, emission and the
-// normal-mapped shading frame.
+// glTF material evaluation at a path-tracer hit: texture lookups (trilinear at the ray
+// cone's level of detail when the integrator set hit.footprint, else level 0 filtered
+// bilinearly), alpha, emission and the normal-mapped shading frame.
 #include <glm/glm.hpp>
 
 #include "pbrkit/core/bsdf.h"
