@@ -1,7 +1,13 @@
 #include "pbrkit/pt/geometry.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <fstream>
 #include <limits>
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
 
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -10,87 +16,290 @@ namespace pbrkit {
 
 namespace {
 
+// What Embree 3.13 allocates, measured with its memory monitor (rtcSetDeviceMemoryMonitorFunction)
+// at RTC_BUILD_QUALITY_MEDIUM on an AVX2 machine (bench/geometry_bench.cpp prints the figures):
+// the peak during a mesh's build per triangle (the BVH and the build's temporary arrays),
+// and per instance in the top level (its geometry object, its transform and its share of
+// the top-level BVH's build). The estimate rounds them up.
+constexpr double kBvhBytesPerTriangle = 128.0;
+constexpr double kBvhBytesPerInstance = 640.0;
+constexpr double kBvhBytesPerScene = 16384.0;  // an Embree scene's fixed cost
+
 void embree_error(void* /*user*/, RTCError code, const char* message) {
   if (code == RTC_ERROR_NONE) return;
   warn("embree: {} (error {})", message ? message : "", int(code));
 }
 
+std::string format_bytes(double bytes) {
+  if (bytes >= 1e9) return fmt::format("{:.2f} GB", bytes * 1e-9);
+  if (bytes >= 1e6) return fmt::format("{:.1f} MB", bytes * 1e-6);
+  return fmt::format("{:.1f} kB", bytes * 1e-3);
+}
+
+// Bytes this process can still allocate without being killed: MemAvailable, and the
+// cgroup's (v2) memory.max less memory.current when the process runs in a limited one.
+std::size_t available_memory() {
+  std::size_t available = std::numeric_limits<std::size_t>::max();
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::size_t kb = 0;
+  std::string unit;
+  while (meminfo >> key >> kb >> unit)
+    if (key == "MemAvailable:") {
+      available = kb * 1024;
+      break;
+    }
+  std::ifstream max_file("/sys/fs/cgroup/memory.max"),
+      current_file("/sys/fs/cgroup/memory.current");
+  std::string max_text;
+  std::size_t current = 0;
+  if (max_file >> max_text && max_text != "max" && current_file >> current) {
+    const std::size_t max = std::stoull(max_text);
+    available = std::min(available, max > current ? max - current : 0);
+  }
+  return available;
+}
+
+// Embree reads a vertex with a 16-byte load, so the buffer must extend 4 bytes past the
+// last vec3 (rtcSetSharedGeometryBuffer's documentation).
+bool padded(const std::vector<glm::vec3>& v) {
+  return v.capacity() > v.size();
+}
+
+// The transform's usable parts: which meshes are flattened and what each instance needs.
+struct Plan {
+  std::vector<std::size_t> uses;  // visible instances per mesh
+  std::vector<bool> visible;      // per instance: finite, non-singular transform
+};
+
+Plan plan(const Scene& scene) {
+  Plan p;
+  p.uses.assign(scene.meshes.size(), 0);
+  p.visible.assign(scene.instances.size(), false);
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& inst = scene.instances[i];
+    if (inst.mesh < 0 || inst.mesh >= int(scene.meshes.size()))
+      fail("{}: instance {} refers to mesh {} (the scene has {})", scene.source, i, inst.mesh,
+           scene.meshes.size());
+    const glm::mat4& M = inst.transform;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!std::isfinite(M[c][r]))
+          fail("{}: instance {} (node {}) has a non-finite transform", scene.source, i, inst.node);
+    // A singular transform (glTF allows a zero scale, which hides a node) has no area.
+    if (glm::determinant(glm::mat3(M)) == 0.0f) continue;
+    p.visible[i] = true;
+    ++p.uses[std::size_t(inst.mesh)];
+  }
+  return p;
+}
+
+bool flattened(const Plan& p, const GeometryOptions& options, int mesh) {
+  return options.flatten_single_use && p.uses[std::size_t(mesh)] == 1;
+}
+
 }  // namespace
 
-SceneGeometry::SceneGeometry(const Scene& scene) {
+GeometryMemory estimate_geometry_memory(const Scene& scene, const GeometryOptions& options) {
+  const Plan p = plan(scene);
+  double geometry = double(sizeof(WorldMesh)) * double(scene.instances.size());
+  double bvh = kBvhBytesPerScene;
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (p.uses[m] == 0) continue;
+    const Mesh& mesh = scene.meshes[m];
+    const double triangles = double(mesh.triangle_count());
+    if (flattened(p, options, int(m))) {
+      geometry += double(mesh.positions.size() + 1) * sizeof(glm::vec3);
+      bvh += kBvhBytesPerTriangle * triangles;
+    } else {
+      if (!padded(mesh.positions))
+        geometry += double(mesh.positions.size() + 1) * sizeof(glm::vec3);
+      bvh += kBvhBytesPerScene + kBvhBytesPerTriangle * triangles +
+             kBvhBytesPerInstance * double(p.uses[m]);
+    }
+  }
+  return {std::size_t(geometry), std::size_t(bvh), std::size_t(bvh)};
+}
+
+// Embree calls the monitor from its build threads before each allocation (bytes > 0) and
+// after each release (bytes < 0); returning false makes the allocation fail with
+// RTC_ERROR_OUT_OF_MEMORY instead of letting the process be killed.
+struct SceneGeometry::Monitor {
+  std::atomic<std::int64_t> bytes{0};
+  std::atomic<std::int64_t> peak{0};
+  std::int64_t limit = std::numeric_limits<std::int64_t>::max();
+
+  static bool callback(void* user, ssize_t bytes, bool /*post*/) {
+    Monitor& m = *static_cast<Monitor*>(user);
+    const std::int64_t now = m.bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+    if (bytes > 0 && now > m.limit) {
+      m.bytes.fetch_sub(bytes, std::memory_order_relaxed);
+      return false;
+    }
+    std::int64_t seen = m.peak.load(std::memory_order_relaxed);
+    while (now > seen && !m.peak.compare_exchange_weak(seen, now, std::memory_order_relaxed)) {
+    }
+    return true;
+  }
+};
+
+SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
+    : monitor_(std::make_unique<Monitor>()) {
+  // Refuse what cannot fit before anything is allocated.
+  const GeometryMemory estimate = estimate_geometry_memory(scene, options);
+  const std::size_t limit = options.memory_limit > 0 ? options.memory_limit : available_memory();
+  std::size_t unique_triangles = 0;
+  for (const Mesh& m : scene.meshes) unique_triangles += m.triangle_count();
+  if (estimate.geometry + estimate.bvh > limit)
+    fail(
+        "{}: the path tracer's geometry needs an estimated {} (geometry {}, BVH {}; {} unique "
+        "triangles in {} meshes, {} instances) but {} is available",
+        scene.source, format_bytes(double(estimate.geometry + estimate.bvh)),
+        format_bytes(double(estimate.geometry)), format_bytes(double(estimate.bvh)),
+        unique_triangles, scene.meshes.size(), scene.instances.size(), format_bytes(double(limit)));
+  monitor_->limit =
+      std::int64_t(std::min<std::size_t>(limit - std::min(limit, estimate.geometry),
+                                         std::size_t(std::numeric_limits<std::int64_t>::max())));
+
   device_ = rtcNewDevice(nullptr);
   if (!device_)
     fail("{}: cannot create an Embree device (error {})", scene.source,
          int(rtcGetDeviceError(nullptr)));
   rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
+  rtcSetDeviceMemoryMonitorFunction(device_, &Monitor::callback, monitor_.get());
   rtc_scene_ = rtcNewScene(device_);
   // MEDIUM: about half the build time of HIGH (../shared/PLATFORM.md section 4) for
   // a few percent of trace speed; renders here are short enough for build time to matter.
   rtcSetSceneBuildQuality(rtc_scene_, RTC_BUILD_QUALITY_MEDIUM);
 
-  meshes_.resize(scene.instances.size());
-  // has_alpha may scan a texture: once per mesh, however many instances it has.
+  const Plan p = plan(scene);
+  // Per mesh, once however many instances it has: the index check, has_alpha (which may
+  // scan a texture), and, for a shared mesh, its Embree scene.
   std::vector<bool> mesh_alpha(scene.meshes.size());
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
-    mesh_alpha[m] = pbrkit::has_alpha(scene, scene.meshes[m]);
-  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    const Instance& inst = scene.instances[i];
-    WorldMesh& wm = meshes_[i];
-    if (inst.mesh < 0 || inst.mesh >= int(scene.meshes.size()))
-      fail("{}: instance {} refers to mesh {} (the scene has {})", scene.source, i, inst.mesh,
-           scene.meshes.size());
-    const Mesh& mesh = scene.meshes[std::size_t(inst.mesh)];
-    wm.mesh = &mesh;
-    wm.material = &scene.material_of(mesh);
-    wm.has_alpha = mesh_alpha[std::size_t(inst.mesh)];
-    const glm::vec3 e = wm.material->emissive_factor * wm.material->emissive_strength;
-    wm.emissive = e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
-    has_alpha_ = has_alpha_ || wm.has_alpha;
-
-    const glm::mat4& M = inst.transform;
-    const glm::mat3 N = glm::transpose(glm::inverse(glm::mat3(M)));
-    const float det = glm::determinant(glm::mat3(M));
-    wm.positions.resize(mesh.positions.size() + 1, glm::vec3(0.0f));  // Embree reads 16 B
-    for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
-      wm.positions[k] = glm::vec3(M * glm::vec4(mesh.positions[k], 1.0f));
-      bounds_.extend(wm.positions[k]);
-    }
-    if (mesh.normals.size() == mesh.positions.size()) {
-      wm.normals.resize(mesh.normals.size());
-      for (std::size_t k = 0; k < mesh.normals.size(); ++k) {
-        const glm::vec3 n = N * mesh.normals[k];
-        const float len = glm::length(n);
-        wm.normals[k] = len > 0.0f ? n / len : glm::vec3(0.0f);
-      }
-    }
-    if (mesh.tangents.size() == mesh.positions.size()) {
-      wm.tangents.resize(mesh.tangents.size());
-      for (std::size_t k = 0; k < mesh.tangents.size(); ++k) {
-        const glm::vec3 t = glm::mat3(M) * glm::vec3(mesh.tangents[k]);
-        // A mirroring transform flips the bitangent's handedness.
-        wm.tangents[k] = glm::vec4(t, mesh.tangents[k].w * (det < 0.0f ? -1.0f : 1.0f));
-      }
-    }
+  std::vector<int> mesh_scene(scene.meshes.size(), -1);
+  std::vector<const glm::vec3*> mesh_positions(scene.meshes.size(), nullptr);
+  std::vector<Bounds> mesh_bounds(scene.meshes.size());
+  auto triangle_geometry = [&](const Mesh& mesh, const glm::vec3* positions, unsigned mask) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions, 0,
+                               sizeof(glm::vec3), mesh.positions.size());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(),
+                               0, 3 * sizeof(std::uint32_t), mesh.triangle_count());
+    rtcSetGeometryMask(g, mask);
+    rtcCommitGeometry(g);
+    return g;
+  };
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (p.uses[m] == 0) continue;
+    const Mesh& mesh = scene.meshes[m];
     for (std::uint32_t idx : mesh.indices)
       if (idx >= mesh.positions.size())
         fail("{}: mesh '{}' has an index {} past its {} vertices", scene.source, mesh.name, idx,
              mesh.positions.size());
-
-    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, wm.positions.data(),
-                               0, sizeof(glm::vec3), mesh.positions.size());
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(),
-                               0, 3 * sizeof(std::uint32_t), mesh.triangle_count());
-    rtcSetGeometryMask(g, wm.has_alpha ? kMaskAlpha : kMaskOpaque);
-    rtcCommitGeometry(g);
-    rtcAttachGeometryByID(rtc_scene_, g, unsigned(i));
+    // resolve() reads every attribute a mesh has at the triangle's indices.
+    const std::size_t n = mesh.positions.size();
+    for (std::size_t size : {mesh.normals.size(), mesh.tangents.size(), mesh.texcoords0.size(),
+                             mesh.texcoords1.size(), mesh.colors0.size()})
+      if (size != 0 && size != n)
+        fail("{}: mesh '{}' has an attribute of {} elements for {} vertices", scene.source,
+             mesh.name, size, n);
+    mesh_alpha[m] = pbrkit::has_alpha(scene, mesh);
+    if (flattened(p, options, int(m))) continue;
+    const glm::vec3* positions = mesh.positions.data();
+    if (!padded(mesh.positions)) {
+      std::vector<glm::vec3>& copy = position_copies_.emplace_back();
+      copy.reserve(mesh.positions.size() + 1);
+      copy.assign(mesh.positions.begin(), mesh.positions.end());
+      copy.push_back(glm::vec3(0.0f));
+      positions = copy.data();
+    }
+    mesh_positions[m] = positions;
+    for (const glm::vec3& q : mesh.positions) mesh_bounds[m].extend(q);
+    RTCScene s = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_MEDIUM);
+    RTCGeometry g = triangle_geometry(mesh, positions, mesh_alpha[m] ? kMaskAlpha : kMaskOpaque);
+    rtcAttachGeometryByID(s, g, 0);
     rtcReleaseGeometry(g);
+    rtcCommitScene(s);
+    mesh_scene[m] = int(mesh_scenes_.size());
+    mesh_scenes_.push_back(s);
+  }
+
+  meshes_.resize(scene.instances.size());
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& inst = scene.instances[i];
+    const std::size_t m = std::size_t(inst.mesh);
+    const Mesh& mesh = scene.meshes[m];
+    WorldMesh& wm = meshes_[i];
+    wm.mesh = &mesh;
+    wm.material = &scene.material_of(mesh);
+    wm.has_alpha = mesh_alpha[m];
+    const glm::vec3 e = wm.material->emissive_factor * wm.material->emissive_strength;
+    wm.emissive = e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
+    wm.visible = p.visible[i];
+    wm.positions = mesh.positions.data();
+    if (!wm.visible) continue;
+    has_alpha_ = has_alpha_ || wm.has_alpha;
+
+    const glm::mat4& M = inst.transform;
+    wm.linear = glm::mat3(M);
+    wm.translation = glm::vec3(M[3]);
+    const glm::vec3 a = wm.linear[0], b = wm.linear[1], c = wm.linear[2];
+    wm.orientation = glm::determinant(wm.linear) < 0.0f ? -1.0f : 1.0f;
+    // The cofactor matrix det(L) L^-T, columns (b x c, c x a, a x b): no division, and
+    // L a x L b = cofactor (a x b).
+    wm.normal_matrix =
+        wm.orientation * glm::mat3(glm::cross(b, c), glm::cross(c, a), glm::cross(a, b));
+    const unsigned mask = wm.has_alpha ? kMaskAlpha : kMaskOpaque;
+    if (mesh_scene[m] < 0) {
+      wm.flattened = true;
+      std::vector<glm::vec3>& world = position_copies_.emplace_back();
+      world.reserve(mesh.positions.size() + 1);
+      for (const glm::vec3& q : mesh.positions) {
+        world.push_back(wm.linear * q + wm.translation);
+        bounds_.extend(world.back());
+      }
+      world.push_back(glm::vec3(0.0f));
+      wm.positions = world.data();
+      RTCGeometry g = triangle_geometry(mesh, wm.positions, mask);
+      rtcAttachGeometryByID(rtc_scene_, g, unsigned(i));
+      rtcReleaseGeometry(g);
+    } else {
+      wm.positions = mesh_positions[m];
+      // The world bounds of the mesh's object-space bounds' corners.
+      const Bounds& object = mesh_bounds[m];
+      if (!object.empty())
+        for (int k = 0; k < 8; ++k)
+          bounds_.extend(wm.linear * glm::vec3(k & 1 ? object.max.x : object.min.x,
+                                               k & 2 ? object.max.y : object.min.y,
+                                               k & 4 ? object.max.z : object.min.z) +
+                         wm.translation);
+      RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(g, mesh_scenes_[std::size_t(mesh_scene[m])]);
+      rtcSetGeometryTimeStepCount(g, 1);
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(M));
+      rtcSetGeometryMask(g, mask);
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(rtc_scene_, g, unsigned(i));
+      rtcReleaseGeometry(g);
+      ++instanced_;
+    }
   }
   rtcCommitScene(rtc_scene_);
+  if (const RTCError error = rtcGetDeviceError(device_); error != RTC_ERROR_NONE)
+    fail("{}: building the path tracer's BVH failed (Embree error {}{})", scene.source, int(error),
+         error == RTC_ERROR_OUT_OF_MEMORY
+             ? fmt::format(": out of memory, {} available", format_bytes(double(limit)))
+             : "");
+  memory_.bvh = std::size_t(std::max<std::int64_t>(monitor_->bytes.load(), 0));
+  memory_.bvh_peak = std::size_t(std::max<std::int64_t>(monitor_->peak.load(), 0));
+  memory_.geometry = sizeof(WorldMesh) * meshes_.capacity();
+  for (const auto& copy : position_copies_) memory_.geometry += copy.capacity() * sizeof(glm::vec3);
 }
 
 SceneGeometry::~SceneGeometry() {
   if (rtc_scene_) rtcReleaseScene(rtc_scene_);
+  for (RTCScene s : mesh_scenes_) rtcReleaseScene(s);
   if (device_) rtcReleaseDevice(device_);
 }
 
@@ -116,7 +325,8 @@ bool SceneGeometry::intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mas
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(rtc_scene_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  geom = rh.hit.geomID;
+  // An instanced mesh's hit names the instance in instID (its geomID is the mesh's, 0).
+  geom = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? rh.hit.instID[0] : rh.hit.geomID;
   prim = rh.hit.primID;
   t = rh.ray.tfar;
   u = rh.hit.u;
@@ -150,8 +360,13 @@ void SceneGeometry::intersect_packet(const glm::vec3* origins, const glm::vec3* 
     rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
   }
   rtcIntersect16(valid, rtc_scene_, &context, &rh);
-  for (int k = 0; k < 16; ++k)
-    hits[k] = {rh.hit.geomID[k], rh.hit.primID[k], rh.ray.tfar[k], rh.hit.u[k], rh.hit.v[k]};
+  for (int k = 0; k < 16; ++k) {
+    const std::uint32_t inst = rh.hit.instID[0][k];
+    const std::uint32_t geom = rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID ? kNoHit
+                               : inst != RTC_INVALID_GEOMETRY_ID           ? inst
+                                                                           : rh.hit.geomID[k];
+    hits[k] = {geom, rh.hit.primID[k], rh.ray.tfar[k], rh.hit.u[k], rh.hit.v[k]};
+  }
 }
 
 bool SceneGeometry::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
@@ -187,18 +402,29 @@ SurfaceHit SceneGeometry::resolve(std::uint32_t geom, std::uint32_t prim, float 
   hit.prim = prim;
   const glm::vec3 p0 = wm.positions[i0], p1 = wm.positions[i1], p2 = wm.positions[i2];
   hit.p = w * p0 + u * p1 + v * p2;
-  const glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
+  glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
+  if (wm.flattened) {
+    // World-space winding: clockwise is the front after a mirroring transform (glTF).
+    c *= wm.orientation;
+  } else {
+    hit.p = wm.linear * hit.p + wm.translation;
+    c = wm.normal_matrix * c;
+  }
   const float len = glm::length(c);
   hit.area = 0.5f * len;
   hit.ng = len > 0.0f ? c / len : glm::vec3(0.0f, 0.0f, 1.0f);
   hit.ns = hit.ng;
-  if (!wm.normals.empty()) {
-    const glm::vec3 n = w * wm.normals[i0] + u * wm.normals[i1] + v * wm.normals[i2];
+  if (!mesh.normals.empty()) {
+    const glm::vec3 n =
+        wm.normal_matrix * (w * mesh.normals[i0] + u * mesh.normals[i1] + v * mesh.normals[i2]);
     const float nl = glm::length(n);
     if (nl > 0.0f) hit.ns = n / nl;
   }
-  if (!wm.tangents.empty())
-    hit.tangent = w * wm.tangents[i0] + u * wm.tangents[i1] + v * wm.tangents[i2];
+  if (!mesh.tangents.empty()) {
+    const glm::vec4 tg = w * mesh.tangents[i0] + u * mesh.tangents[i1] + v * mesh.tangents[i2];
+    // A mirroring transform flips the bitangent's handedness.
+    hit.tangent = glm::vec4(wm.linear * glm::vec3(tg), tg.w * wm.orientation);
+  }
   if (!mesh.texcoords0.empty())
     hit.uv[0] = w * mesh.texcoords0[i0] + u * mesh.texcoords0[i1] + v * mesh.texcoords0[i2];
   if (!mesh.texcoords1.empty())
@@ -206,6 +432,15 @@ SurfaceHit SceneGeometry::resolve(std::uint32_t geom, std::uint32_t prim, float 
   if (!mesh.colors0.empty())
     hit.color = w * mesh.colors0[i0] + u * mesh.colors0[i1] + v * mesh.colors0[i2];
   return hit;
+}
+
+float SceneGeometry::triangle_area(std::uint32_t geom, std::uint32_t prim) const {
+  const WorldMesh& wm = meshes_[geom];
+  const std::uint32_t* idx = wm.mesh->indices.data() + 3 * std::size_t(prim);
+  const glm::vec3 p0 = wm.positions[idx[0]];
+  glm::vec3 c = glm::cross(wm.positions[idx[1]] - p0, wm.positions[idx[2]] - p0);
+  if (!wm.flattened) c = wm.normal_matrix * c;
+  return 0.5f * glm::length(c);
 }
 
 }  // namespace pbrkit
