@@ -12,7 +12,9 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "pbrkit/core/sampling.h"
 #include "pbrkit/pt/geometry.h"
+#include "pbrkit/pt/ray_offset.h"
 #include "pbrkit/util/error.h"
 #include "pt/pt_test_util.h"
 
@@ -301,6 +303,48 @@ TEST(PathTracerInstancing, VolumeInstancesAbsorbEachByItsOwnThickness) {
         << "channel " << c << ": mean residual " << st.mean << " +- " << st.std_error
         << ", expected " << expected;
   }
+}
+
+// Robust ray origins (ray_offset.h) on an instance: Embree intersects in the mesh's space,
+// resolve() computes the point in world space; grazing rays leaving the floor of a closed
+// box placed far from the origin, turned and scaled, must neither hit the floor again nor
+// leak out through its edges.
+TEST(PathTracerInstancing, GrazingRaysOnAFarInstanceNeitherSelfHitNorLeak) {
+  Scene scene;
+  scene.source = "test:far box";
+  scene.materials.push_back(make_material(glm::vec3(0.5f), 0.0f, 1.0f));
+  const glm::vec3 centre(3000.0f, -1200.0f, 5000.0f);
+  const float size = 10.0f;
+  const glm::mat4 M = glm::translate(glm::mat4(1.0f), centre) *
+                      glm::rotate(glm::mat4(1.0f), 0.3f, {0, 1, 0}) *
+                      glm::scale(glm::mat4(1.0f), glm::vec3(size));
+  const int m = add_mesh_instance(scene, make_box(glm::vec3(-1.0f), glm::vec3(1.0f), true), 0, M);
+  scene.instances.push_back({m, glm::translate(glm::mat4(1.0f), {0, 100, 0}), -1});
+  const SceneGeometry g(scene);
+  ASSERT_EQ(g.instanced(), 2u);
+  Pcg32 rng(9);
+  int self_hits = 0, escapes = 0;
+  const int n = 20000;
+  for (int k = 0; k < n; ++k) {
+    const glm::vec2 r = rng.next_2d() * 1.998f - 0.999f;
+    const glm::vec3 start = glm::vec3(M * glm::vec4(r.x, 0.0f, r.y, 1.0f));
+    std::uint32_t geom, prim;
+    float t, u, v;
+    ASSERT_TRUE(g.intersect(start, {0, -1, 0}, 1e30f, ~0u, geom, prim, t, u, v));
+    const SurfaceHit hit = g.resolve(geom, prim, t, u, v);
+    ASSERT_GT(hit.ng.y, 0.99f);  // the floor, facing into the box
+    const float elevation = std::pow(10.0f, -5.0f + 3.0f * rng.next_float());
+    const float phi = 2.0f * kPi * rng.next_float();
+    const glm::vec3 d(std::cos(phi) * std::cos(elevation), std::sin(elevation),
+                      std::sin(phi) * std::cos(elevation));
+    if (!g.intersect(offset_ray_origin(hit.p, hit.ng), d, 1e30f, ~0u, geom, prim, t, u, v)) {
+      ++escapes;
+      continue;
+    }
+    if (g.resolve(geom, prim, t, u, v).ng.y > 0.5f) ++self_hits;
+  }
+  EXPECT_EQ(self_hits, 0) << "of " << n;
+  EXPECT_EQ(escapes, 0) << "of " << n;
 }
 
 TEST(PathTracerInstancing, MemoryFollowsUniqueTriangles) {
