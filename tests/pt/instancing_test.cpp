@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -372,6 +373,57 @@ TEST(PathTracerInstancing, MemoryFollowsUniqueTriangles) {
   EXPECT_GE(e1.bvh, g1.memory().bvh_peak);
   EXPECT_GE(e1000.bvh, g1000.memory().bvh_peak);
   EXPECT_GE(e1000.geometry, g1000.memory().geometry);
+}
+
+TEST(PathTracerInstancing, SingularInstancesAreEmptyAndNonFiniteOnesAnError) {
+  // A zero scale (glTF's way to hide a node) has no area: nothing to hit, no light; nor has
+  // the quad in the XY plane scaled to zero along y. Scaled to zero along z, across its
+  // plane, it is still all there (Embree could not invert that transform: it is flattened).
+  Scene scene;
+  scene.source = "test:hidden";
+  scene.materials.push_back(make_material(glm::vec3(0.0f), 0.0f, 1.0f, glm::vec3(1.0f)));
+  const int m = add_mesh_instance(scene, make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}), 0,
+                                  glm::scale(glm::mat4(1.0f), {1, 0, 1}));
+  scene.instances.push_back({m, glm::scale(glm::mat4(1.0f), glm::vec3(0.0f)), -1});
+  {
+    Scene flat = scene;
+    flat.instances.push_back({m,
+                              glm::translate(glm::mat4(1.0f), {0, 0, -1}) *
+                                  glm::scale(glm::mat4(1.0f), {0.5f, 1.0f, 0.0f}),
+                              -1});
+    flat.instances.push_back({m, glm::translate(glm::mat4(1.0f), {0, 0, -9}), -1});
+    const SceneGeometry g(flat);
+    std::uint32_t geom, prim;
+    float t, u, v;
+    ASSERT_TRUE(g.intersect({0.2f, 0.5f, 5}, {0, 0, -1}, 100.0f, ~0u, geom, prim, t, u, v));
+    EXPECT_EQ(geom, 2u);
+    EXPECT_NEAR(t, 6.0f, 1e-5f);
+    const SurfaceHit h = g.resolve(geom, prim, t, u, v);
+    EXPECT_NEAR(h.ng.z, 1.0f, 1e-6f);
+    double area = 0.0;
+    for (std::uint32_t k = 0; k < 2; ++k) area += g.triangle_area(2, k);
+    EXPECT_NEAR(area, 2.0, 1e-5);  // 2 x 2 scaled by 0.5 along x
+    // Past the scaled quad's x extent (0.5) the ray goes on to the instance at z = -9.
+    ASSERT_TRUE(g.intersect({0.7f, 0.5f, 5}, {0, 0, -1}, 100.0f, ~0u, geom, prim, t, u, v));
+    EXPECT_EQ(geom, 3u);
+  }
+  {
+    const SceneGeometry g(scene);
+    std::uint32_t geom, prim;
+    float t, u, v;
+    EXPECT_FALSE(g.intersect({0, 0, 5}, {0, 0, -1}, 100.0f, ~0u, geom, prim, t, u, v));
+    const PathTracerResult res =
+        render_path(scene, nullptr, ortho_camera(1.0f), small_settings(8, 4));
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) EXPECT_EQ(res.color.rgb(x, y), glm::vec3(0.0f));
+  }
+  scene.instances[1].transform[3][0] = std::numeric_limits<float>::quiet_NaN();
+  try {
+    const SceneGeometry g(scene);
+    FAIL() << "built";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("test:hidden: instance 1"), std::string::npos) << e.what();
+  }
 }
 
 TEST(PathTracerInstancing, SceneOverTheMemoryLimitIsRefusedWithTheEstimate) {

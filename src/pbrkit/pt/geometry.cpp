@@ -66,16 +66,29 @@ bool padded(const std::vector<glm::vec3>& v) {
   return v.capacity() > v.size();
 }
 
-// The transform's usable parts: which meshes are flattened and what each instance needs.
+// The cofactor matrix det(L) L^-T, columns (b x c, c x a, a x b): no division, defined for
+// a singular L too, and L a x L b = cofactor(L) (a x b).
+glm::mat3 cofactor(const glm::mat3& L) {
+  return glm::mat3(glm::cross(L[1], L[2]), glm::cross(L[2], L[0]), glm::cross(L[0], L[1]));
+}
+
+// How each instance is built: hidden (a transform of rank 0 or 1, which glTF's zero scales
+// give, leaves no area), flattened (a mesh placed once, or a singular transform of rank 2,
+// which Embree could not invert to move rays into the mesh: a flat mesh scaled to zero
+// across its plane stays visible), or behind an Embree instance of its mesh's scene.
 struct Plan {
-  std::vector<std::size_t> uses;  // visible instances per mesh
-  std::vector<bool> visible;      // per instance: finite, non-singular transform
+  enum Kind : std::uint8_t { kHidden, kFlat, kShared };
+  std::vector<Kind> kind;           // per instance
+  std::vector<std::size_t> flat;    // per mesh: its flattened copies
+  std::vector<std::size_t> shared;  // per mesh: its instances behind Embree instances
 };
 
-Plan plan(const Scene& scene) {
+Plan plan(const Scene& scene, const GeometryOptions& options) {
   Plan p;
-  p.uses.assign(scene.meshes.size(), 0);
-  p.visible.assign(scene.instances.size(), false);
+  p.kind.assign(scene.instances.size(), Plan::kHidden);
+  p.flat.assign(scene.meshes.size(), 0);
+  p.shared.assign(scene.meshes.size(), 0);
+  std::vector<std::size_t> uses(scene.meshes.size(), 0);  // invertible placements
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& inst = scene.instances[i];
     if (inst.mesh < 0 || inst.mesh >= int(scene.meshes.size()))
@@ -86,36 +99,41 @@ Plan plan(const Scene& scene) {
       for (int r = 0; r < 4; ++r)
         if (!std::isfinite(M[c][r]))
           fail("{}: instance {} (node {}) has a non-finite transform", scene.source, i, inst.node);
-    // A singular transform (glTF allows a zero scale, which hides a node) has no area.
-    if (glm::determinant(glm::mat3(M)) == 0.0f) continue;
-    p.visible[i] = true;
-    ++p.uses[std::size_t(inst.mesh)];
+    const glm::mat3 L(M);
+    if (cofactor(L) == glm::mat3(0.0f)) continue;  // rank <= 1: no triangle has an area
+    if (glm::determinant(L) == 0.0f) {
+      p.kind[i] = Plan::kFlat;
+      continue;
+    }
+    p.kind[i] = Plan::kShared;
+    ++uses[std::size_t(inst.mesh)];
+  }
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const std::size_t m = std::size_t(scene.instances[i].mesh);
+    if (p.kind[i] == Plan::kShared && options.flatten_single_use && uses[m] == 1)
+      p.kind[i] = Plan::kFlat;
+    if (p.kind[i] == Plan::kFlat) ++p.flat[m];
+    if (p.kind[i] == Plan::kShared) ++p.shared[m];
   }
   return p;
-}
-
-bool flattened(const Plan& p, const GeometryOptions& options, int mesh) {
-  return options.flatten_single_use && p.uses[std::size_t(mesh)] == 1;
 }
 
 }  // namespace
 
 GeometryMemory estimate_geometry_memory(const Scene& scene, const GeometryOptions& options) {
-  const Plan p = plan(scene);
+  const Plan p = plan(scene, options);
   double geometry = double(sizeof(WorldMesh)) * double(scene.instances.size());
   double bvh = kBvhBytesPerScene;
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    if (p.uses[m] == 0) continue;
     const Mesh& mesh = scene.meshes[m];
     const double triangles = double(mesh.triangle_count());
-    if (flattened(p, options, int(m))) {
-      geometry += double(mesh.positions.size() + 1) * sizeof(glm::vec3);
-      bvh += kBvhBytesPerTriangle * triangles;
-    } else {
-      if (!padded(mesh.positions))
-        geometry += double(mesh.positions.size() + 1) * sizeof(glm::vec3);
+    const double copy = double(mesh.positions.size() + 1) * sizeof(glm::vec3);
+    geometry += copy * double(p.flat[m]);
+    bvh += kBvhBytesPerTriangle * triangles * double(p.flat[m]);
+    if (p.shared[m] > 0) {
+      if (!padded(mesh.positions)) geometry += copy;
       bvh += kBvhBytesPerScene + kBvhBytesPerTriangle * triangles +
-             kBvhBytesPerInstance * double(p.uses[m]);
+             kBvhBytesPerInstance * double(p.shared[m]);
     }
   }
   return {std::size_t(geometry), std::size_t(bvh), std::size_t(bvh)};
@@ -172,7 +190,7 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
   // a few percent of trace speed; renders here are short enough for build time to matter.
   rtcSetSceneBuildQuality(rtc_scene_, RTC_BUILD_QUALITY_MEDIUM);
 
-  const Plan p = plan(scene);
+  const Plan p = plan(scene, options);
   // Per mesh, once however many instances it has: the index check, has_alpha (which may
   // scan a texture), and, for a shared mesh, its Embree scene.
   std::vector<bool> mesh_alpha(scene.meshes.size());
@@ -190,7 +208,7 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
     return g;
   };
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    if (p.uses[m] == 0) continue;
+    if (p.flat[m] + p.shared[m] == 0) continue;
     const Mesh& mesh = scene.meshes[m];
     for (std::uint32_t idx : mesh.indices)
       if (idx >= mesh.positions.size())
@@ -204,7 +222,7 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
         fail("{}: mesh '{}' has an attribute of {} elements for {} vertices", scene.source,
              mesh.name, size, n);
     mesh_alpha[m] = pbrkit::has_alpha(scene, mesh);
-    if (flattened(p, options, int(m))) continue;
+    if (p.shared[m] == 0) continue;
     const glm::vec3* positions = mesh.positions.data();
     if (!padded(mesh.positions)) {
       std::vector<glm::vec3>& copy = position_copies_.emplace_back();
@@ -236,7 +254,7 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
     wm.has_alpha = mesh_alpha[m];
     const glm::vec3 e = wm.material->emissive_factor * wm.material->emissive_strength;
     wm.emissive = e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
-    wm.visible = p.visible[i];
+    wm.visible = p.kind[i] != Plan::kHidden;
     wm.positions = mesh.positions.data();
     if (!wm.visible) continue;
     has_alpha_ = has_alpha_ || wm.has_alpha;
@@ -244,14 +262,10 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
     const glm::mat4& M = inst.transform;
     wm.linear = glm::mat3(M);
     wm.translation = glm::vec3(M[3]);
-    const glm::vec3 a = wm.linear[0], b = wm.linear[1], c = wm.linear[2];
     wm.orientation = glm::determinant(wm.linear) < 0.0f ? -1.0f : 1.0f;
-    // The cofactor matrix det(L) L^-T, columns (b x c, c x a, a x b): no division, and
-    // L a x L b = cofactor (a x b).
-    wm.normal_matrix =
-        wm.orientation * glm::mat3(glm::cross(b, c), glm::cross(c, a), glm::cross(a, b));
+    wm.normal_matrix = wm.orientation * cofactor(wm.linear);
     const unsigned mask = wm.has_alpha ? kMaskAlpha : kMaskOpaque;
-    if (mesh_scene[m] < 0) {
+    if (p.kind[i] == Plan::kFlat) {
       wm.flattened = true;
       std::vector<glm::vec3>& world = position_copies_.emplace_back();
       world.reserve(mesh.positions.size() + 1);

@@ -47,9 +47,10 @@ struct WorldMesh {
   const glm::vec3* positions = nullptr;
   glm::mat3 linear{1.0f};  ///< object to world, without the translation
   glm::vec3 translation{0.0f};
-  /// |det| x linear^-T: maps an object-space normal to a world-space one of the same side,
-  /// and an object-space cross product of two edges to the world one (times the sign of
-  /// the determinant) so that its length is twice the world-space area.
+  /// |det| x linear^-T (the cofactor matrix times the sign of the determinant, defined for
+  /// a singular transform too): maps an object-space normal to a world-space one of the
+  /// same side, and an object-space cross product of two edges to the world one (times the
+  /// sign of the determinant), whose length is twice the world-space area.
   glm::mat3 normal_matrix{1.0f};
   /// +1, or -1 for a mirroring transform (negative determinant): glTF's front faces are
   /// counter-clockwise in object space, so clockwise in world space after a mirror.
@@ -57,7 +58,7 @@ struct WorldMesh {
   bool flattened = false;  ///< its triangles are in the top level, in world space
   bool has_alpha = false;  ///< needs the alpha test / stochastic transparency
   bool emissive = false;
-  bool visible = true;  ///< false for a singular transform (nothing to hit)
+  bool visible = true;  ///< false for a transform of rank 0 or 1 (no area, nothing to hit)
 };
 
 /// What the geometry is built with.
