@@ -92,11 +92,12 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
     for (const Texture& t : scene.textures)
       for (const auto& mip : t.mips) texture_bytes += mip.data.size() * sizeof(mip.data[0]);
     const GeometryMemory& mem = geometry->memory();
+    // Where the memory goes: what decides how large a scene fits.
     note(
-        "geometry {:.1f} MB ({} instances, {} sharing {} meshes), BVH {:.1f} MB, textures {:.1f} "
-        "MB",
-        double(mem.geometry) * 1e-6, geometry->meshes().size(), geometry->instanced(),
-        geometry->shared_meshes(), double(mem.bvh) * 1e-6, double(texture_bytes) * 1e-6);
+        "memory: geometry {:.1f} MB, BVH {:.1f} MB, textures {:.1f} MB ({} instances, {} of "
+        "them of {} shared meshes)",
+        double(mem.geometry) * 1e-6, double(mem.bvh) * 1e-6, double(texture_bytes) * 1e-6,
+        geometry->meshes().size(), geometry->instanced(), geometry->shared_meshes());
   }
 
   Film& film = result.film;
