@@ -49,6 +49,8 @@ Mesh flattened(const Mesh& mesh, const glm::mat4& M, bool keep_winding = false) 
 struct Placement {
   glm::mat4 transform;
   int material;
+  int mesh = 0;  // 0: the prism, 1: a sphere (smooth normals, where a wrong normal
+                 // transform moves the highlights)
 };
 
 std::vector<Placement> placements() {
@@ -66,6 +68,11 @@ std::vector<Placement> placements() {
       {translate(I, {-0.3f, 1.4f, 1.2f}) * rotate(I, 0.7f, glm::normalize(glm::vec3(1, 1, 0))) *
            scale(I, {0.7f, 1.3f, -0.9f}),
        1},
+      // the sphere, stretched and turned, and mirrored
+      {translate(I, {1.8f, 0.6f, -1.2f}) * rotate(I, 0.4f, {0, 0, 1}) *
+           scale(I, {1.8f, 0.6f, 1.0f}),
+       3, 1},
+      {translate(I, {-1.5f, 0.9f, 1.8f}) * scale(I, {-0.6f, 1.5f, 0.8f}), 3, 1},
   };
 }
 
@@ -80,14 +87,16 @@ Scene field(bool instanced, bool keep_winding = false) {
   scene.materials.push_back(single_sided({0.8f, 0.5f, 0.3f}, 0.0f, 0.5f));
   scene.materials.push_back(single_sided({0.3f, 0.6f, 0.9f}, 0.6f, 0.3f));
   scene.materials.push_back(single_sided({0.6f, 0.6f, 0.6f}, 0.0f, 1.0f));
-  const Mesh prism = asymmetric_prism();
+  scene.materials.push_back(single_sided({0.9f, 0.8f, 0.5f}, 0.0f, 0.6f));
+  const Mesh meshes[2] = {asymmetric_prism(), make_uv_sphere(0.5f, 32, 16)};
   // Materials belong to meshes: one shared mesh per material.
-  int shared[2] = {-1, -1};
+  int shared[4] = {-1, -1, -1, -1};
   for (const Placement& p : placements()) {
+    const Mesh& mesh = meshes[p.mesh];
     if (!instanced) {
-      add_mesh_instance(scene, flattened(prism, p.transform, keep_winding), p.material);
+      add_mesh_instance(scene, flattened(mesh, p.transform, keep_winding), p.material);
     } else if (shared[p.material] < 0) {
-      shared[p.material] = add_mesh_instance(scene, prism, p.material, p.transform);
+      shared[p.material] = add_mesh_instance(scene, mesh, p.material, p.transform);
     } else {
       scene.instances.push_back({shared[p.material], p.transform, -1});
     }
@@ -102,14 +111,14 @@ Scene field(bool instanced, bool keep_winding = false) {
   Camera camera;
   camera.yfov = 0.9f;
   camera.camera_to_world = glm::inverse(
-      glm::lookAt(glm::vec3(1.5f, 3.5f, 6.5f), glm::vec3(0.0f, 0.5f, 0.0f), {0, 1, 0}));
+      glm::lookAt(glm::vec3(0.8f, 3.2f, 4.4f), glm::vec3(0.0f, 0.4f, 0.0f), {0, 1, 0}));
   scene.cameras.push_back(camera);
   return scene;
 }
 
 Image render_field(const Scene& scene, std::uint32_t seed) {
   const Environment env = Environment::constant(glm::vec3(0.3f));
-  PathTracerSettings s = small_settings(48, 32);
+  PathTracerSettings s = small_settings(64, 32);
   s.max_bounces = 4;
   s.seed = seed;
   return render_path(scene, &env, scene.cameras[0], s).color;
@@ -138,14 +147,14 @@ TEST(PathTracerInstancing, InstancesRenderAsTheirFlattenedCopies) {
   const Scene flat = field(false);
   {
     const SceneGeometry g(instanced);
-    EXPECT_EQ(g.shared_meshes(), 2u);  // the two prism meshes, behind instances
-    EXPECT_EQ(g.instanced(), 4u);
+    EXPECT_EQ(g.shared_meshes(), 3u);  // two prism meshes and the sphere, behind instances
+    EXPECT_EQ(g.instanced(), 6u);
     const SceneGeometry f(flat);
     EXPECT_EQ(f.shared_meshes(), 0u);  // every mesh used once: flattened
   }
   const Image a = render_field(instanced, 1);
   const Image b = render_field(flat, 2);
-  // 36 blocks: under agreement each z is about normal; 5 is far in its tail.
+  // 64 blocks: under agreement each z is about normal; 5 is far in its tail.
   const double z = worst_block_z(a, b);
   std::printf("instanced vs flattened: worst block |z| = %.2f\n", z);
   EXPECT_LT(z, 5.0);
