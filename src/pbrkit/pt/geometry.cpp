@@ -16,11 +16,13 @@ namespace pbrkit {
 
 namespace {
 
-// What Embree 3.13 allocates, measured with its memory monitor (rtcSetDeviceMemoryMonitorFunction)
-// at RTC_BUILD_QUALITY_MEDIUM on an AVX2 machine (bench/geometry_bench.cpp prints the figures):
-// the peak during a mesh's build per triangle (the BVH and the build's temporary arrays),
-// and per instance in the top level (its geometry object, its transform and its share of
-// the top-level BVH's build). The estimate rounds them up.
+// What Embree 3.13 allocates at RTC_BUILD_QUALITY_MEDIUM on an AVX2 machine, rounded up
+// (BENCHMARKS.md, "instanced geometry"; bench/instancing_bench.cpp): per triangle, the peak of a
+// build as its memory monitor (rtcSetDeviceMemoryMonitorFunction) sees it, the BVH and the
+// build's temporary arrays (about 104 bytes; 67 stay); per instance, its share of the
+// top-level BVH (about 90 bytes by the monitor) and its geometry object and transform,
+// which Embree allocates outside the monitor (about 300 more by the peak RSS of 10^6
+// instances).
 constexpr double kBvhBytesPerTriangle = 128.0;
 constexpr double kBvhBytesPerInstance = 640.0;
 constexpr double kBvhBytesPerScene = 16384.0;  // an Embree scene's fixed cost

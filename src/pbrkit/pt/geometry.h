@@ -16,7 +16,7 @@
 // copy replaces the padded copy Embree's 16-byte vertex loads need anyway). Measured on the
 // built-in `spheres` (49 meshes, each used once), the same rays trace about 18% faster
 // flattened than with each mesh behind an instance (bench/instancing_bench.cpp `flatten`;
-// BENCHMARKS.md, "Instanced geometry").
+// BENCHMARKS.md, "instanced geometry").
 //
 // A hit names its instance (`geom`, the index in Scene::instances) and its triangle
 // (`prim`, the index in the instance's mesh), whichever level it came from.
