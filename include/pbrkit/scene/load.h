@@ -13,7 +13,7 @@ struct SceneLimits {
   std::size_t max_image_pixels = std::size_t(1) << 26;         ///< 64 M pixels per image
   std::size_t max_total_texture_bytes = std::size_t(4) << 30;  ///< 4 GiB of decoded texels
   std::size_t max_buffer_bytes = std::size_t(2) << 30;         ///< 2 GiB per buffer
-  std::size_t max_triangles = std::size_t(200) << 20;          ///< 200 M triangles in all
+  std::size_t max_triangles = std::size_t(200) << 20;          ///< 200 M unique triangles
 };
 
 struct LoadOptions {

@@ -1,7 +1,13 @@
 #include "pbrkit/pt/geometry.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <fstream>
 #include <limits>
+#include <string>
+
+#include <glm/gtc/type_ptr.hpp>
 
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -10,87 +16,306 @@ namespace pbrkit {
 
 namespace {
 
+// What Embree 3.13 allocates at RTC_BUILD_QUALITY_MEDIUM on an AVX2 machine, rounded up
+// (BENCHMARKS.md, "instanced geometry"; bench/instancing_bench.cpp): per triangle, the peak of a
+// build as its memory monitor (rtcSetDeviceMemoryMonitorFunction) sees it, the BVH and the
+// build's temporary arrays (about 104 bytes; 67 stay); per instance, its share of the
+// top-level BVH (about 90 bytes by the monitor) and its geometry object and transform,
+// which Embree allocates outside the monitor (about 300 more by the peak RSS of 10^6
+// instances).
+constexpr double kBvhBytesPerTriangle = 128.0;
+constexpr double kBvhBytesPerInstance = 640.0;
+constexpr double kBvhBytesPerScene = 16384.0;  // an Embree scene's fixed cost
+
 void embree_error(void* /*user*/, RTCError code, const char* message) {
   if (code == RTC_ERROR_NONE) return;
   warn("embree: {} (error {})", message ? message : "", int(code));
 }
 
+std::string format_bytes(double bytes) {
+  if (bytes >= 1e9) return fmt::format("{:.2f} GB", bytes * 1e-9);
+  if (bytes >= 1e6) return fmt::format("{:.1f} MB", bytes * 1e-6);
+  return fmt::format("{:.1f} kB", bytes * 1e-3);
+}
+
+// Bytes this process can still allocate without being killed: MemAvailable, and the
+// cgroup's (v2) memory.max less memory.current when the process runs in a limited one.
+std::size_t available_memory() {
+  std::size_t available = std::numeric_limits<std::size_t>::max();
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  std::size_t kb = 0;
+  std::string unit;
+  while (meminfo >> key >> kb >> unit)
+    if (key == "MemAvailable:") {
+      available = kb * 1024;
+      break;
+    }
+  std::ifstream max_file("/sys/fs/cgroup/memory.max"),
+      current_file("/sys/fs/cgroup/memory.current");
+  std::string max_text;
+  std::size_t current = 0;
+  if (max_file >> max_text && max_text != "max" && current_file >> current) {
+    const std::size_t max = std::stoull(max_text);
+    available = std::min(available, max > current ? max - current : 0);
+  }
+  return available;
+}
+
+// Embree reads a vertex with a 16-byte load, so the buffer must extend 4 bytes past the
+// last vec3 (rtcSetSharedGeometryBuffer's documentation).
+bool padded(const std::vector<glm::vec3>& v) {
+  return v.capacity() > v.size();
+}
+
+// The cofactor matrix det(L) L^-T, columns (b x c, c x a, a x b): no division, defined for
+// a singular L too, and L a x L b = cofactor(L) (a x b).
+glm::mat3 cofactor(const glm::mat3& L) {
+  return glm::mat3(glm::cross(L[1], L[2]), glm::cross(L[2], L[0]), glm::cross(L[0], L[1]));
+}
+
+// How each instance is built: hidden (a transform of rank 0 or 1, which glTF's zero scales
+// give, leaves no area), flattened (a mesh placed once, or a singular transform of rank 2,
+// which Embree could not invert to move rays into the mesh: a flat mesh scaled to zero
+// across its plane stays visible), or behind an Embree instance of its mesh's scene.
+struct Plan {
+  enum Kind : std::uint8_t { kHidden, kFlat, kShared };
+  std::vector<Kind> kind;           // per instance
+  std::vector<std::size_t> flat;    // per mesh: its flattened copies
+  std::vector<std::size_t> shared;  // per mesh: its instances behind Embree instances
+};
+
+Plan plan(const Scene& scene, const GeometryOptions& options) {
+  Plan p;
+  p.kind.assign(scene.instances.size(), Plan::kHidden);
+  p.flat.assign(scene.meshes.size(), 0);
+  p.shared.assign(scene.meshes.size(), 0);
+  std::vector<std::size_t> uses(scene.meshes.size(), 0);  // invertible placements
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& inst = scene.instances[i];
+    if (inst.mesh < 0 || inst.mesh >= int(scene.meshes.size()))
+      fail("{}: instance {} refers to mesh {} (the scene has {})", scene.source, i, inst.mesh,
+           scene.meshes.size());
+    const glm::mat4& M = inst.transform;
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r)
+        if (!std::isfinite(M[c][r]))
+          fail("{}: instance {} (node {}) has a non-finite transform", scene.source, i, inst.node);
+    const glm::mat3 L(M);
+    if (cofactor(L) == glm::mat3(0.0f)) continue;  // rank <= 1: no triangle has an area
+    if (glm::determinant(L) == 0.0f) {
+      p.kind[i] = Plan::kFlat;
+      continue;
+    }
+    p.kind[i] = Plan::kShared;
+    ++uses[std::size_t(inst.mesh)];
+  }
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const std::size_t m = std::size_t(scene.instances[i].mesh);
+    if (p.kind[i] == Plan::kShared && options.flatten_single_use && uses[m] == 1)
+      p.kind[i] = Plan::kFlat;
+    if (p.kind[i] == Plan::kFlat) ++p.flat[m];
+    if (p.kind[i] == Plan::kShared) ++p.shared[m];
+  }
+  return p;
+}
+
 }  // namespace
 
-SceneGeometry::SceneGeometry(const Scene& scene) {
+GeometryMemory estimate_geometry_memory(const Scene& scene, const GeometryOptions& options) {
+  const Plan p = plan(scene, options);
+  double geometry = double(sizeof(WorldMesh)) * double(scene.instances.size());
+  double bvh = kBvhBytesPerScene;
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    const double triangles = double(mesh.triangle_count());
+    const double copy = double(mesh.positions.size() + 1) * sizeof(glm::vec3);
+    geometry += copy * double(p.flat[m]);
+    bvh += kBvhBytesPerTriangle * triangles * double(p.flat[m]);
+    if (p.shared[m] > 0) {
+      if (!padded(mesh.positions)) geometry += copy;
+      bvh += kBvhBytesPerScene + kBvhBytesPerTriangle * triangles +
+             kBvhBytesPerInstance * double(p.shared[m]);
+    }
+  }
+  return {std::size_t(geometry), std::size_t(bvh), std::size_t(bvh)};
+}
+
+// Embree calls the monitor from its build threads before each allocation (bytes > 0) and
+// after each release (bytes < 0); returning false makes the allocation fail with
+// RTC_ERROR_OUT_OF_MEMORY instead of letting the process be killed.
+struct SceneGeometry::Monitor {
+  std::atomic<std::int64_t> bytes{0};
+  std::atomic<std::int64_t> peak{0};
+  std::int64_t limit = std::numeric_limits<std::int64_t>::max();
+
+  static bool callback(void* user, ssize_t bytes, bool /*post*/) {
+    Monitor& m = *static_cast<Monitor*>(user);
+    const std::int64_t now = m.bytes.fetch_add(bytes, std::memory_order_relaxed) + bytes;
+    if (bytes > 0 && now > m.limit) {
+      m.bytes.fetch_sub(bytes, std::memory_order_relaxed);
+      return false;
+    }
+    std::int64_t seen = m.peak.load(std::memory_order_relaxed);
+    while (now > seen && !m.peak.compare_exchange_weak(seen, now, std::memory_order_relaxed)) {
+    }
+    return true;
+  }
+};
+
+SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
+    : monitor_(std::make_unique<Monitor>()) {
+  // Refuse what cannot fit before anything is allocated.
+  const GeometryMemory estimate = estimate_geometry_memory(scene, options);
+  const std::size_t limit = options.memory_limit > 0 ? options.memory_limit : available_memory();
+  std::size_t unique_triangles = 0;
+  for (const Mesh& m : scene.meshes) unique_triangles += m.triangle_count();
+  if (estimate.geometry + estimate.bvh > limit)
+    fail(
+        "{}: the path tracer's geometry needs an estimated {} (geometry {}, BVH {}; {} unique "
+        "triangles in {} meshes, {} instances) but {} is available",
+        scene.source, format_bytes(double(estimate.geometry + estimate.bvh)),
+        format_bytes(double(estimate.geometry)), format_bytes(double(estimate.bvh)),
+        unique_triangles, scene.meshes.size(), scene.instances.size(), format_bytes(double(limit)));
+  monitor_->limit =
+      std::int64_t(std::min<std::size_t>(limit - std::min(limit, estimate.geometry),
+                                         std::size_t(std::numeric_limits<std::int64_t>::max())));
+
   device_ = rtcNewDevice(nullptr);
   if (!device_)
     fail("{}: cannot create an Embree device (error {})", scene.source,
          int(rtcGetDeviceError(nullptr)));
   rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
+  rtcSetDeviceMemoryMonitorFunction(device_, &Monitor::callback, monitor_.get());
   rtc_scene_ = rtcNewScene(device_);
   // MEDIUM: about half the build time of HIGH (../shared/PLATFORM.md section 4) for
   // a few percent of trace speed; renders here are short enough for build time to matter.
   rtcSetSceneBuildQuality(rtc_scene_, RTC_BUILD_QUALITY_MEDIUM);
 
-  meshes_.resize(scene.instances.size());
-  // has_alpha may scan a texture: once per mesh, however many instances it has.
+  const Plan p = plan(scene, options);
+  // Per mesh, once however many instances it has: the index check, has_alpha (which may
+  // scan a texture), and, for a shared mesh, its Embree scene.
   std::vector<bool> mesh_alpha(scene.meshes.size());
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
-    mesh_alpha[m] = pbrkit::has_alpha(scene, scene.meshes[m]);
-  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-    const Instance& inst = scene.instances[i];
-    WorldMesh& wm = meshes_[i];
-    if (inst.mesh < 0 || inst.mesh >= int(scene.meshes.size()))
-      fail("{}: instance {} refers to mesh {} (the scene has {})", scene.source, i, inst.mesh,
-           scene.meshes.size());
-    const Mesh& mesh = scene.meshes[std::size_t(inst.mesh)];
-    wm.mesh = &mesh;
-    wm.material = &scene.material_of(mesh);
-    wm.has_alpha = mesh_alpha[std::size_t(inst.mesh)];
-    const glm::vec3 e = wm.material->emissive_factor * wm.material->emissive_strength;
-    wm.emissive = e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
-    has_alpha_ = has_alpha_ || wm.has_alpha;
-
-    const glm::mat4& M = inst.transform;
-    const glm::mat3 N = glm::transpose(glm::inverse(glm::mat3(M)));
-    const float det = glm::determinant(glm::mat3(M));
-    wm.positions.resize(mesh.positions.size() + 1, glm::vec3(0.0f));  // Embree reads 16 B
-    for (std::size_t k = 0; k < mesh.positions.size(); ++k) {
-      wm.positions[k] = glm::vec3(M * glm::vec4(mesh.positions[k], 1.0f));
-      bounds_.extend(wm.positions[k]);
-    }
-    if (mesh.normals.size() == mesh.positions.size()) {
-      wm.normals.resize(mesh.normals.size());
-      for (std::size_t k = 0; k < mesh.normals.size(); ++k) {
-        const glm::vec3 n = N * mesh.normals[k];
-        const float len = glm::length(n);
-        wm.normals[k] = len > 0.0f ? n / len : glm::vec3(0.0f);
-      }
-    }
-    if (mesh.tangents.size() == mesh.positions.size()) {
-      wm.tangents.resize(mesh.tangents.size());
-      for (std::size_t k = 0; k < mesh.tangents.size(); ++k) {
-        const glm::vec3 t = glm::mat3(M) * glm::vec3(mesh.tangents[k]);
-        // A mirroring transform flips the bitangent's handedness.
-        wm.tangents[k] = glm::vec4(t, mesh.tangents[k].w * (det < 0.0f ? -1.0f : 1.0f));
-      }
-    }
+  std::vector<int> mesh_scene(scene.meshes.size(), -1);
+  std::vector<const glm::vec3*> mesh_positions(scene.meshes.size(), nullptr);
+  std::vector<Bounds> mesh_bounds(scene.meshes.size());
+  auto triangle_geometry = [&](const Mesh& mesh, const glm::vec3* positions, unsigned mask) {
+    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, positions, 0,
+                               sizeof(glm::vec3), mesh.positions.size());
+    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(),
+                               0, 3 * sizeof(std::uint32_t), mesh.triangle_count());
+    rtcSetGeometryMask(g, mask);
+    rtcCommitGeometry(g);
+    return g;
+  };
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (p.flat[m] + p.shared[m] == 0) continue;
+    const Mesh& mesh = scene.meshes[m];
     for (std::uint32_t idx : mesh.indices)
       if (idx >= mesh.positions.size())
         fail("{}: mesh '{}' has an index {} past its {} vertices", scene.source, mesh.name, idx,
              mesh.positions.size());
-
-    RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, wm.positions.data(),
-                               0, sizeof(glm::vec3), mesh.positions.size());
-    rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(),
-                               0, 3 * sizeof(std::uint32_t), mesh.triangle_count());
-    rtcSetGeometryMask(g, wm.has_alpha ? kMaskAlpha : kMaskOpaque);
-    rtcCommitGeometry(g);
-    rtcAttachGeometryByID(rtc_scene_, g, unsigned(i));
+    // resolve() reads every attribute a mesh has at the triangle's indices.
+    const std::size_t n = mesh.positions.size();
+    for (std::size_t size : {mesh.normals.size(), mesh.tangents.size(), mesh.texcoords0.size(),
+                             mesh.texcoords1.size(), mesh.colors0.size()})
+      if (size != 0 && size != n)
+        fail("{}: mesh '{}' has an attribute of {} elements for {} vertices", scene.source,
+             mesh.name, size, n);
+    mesh_alpha[m] = pbrkit::has_alpha(scene, mesh);
+    if (p.shared[m] == 0) continue;
+    const glm::vec3* positions = mesh.positions.data();
+    if (!padded(mesh.positions)) {
+      std::vector<glm::vec3>& copy = position_copies_.emplace_back();
+      copy.reserve(mesh.positions.size() + 1);
+      copy.assign(mesh.positions.begin(), mesh.positions.end());
+      copy.push_back(glm::vec3(0.0f));
+      positions = copy.data();
+    }
+    mesh_positions[m] = positions;
+    for (const glm::vec3& q : mesh.positions) mesh_bounds[m].extend(q);
+    RTCScene s = rtcNewScene(device_);
+    rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_MEDIUM);
+    RTCGeometry g = triangle_geometry(mesh, positions, mesh_alpha[m] ? kMaskAlpha : kMaskOpaque);
+    rtcAttachGeometryByID(s, g, 0);
     rtcReleaseGeometry(g);
+    rtcCommitScene(s);
+    mesh_scene[m] = int(mesh_scenes_.size());
+    mesh_scenes_.push_back(s);
+  }
+
+  meshes_.resize(scene.instances.size());
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& inst = scene.instances[i];
+    const std::size_t m = std::size_t(inst.mesh);
+    const Mesh& mesh = scene.meshes[m];
+    WorldMesh& wm = meshes_[i];
+    wm.mesh = &mesh;
+    wm.material = &scene.material_of(mesh);
+    wm.has_alpha = mesh_alpha[m];
+    const glm::vec3 e = wm.material->emissive_factor * wm.material->emissive_strength;
+    wm.emissive = e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
+    wm.visible = p.kind[i] != Plan::kHidden;
+    wm.positions = mesh.positions.data();
+    if (!wm.visible) continue;
+    has_alpha_ = has_alpha_ || wm.has_alpha;
+
+    const glm::mat4& M = inst.transform;
+    wm.linear = glm::mat3(M);
+    wm.translation = glm::vec3(M[3]);
+    wm.orientation = glm::determinant(wm.linear) < 0.0f ? -1.0f : 1.0f;
+    wm.normal_matrix = wm.orientation * cofactor(wm.linear);
+    const unsigned mask = wm.has_alpha ? kMaskAlpha : kMaskOpaque;
+    if (p.kind[i] == Plan::kFlat) {
+      wm.flattened = true;
+      std::vector<glm::vec3>& world = position_copies_.emplace_back();
+      world.reserve(mesh.positions.size() + 1);
+      for (const glm::vec3& q : mesh.positions) {
+        world.push_back(wm.linear * q + wm.translation);
+        bounds_.extend(world.back());
+      }
+      world.push_back(glm::vec3(0.0f));
+      wm.positions = world.data();
+      RTCGeometry g = triangle_geometry(mesh, wm.positions, mask);
+      rtcAttachGeometryByID(rtc_scene_, g, unsigned(i));
+      rtcReleaseGeometry(g);
+    } else {
+      wm.positions = mesh_positions[m];
+      // The world bounds of the mesh's object-space bounds' corners.
+      const Bounds& object = mesh_bounds[m];
+      if (!object.empty())
+        for (int k = 0; k < 8; ++k)
+          bounds_.extend(wm.linear * glm::vec3(k & 1 ? object.max.x : object.min.x,
+                                               k & 2 ? object.max.y : object.min.y,
+                                               k & 4 ? object.max.z : object.min.z) +
+                         wm.translation);
+      RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(g, mesh_scenes_[std::size_t(mesh_scene[m])]);
+      rtcSetGeometryTimeStepCount(g, 1);
+      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(M));
+      rtcSetGeometryMask(g, mask);
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(rtc_scene_, g, unsigned(i));
+      rtcReleaseGeometry(g);
+      ++instanced_;
+    }
   }
   rtcCommitScene(rtc_scene_);
+  if (const RTCError error = rtcGetDeviceError(device_); error != RTC_ERROR_NONE)
+    fail("{}: building the path tracer's BVH failed (Embree error {}{})", scene.source, int(error),
+         error == RTC_ERROR_OUT_OF_MEMORY
+             ? fmt::format(": out of memory, {} available", format_bytes(double(limit)))
+             : "");
+  memory_.bvh = std::size_t(std::max<std::int64_t>(monitor_->bytes.load(), 0));
+  memory_.bvh_peak = std::size_t(std::max<std::int64_t>(monitor_->peak.load(), 0));
+  memory_.geometry = sizeof(WorldMesh) * meshes_.capacity();
+  for (const auto& copy : position_copies_) memory_.geometry += copy.capacity() * sizeof(glm::vec3);
 }
 
 SceneGeometry::~SceneGeometry() {
   if (rtc_scene_) rtcReleaseScene(rtc_scene_);
+  for (RTCScene s : mesh_scenes_) rtcReleaseScene(s);
   if (device_) rtcReleaseDevice(device_);
 }
 
@@ -116,7 +341,8 @@ bool SceneGeometry::intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mas
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(rtc_scene_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  geom = rh.hit.geomID;
+  // An instanced mesh's hit names the instance in instID (its geomID is the mesh's, 0).
+  geom = rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID ? rh.hit.instID[0] : rh.hit.geomID;
   prim = rh.hit.primID;
   t = rh.ray.tfar;
   u = rh.hit.u;
@@ -150,8 +376,13 @@ void SceneGeometry::intersect_packet(const glm::vec3* origins, const glm::vec3* 
     rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
   }
   rtcIntersect16(valid, rtc_scene_, &context, &rh);
-  for (int k = 0; k < 16; ++k)
-    hits[k] = {rh.hit.geomID[k], rh.hit.primID[k], rh.ray.tfar[k], rh.hit.u[k], rh.hit.v[k]};
+  for (int k = 0; k < 16; ++k) {
+    const std::uint32_t inst = rh.hit.instID[0][k];
+    const std::uint32_t geom = rh.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID ? kNoHit
+                               : inst != RTC_INVALID_GEOMETRY_ID           ? inst
+                                                                           : rh.hit.geomID[k];
+    hits[k] = {geom, rh.hit.primID[k], rh.ray.tfar[k], rh.hit.u[k], rh.hit.v[k]};
+  }
 }
 
 bool SceneGeometry::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
@@ -187,18 +418,29 @@ SurfaceHit SceneGeometry::resolve(std::uint32_t geom, std::uint32_t prim, float 
   hit.prim = prim;
   const glm::vec3 p0 = wm.positions[i0], p1 = wm.positions[i1], p2 = wm.positions[i2];
   hit.p = w * p0 + u * p1 + v * p2;
-  const glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
+  glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
+  if (wm.flattened) {
+    // World-space winding: clockwise is the front after a mirroring transform (glTF).
+    c *= wm.orientation;
+  } else {
+    hit.p = wm.linear * hit.p + wm.translation;
+    c = wm.normal_matrix * c;
+  }
   const float len = glm::length(c);
   hit.area = 0.5f * len;
   hit.ng = len > 0.0f ? c / len : glm::vec3(0.0f, 0.0f, 1.0f);
   hit.ns = hit.ng;
-  if (!wm.normals.empty()) {
-    const glm::vec3 n = w * wm.normals[i0] + u * wm.normals[i1] + v * wm.normals[i2];
+  if (!mesh.normals.empty()) {
+    const glm::vec3 n =
+        wm.normal_matrix * (w * mesh.normals[i0] + u * mesh.normals[i1] + v * mesh.normals[i2]);
     const float nl = glm::length(n);
     if (nl > 0.0f) hit.ns = n / nl;
   }
-  if (!wm.tangents.empty())
-    hit.tangent = w * wm.tangents[i0] + u * wm.tangents[i1] + v * wm.tangents[i2];
+  if (!mesh.tangents.empty()) {
+    const glm::vec4 tg = w * mesh.tangents[i0] + u * mesh.tangents[i1] + v * mesh.tangents[i2];
+    // A mirroring transform flips the bitangent's handedness.
+    hit.tangent = glm::vec4(wm.linear * glm::vec3(tg), tg.w * wm.orientation);
+  }
   const auto uv_area = [&](const std::vector<glm::vec2>& t) {
     const glm::vec2 a = t[i1] - t[i0], b = t[i2] - t[i0];
     return 0.5f * std::abs(a.x * b.y - a.y * b.x);
@@ -214,6 +456,15 @@ SurfaceHit SceneGeometry::resolve(std::uint32_t geom, std::uint32_t prim, float 
   if (!mesh.colors0.empty())
     hit.color = w * mesh.colors0[i0] + u * mesh.colors0[i1] + v * mesh.colors0[i2];
   return hit;
+}
+
+float SceneGeometry::triangle_area(std::uint32_t geom, std::uint32_t prim) const {
+  const WorldMesh& wm = meshes_[geom];
+  const std::uint32_t* idx = wm.mesh->indices.data() + 3 * std::size_t(prim);
+  const glm::vec3 p0 = wm.positions[idx[0]];
+  glm::vec3 c = glm::cross(wm.positions[idx[1]] - p0, wm.positions[idx[2]] - p0);
+  if (!wm.flattened) c = wm.normal_matrix * c;
+  return 0.5f * glm::length(c);
 }
 
 }  // namespace pbrkit

@@ -1,14 +1,28 @@
 #pragma once
-// The path tracer's view of a Scene: Embree 3 geometry plus the world-space vertex data
-// needed to shade a hit.
+// The path tracer's view of a Scene: a two-level Embree 3 acceleration structure and the
+// per-mesh data needed to shade a hit.
 //
-// Instances are flattened: every instance becomes its own world-space triangle geometry
-// (geomID = instance index) rather than an Embree instance of a shared mesh. The scenes
-// this toolkit renders are small (at most a few million triangles) and rarely instance a
-// mesh many times, so flattening costs little memory and buys a single BVH level (no
-// per-ray instance transform, better SAH over the whole scene), and shading data is
-// already in world space.
+// Memory and build time follow unique triangles, not instanced ones: each mesh that a
+// scene places more than once is built once, in its own Embree scene (its own BVH, over
+// the Mesh's own vertex and index arrays), and each of its instances is an Embree
+// instance (RTC_GEOMETRY_TYPE_INSTANCE) with its world matrix; Embree moves the ray into
+// the mesh's space. Shading data (normals, tangents, UVs, colours) stays in object space,
+// once per mesh, and resolve() takes a hit to world space with the instance's matrix
+// (normals by its inverse transpose).
+//
+// A mesh placed once is flattened instead: its world-space positions are copied into the
+// top level, beside the instances. That keeps one BVH level for such meshes (no ray
+// transform, one SAH over all of them) and costs nothing an instance would have saved (the
+// copy replaces the padded copy Embree's 16-byte vertex loads need anyway). Measured on the
+// built-in `spheres` (49 meshes, each used once), the same rays trace about 18% faster
+// flattened than with each mesh behind an instance (bench/instancing_bench.cpp `flatten`;
+// BENCHMARKS.md, "instanced geometry").
+//
+// A hit names its instance (`geom`, the index in Scene::instances) and its triangle
+// (`prim`, the index in the instance's mesh), whichever level it came from.
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -24,16 +38,50 @@ namespace pbrkit {
 inline constexpr unsigned kMaskOpaque = 1u;
 inline constexpr unsigned kMaskAlpha = 2u;
 
-/// One instance in world space.
+/// One instance: a mesh placed in the world.
 struct WorldMesh {
   const Mesh* mesh = nullptr;
   const Material* material = nullptr;
-  std::vector<glm::vec3> positions;  ///< world space (+1 padding element for Embree)
-  std::vector<glm::vec3> normals;    ///< world space, unit (may be empty)
-  std::vector<glm::vec4> tangents;   ///< world space xyz + handedness (may be empty)
-  bool has_alpha = false;            ///< needs the alpha test / stochastic transparency
+  /// The positions resolve() reads (mesh->positions or a padded copy; world space when
+  /// `flattened`, object space otherwise).
+  const glm::vec3* positions = nullptr;
+  glm::mat3 linear{1.0f};  ///< object to world, without the translation
+  glm::vec3 translation{0.0f};
+  /// |det| x linear^-T (the cofactor matrix times the sign of the determinant, defined for
+  /// a singular transform too): maps an object-space normal to a world-space one of the
+  /// same side, and an object-space cross product of two edges to the world one (times the
+  /// sign of the determinant), whose length is twice the world-space area.
+  glm::mat3 normal_matrix{1.0f};
+  /// +1, or -1 for a mirroring transform (negative determinant): glTF's front faces are
+  /// counter-clockwise in object space, so clockwise in world space after a mirror.
+  float orientation = 1.0f;
+  bool flattened = false;  ///< its triangles are in the top level, in world space
+  bool has_alpha = false;  ///< needs the alpha test / stochastic transparency
   bool emissive = false;
+  bool visible = true;  ///< false for a transform of rank 0 or 1 (no area, nothing to hit)
 };
+
+/// What the geometry is built with.
+struct GeometryOptions {
+  /// Bytes the geometry and its BVH may use; 0: what the system has available
+  /// (/proc/meminfo MemAvailable). A scene whose estimate exceeds it is refused before
+  /// anything is built.
+  std::size_t memory_limit = 0;
+  /// Meshes placed once go into the top level in world space (see above); false puts every
+  /// mesh behind an instance (benchmarks compare both).
+  bool flatten_single_use = true;
+};
+
+/// Memory of a SceneGeometry, in bytes.
+struct GeometryMemory {
+  std::size_t geometry = 0;  ///< vertex copies and per-instance records
+  std::size_t bvh = 0;       ///< Embree's allocations (BVHs, its geometry objects)
+  std::size_t bvh_peak = 0;  ///< the most Embree held at once (during the build)
+};
+
+/// The estimate a SceneGeometry is checked against before it is built (an upper bound of
+/// what it allocates: `bvh` bounds Embree's peak; see geometry.cpp for the figures).
+GeometryMemory estimate_geometry_memory(const Scene& scene, const GeometryOptions& options = {});
 
 /// A ray hit resolved to shading data.
 struct SurfaceHit {
@@ -49,7 +97,8 @@ struct SurfaceHit {
   /// Width of the ray's footprint across the surface, w / |n.d| (ray cones, for texture
   /// level of detail; set by the integrator). 0: textures are read at level 0.
   float footprint = 0.0f;
-  std::uint32_t geom = 0, prim = 0;
+  std::uint32_t geom = 0;   ///< the instance (index in Scene::instances)
+  std::uint32_t prim = 0;   ///< the triangle in the instance's mesh
 };
 
 /// Sees every ray query a SceneGeometry answers, from the render threads (concurrently).
@@ -65,13 +114,15 @@ class RayObserver {
 
 class SceneGeometry {
  public:
-  explicit SceneGeometry(const Scene& scene);
+  /// Builds the acceleration structure; fails (util/error.h) with the estimate and the
+  /// limit when the scene would not fit in `options.memory_limit`.
+  explicit SceneGeometry(const Scene& scene, const GeometryOptions& options = {});
   ~SceneGeometry();
   SceneGeometry(const SceneGeometry&) = delete;
   SceneGeometry& operator=(const SceneGeometry&) = delete;
 
   /// Closest hit along o + t d, t in (0, tfar), of geometry selected by `mask`.
-  /// Returns false on a miss; fills geom/prim/t and barycentrics u, v.
+  /// Returns false on a miss; fills geom (the instance), prim, t and barycentrics u, v.
   bool intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mask, std::uint32_t& geom,
                  std::uint32_t& prim, float& t, float& u, float& v) const;
   /// What intersect() returns, for a ray of a packet: geom = kNoHit on a miss.
@@ -96,24 +147,38 @@ class SceneGeometry {
     const WorldMesh& wm = meshes_[geom];
     const std::uint32_t* idx = wm.mesh->indices.data() + 3 * std::size_t(prim);
     for (int k = 0; k < 3; ++k) {
-      __builtin_prefetch(wm.positions.data() + idx[k]);
-      if (!wm.normals.empty()) __builtin_prefetch(wm.normals.data() + idx[k]);
+      __builtin_prefetch(wm.positions + idx[k]);
+      if (!wm.mesh->normals.empty()) __builtin_prefetch(wm.mesh->normals.data() + idx[k]);
     }
   }
-  /// Shading data of a hit.
+  /// Shading data of a hit, in world space.
   SurfaceHit resolve(std::uint32_t geom, std::uint32_t prim, float t, float u, float v) const;
+  /// World-space area of triangle `prim` of instance `geom`.
+  float triangle_area(std::uint32_t geom, std::uint32_t prim) const;
 
   /// Reports every later query to `observer` (nullptr: none).
   void observe(RayObserver* observer) { observer_ = observer; }
 
+  /// Per instance (indexed by `geom`).
   const std::vector<WorldMesh>& meshes() const { return meshes_; }
+  /// What was built: the vertex copies and records, and Embree's allocations as measured.
+  const GeometryMemory& memory() const { return memory_; }
+  /// Meshes built once behind instances, and the instances that use them.
+  std::size_t shared_meshes() const { return mesh_scenes_.size(); }
+  std::size_t instanced() const { return instanced_; }
   bool has_alpha() const { return has_alpha_; }
   const Bounds& bounds() const { return bounds_; }
 
  private:
   RTCDevice device_ = nullptr;
   RTCScene rtc_scene_ = nullptr;
+  std::vector<RTCScene> mesh_scenes_;  ///< one per shared mesh
   std::vector<WorldMesh> meshes_;
+  std::vector<std::vector<glm::vec3>> position_copies_;  ///< padded or world-space positions
+  GeometryMemory memory_;
+  std::size_t instanced_ = 0;
+  struct Monitor;  ///< counts Embree's allocations, refuses those past the limit
+  std::unique_ptr<Monitor> monitor_;
   RayObserver* observer_ = nullptr;
   bool has_alpha_ = false;
   Bounds bounds_;

@@ -69,21 +69,21 @@ LightSet::LightSet(const Scene& scene, const SceneGeometry& geometry, const Envi
     power.push_back(phi);
   }
   // Emissive triangles, by power pi x area x luminance(emission factor); the emissive
-  // texture's variation is not in the selection weights (it stays unbiased).
+  // texture's variation is not in the selection weights (it stays unbiased). Each instance
+  // of an emissive mesh is its own light, its triangles' areas those of its world-space
+  // copy (an affine map scales areas by a factor that depends on the triangle's
+  // orientation under a non-uniform scale).
   const auto& meshes = geometry.meshes();
   first_light_.assign(meshes.size(), -1);
   for (std::size_t g = 0; g < meshes.size(); ++g) {
     const WorldMesh& wm = meshes[g];
-    if (!wm.emissive) continue;
+    if (!wm.emissive || !wm.visible) continue;
     const Material& m = *wm.material;
     const float le = luminance(m.emissive_factor * m.emissive_strength);
     first_light_[g] = int(entries_.size());
     const std::size_t n = wm.mesh->triangle_count();
     for (std::size_t t = 0; t < n; ++t) {
-      const glm::vec3 p0 = wm.positions[wm.mesh->indices[3 * t]];
-      const glm::vec3 p1 = wm.positions[wm.mesh->indices[3 * t + 1]];
-      const glm::vec3 p2 = wm.positions[wm.mesh->indices[3 * t + 2]];
-      const float area = 0.5f * glm::length(glm::cross(p1 - p0, p2 - p0));
+      const float area = geometry.triangle_area(std::uint32_t(g), std::uint32_t(t));
       entries_.push_back({Kind::kTriangle, std::uint32_t(g), std::uint32_t(t)});
       power.push_back(kPi * area * le * (m.double_sided ? 2.0f : 1.0f));
     }
@@ -138,6 +138,8 @@ bool LightSet::sample(glm::vec3 p, float u_select, glm::vec2 u, LightSample& out
     case Kind::kTriangle: {
       const WorldMesh& wm = geometry_.meshes()[e.index];
       // Uniform point on the triangle (pbrt-v3 SampleUniformTriangle): b0 = 1 - sqrt(u0).
+      // Uniform in object space is uniform in world space: an affine map scales every
+      // area of one triangle by the same factor.
       const float su = std::sqrt(u.x);
       const float b1 = u.y * su, b2 = 1.0f - su;
       const SurfaceHit hit = geometry_.resolve(e.index, e.prim, 0.0f, b1, b2);

@@ -53,7 +53,7 @@ class LightSet {
   enum class Kind : std::uint8_t { kEnvironment, kPunctual, kTriangle };
   struct Entry {
     Kind kind;
-    std::uint32_t index;  ///< punctual: scene light index; triangle: geom
+    std::uint32_t index;  ///< punctual: scene light index; triangle: instance (geom)
     std::uint32_t prim = 0;
   };
   const Scene& scene_;
@@ -64,7 +64,7 @@ class LightSet {
   Distribution1D select_;
   float single_p_select_ = 0.0f;  ///< with one light: its selection probability
   int env_entry_ = -1;
-  std::vector<int> first_light_;  ///< per geometry: its first triangle entry, or -1
+  std::vector<int> first_light_;  ///< per instance: its first triangle entry, or -1
 };
 
 }  // namespace pbrkit

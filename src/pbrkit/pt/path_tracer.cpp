@@ -30,6 +30,7 @@
 #include "pbrkit/pt/lights.h"
 #include "pbrkit/pt/pixel_filter.h"
 #include "pbrkit/util/error.h"
+#include "pbrkit/util/log.h"
 #include "pbrkit/util/parallel.h"
 
 namespace pbrkit {
@@ -86,6 +87,18 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
     if (settings.max_bounces > 0) EnergyTable::get(direct_geometry(settings.brdf.model));
   });
   result.stats.build_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
+  {
+    std::size_t texture_bytes = 0;
+    for (const Texture& t : scene.textures)
+      for (const auto& mip : t.mips) texture_bytes += mip.data.size() * sizeof(mip.data[0]);
+    const GeometryMemory& mem = geometry->memory();
+    // Where the memory goes: what decides how large a scene fits.
+    note(
+        "memory: geometry {:.1f} MB, BVH {:.1f} MB, textures {:.1f} MB ({} instances, {} of "
+        "them of {} shared meshes)",
+        double(mem.geometry) * 1e-6, double(mem.bvh) * 1e-6, double(texture_bytes) * 1e-6,
+        geometry->meshes().size(), geometry->instanced(), geometry->shared_meshes());
+  }
 
   Film& film = result.film;
   if (settings.resume) {

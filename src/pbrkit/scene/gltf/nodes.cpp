@@ -137,13 +137,9 @@ void Loader::build_nodes() {
           cached = mesh_cache.emplace(n.mesh, build_mesh(n.mesh, gmesh.weights)).first;
         meshes = cached->second;
       }
-      for (int m : meshes) {
-        scene_.instances.push_back({m, world, node});
-        triangles_ += scene_.meshes[std::size_t(m)].triangle_count();
-        if (triangles_ > options_.limits.max_triangles)
-          error(where, fmt::format("the scene exceeds the limit of {} triangles",
-                                   options_.limits.max_triangles));
-      }
+      // Instances share their mesh: what they cost is the renderer's to estimate (the path
+      // tracer checks its geometry's memory before building, pt/geometry.h).
+      for (int m : meshes) scene_.instances.push_back({m, world, node});
     }
     if (n.camera >= 0) add_camera(n.camera, world, where);  // cameras.cpp
     if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end())
