@@ -270,9 +270,10 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   tl.thin_walled = !volume;
   n_material = material.ior;
   sigma_near = sigma_far = media.sigma_a();
-  if (volume && material.dispersion && material.dispersion->dispersion > 0.0f) {
+  if (volume && tl.weight > 0.0f && material.dispersion && material.dispersion->dispersion > 0.0f) {
     // KHR_materials_dispersion: the path takes one channel's wavelength from here on
-    // (core/dispersion.h); paths that never meet dispersion pay nothing.
+    // (core/dispersion.h); paths that never meet dispersion pay nothing, nor do those
+    // through a diffuse transmitter only (nothing refracts there).
     if (channel < 0) {
       const ChannelSample cs = sample_channel(u_channel);
       channel = cs.channel;
