@@ -243,7 +243,14 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     origin = offset_ray_origin(hit.p, transmitted ? -hit.ng : hit.ng);
     direction = wi;
   }
-  if (!std::isfinite(out.L.x + out.L.y + out.L.z)) out.L = glm::vec3(0.0f);
+  // A non-finite contribution would poison the pixel's mean (and a NaN every later sum):
+  // it is dropped, and flagged so that the render counts and reports it rather than
+  // showing it only as darkening.
+  if (!std::isfinite(out.L.x + out.L.y + out.L.z)) [[unlikely]] {
+    out.L = glm::vec3(0.0f);
+    out.non_finite = true;
+  }
+  out.medium_overflow = media.overflowed;
   return out;
 }
 
