@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <string>
 
 #include "pbrkit/util/error.h"
@@ -18,8 +19,10 @@ CLI::Validator finite_number() {
         const double v = std::strtod(begin, &end);
         // Text that is not a number is left to the option's conversion, which says so.
         if (end == begin || *end != '\0') return std::string();
-        if (std::isfinite(v) && std::isfinite(float(v))) return std::string();
-        return "'" + value + "' is not a finite number";
+        // Options are floats (a few doubles): a value beyond the largest float would become
+        // infinite in a float option (compared in double: the cast itself would overflow).
+        if (std::fabs(v) <= double(std::numeric_limits<float>::max())) return std::string();
+        return "'" + value + "' is not a finite number (or is beyond a float's range, 3.4e38)";
       },
       "");
 }

@@ -9,8 +9,8 @@
 
 namespace pbrkit::cli {
 
-/// Fails validation for a value that parses as a number but is not finite (NaN, +-inf, a
-/// float overflow); leaves any other text to the option's own conversion.
+/// Fails validation for a value that parses as a number but is not finite as a float (NaN,
+/// +-inf, beyond +-3.4e38); leaves any other text to the option's own conversion.
 CLI::Validator finite_number();
 
 /// Adds finite_number() to every floating-point option (CLI11 type FLOAT, including
