@@ -16,6 +16,7 @@
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/pt/film.h"
+#include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 
@@ -71,6 +72,13 @@ void register_merge_command(CLI::App& app) {
              part.width, part.height, o->parts.front(), film.width, film.height);
       film.merge(part);
     }
+    // The parts' counts of what their renders could not represent, summed (film.h).
+    if (film.non_finite_samples > 0)
+      warn("the parts hold {} samples whose radiance was not finite (NaN or infinite, set to 0)",
+           film.non_finite_samples);
+    if (film.medium_overflows > 0)
+      warn("the parts hold {} paths inside more than {} nested volumes (the limit)",
+           film.medium_overflows, kMaxNestedVolumes);
     create_output_directory(outputs);
     const std::string& exr = outputs.exr;
     if (!o->accumulation.empty()) write_film(o->accumulation, film);

@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 #include "render_options.h"
 
@@ -22,11 +23,27 @@ RenderView select_render_view(const Scene& scene, const RenderCommandOptions& o)
   return view;
 }
 
+namespace {
+
+// The options of the renderer not chosen that the command line gives (in the order of
+// --help), e.g. "--denoise, --sample-range"; empty when there are none.
+std::string other_renderers_options(CLI::App& cmd, const std::string& renderer) {
+  const std::string other = renderer == "path" ? kGlOptionsGroup : kPathOptionsGroup;
+  std::string names;
+  for (const CLI::Option* opt : cmd.get_options())
+    if (opt->count() > 0 && opt->get_group() == other)
+      names += (names.empty() ? "" : ", ") + opt->get_name();
+  return names;
+}
+
+}  // namespace
+
 void register_render_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "render",
       "Render a glTF scene (or a built-in one) with the path tracer (ground truth) or the "
-      "OpenGL renderer; writes a tone-mapped PNG and a linear EXR beside it.");
+      "OpenGL renderer; writes a tone-mapped PNG and a linear EXR beside it. Each renderer's "
+      "own options (the two groups below) are an error with the other renderer.");
   auto options = std::make_shared<RenderCommandOptions>();
   auto renderer = std::make_shared<std::string>("path");
   cmd->add_option("scene", options->scene,
@@ -69,13 +86,30 @@ void register_render_command(CLI::App& app) {
                   "Schlick-GGX)")
       ->check(CLI::IsMember({"reference", "classic"}))
       ->capture_default_str();
+  // (Callbacks, as add_multiscatter_flags: the optional stays unset without either.)
+  auto* half = cmd->add_flag_callback(
+      "--half", [options] { options->exr_float = false; },
+      "write the EXR as half floats (the path tracer's default)");
+  cmd->add_flag_callback(
+         "--float", [options] { options->exr_float = true; },
+         "write the EXR as 32-bit floats (the OpenGL renderer's default)")
+      ->excludes(half);
   add_multiscatter_flags(*cmd, options->multiscatter,
                          "multiple-scattering energy compensation (Kulla-Conty / Fdez-Aguera); "
                          "default: on for the reference model, off for classic");
 
   const RenderRunner path = add_path_render_options(*cmd);
   const RenderRunner gl = add_gl_render_options(*cmd);
-  cmd->callback([options, renderer, path, gl] {
+  cmd->callback([cmd, options, renderer, path, gl] {
+    const std::string misplaced = other_renderers_options(*cmd, *renderer);
+    if (!misplaced.empty()) {
+      const bool is_path = *renderer == "path";
+      fail(
+          "--renderer {} does not take {}: {} option(s), which it would ignore; remove "
+          "them or use --renderer {}",
+          *renderer, misplaced, is_path ? "OpenGL renderer" : "path tracer",
+          is_path ? "gl" : "path");
+    }
     RenderCommandOptions o = *options;
     if (o.output.empty()) {
       std::string stem = std::filesystem::path(o.scene).stem().string();

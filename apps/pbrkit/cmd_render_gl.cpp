@@ -45,7 +45,7 @@ double ms_since(Clock::time_point t0) {
 
 RenderRunner add_gl_render_options(CLI::App& render) {
   auto g = std::make_shared<GlOptions>();
-  const std::string group = "OpenGL renderer (--renderer gl)";
+  const std::string group = kGlOptionsGroup;
   render
       .add_option("--irradiance", g->irradiance, "diffuse irradiance: sh (9 coefficients) or cube")
       ->check(CLI::IsMember({"sh", "cube"}))
@@ -122,7 +122,8 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     const double gpu_ms = renderer.gpu_time_ms();
     const double gl_ms = ms_since(t_gl);
 
-    write_exr(o.outputs.exr, rgb_channels(frame), ExrPixelType::kFloat);
+    write_exr(o.outputs.exr, rgb_channels(frame),
+              o.exr_float.value_or(true) ? ExrPixelType::kFloat : ExrPixelType::kHalf);
     write_display_png(o.outputs.png, frame, {o.exposure, tone_mapper});
     note(
         "OpenGL ({}, {} context): {} at {}x{}: bake {:.0f} ms, GL {:.0f} ms (frame {:.1f} ms on "

@@ -80,8 +80,6 @@ struct PathOptions {
   double checkpoint_interval = PathTracerSettings{}.checkpoint_interval;
   std::string resume;
   std::vector<std::string> aovs;
-  bool half = false;
-  bool full_float = false;
   bool denoise = false;
   std::string filter{pixel_filter_name(PathTracerSettings{}.filter)};
 };
@@ -111,7 +109,7 @@ std::pair<std::uint32_t, std::uint32_t> parse_sample_range(const std::string& te
 
 RenderRunner add_path_render_options(CLI::App& render) {
   auto p = std::make_shared<PathOptions>();
-  const std::string group = "Path tracer (--renderer path)";
+  const std::string group = kPathOptionsGroup;
   render
       .add_option("--spp", p->spp,
                   "samples per pixel (the most any pixel gets; with --noise-threshold "
@@ -178,11 +176,6 @@ RenderRunner add_path_render_options(CLI::App& render) {
       .add_flag("--denoise", p->denoise,
                 "denoise the image (docs/DENOISER.md); the EXR keeps the raw image (layer "
                 "'raw') and the albedo, normal and depth as layers")
-      ->group(group);
-  auto* half =
-      render.add_flag("--half", p->half, "write the EXR as half floats (default)")->group(group);
-  render.add_flag("--float", p->full_float, "write the EXR as 32-bit floats")
-      ->excludes(half)
       ->group(group);
   render.add_option("--filter", p->filter, "pixel filter: tent (radius 1 px) or box (1 px)")
       ->check(CLI::IsMember({"tent", "box"}))
@@ -253,7 +246,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
       note("wrote {} (samples {}:{}; combine the parts with 'pbrkit merge')", exr, s.sample_begin,
            s.sample_end);
     } else {
-      const auto type = po.full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;
+      const auto type = o.exr_float.value_or(false) ? ExrPixelType::kFloat : ExrPixelType::kHalf;
       // Denoising is skipped when the render was interrupted, and stops (leaving the raw
       // image to be written) when Ctrl-C comes while it runs.
       std::optional<Image> denoised;

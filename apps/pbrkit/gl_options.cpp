@@ -1,7 +1,6 @@
 #include "gl_options.h"
 
-#include <charconv>
-
+#include "numeric_options.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit::cli {
@@ -10,11 +9,7 @@ gl::Background parse_background(std::string_view text) {
   using gl::Background;
   Background b;
   auto parse_float = [&](std::string_view s) {
-    float v = 0.0f;
-    const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (r.ec != std::errc() || r.ptr != s.data() + s.size())
-      fail("--background: '{}' is not a number (in '{}')", s, text);
-    return v;
+    return parse_finite_float(s, "--background", text);
   };
   if (text == "env") return b;
   if (text.substr(0, 5) == "blur:") {

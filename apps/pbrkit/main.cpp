@@ -4,6 +4,7 @@
 #include <exception>
 
 #include "commands.h"
+#include "numeric_options.h"
 #include "pbrkit/util/error.h"
 
 int main(int argc, char** argv) {
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   register_denoise_command(app);
   register_compare_command(app);
   register_view_command(app);
+  require_finite_numbers(app);
 
   try {
     app.parse(argc, argv);

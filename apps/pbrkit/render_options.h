@@ -27,9 +27,19 @@ struct RenderCommandOptions {
   std::string model = "reference";
   /// Multiple-scattering compensation; unset: default_multiscatter(model) (on for reference).
   std::optional<bool> multiscatter;
+  /// --float / --half: the EXR's pixel type; unset: the renderer's default (half for the
+  /// path tracer, float for the OpenGL renderer).
+  std::optional<bool> exr_float;
   std::string output;    ///< -o: a .png or .exr path (or empty: out/<scene>_<renderer>.png)
   ImageOutputs outputs;  ///< resolved from `output` before rendering
 };
+
+/// The --help groups of each renderer's own options. An option of one renderer given with
+/// the other is an error naming it (cmd_render.cpp): a user who passes --denoise to the
+/// OpenGL renderer, or --msaa to the path tracer, would otherwise get an image made without
+/// it and no word.
+inline constexpr const char* kPathOptionsGroup = "Path tracer (--renderer path only)";
+inline constexpr const char* kGlOptionsGroup = "OpenGL renderer (--renderer gl only)";
 
 /// Called once the command line is parsed; renders and writes the outputs.
 using RenderRunner = std::function<void(const RenderCommandOptions&)>;

@@ -25,7 +25,7 @@ Film render_aovs(float mirror_roughness) {
   add_mesh_instance(
       scene, make_quad(glm::vec3(-3.0f, -3.0f, 6.0f), glm::vec3(6, 0, 0), glm::vec3(0, 6, 0)), 1);
   PathTracerSettings s = test::small_settings(16, 4);
-  return render_path(scene, nullptr, test::ortho_camera(0.5f), s).film;
+  return test::render_path(scene, nullptr, test::ortho_camera(0.5f), s).film;
 }
 
 TEST(PathTracerAovs, MirrorShowsTheFeaturesOfWhatItReflects) {

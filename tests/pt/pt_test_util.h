@@ -134,6 +134,27 @@ inline std::vector<double> sphere_residuals(const Image& image, float half, doub
   return r;
 }
 
+/// The path tracer's tests render through this: pbrkit::render_path, then a test failure if
+/// any sample's radiance was not finite (the integrator drops it to 0, which would show only
+/// as a darkening that a tolerance might absorb) or any path overflowed the medium stack.
+/// It is an object, not a function: an unqualified render_path(...) in namespace
+/// pbrkit::test finds it, and because it is not a function, argument-dependent lookup does
+/// not add pbrkit::render_path ([basic.lookup.argdep]/3), so every test's renders are
+/// checked. A test that expects such samples calls pbrkit::render_path itself.
+struct CheckedRenderPath {
+  PathTracerResult operator()(const Scene& scene, const Environment* env, const Camera& camera,
+                              const PathTracerSettings& settings,
+                              const ProgressCallback& progress = {}) const {
+    PathTracerResult r = pbrkit::render_path(scene, env, camera, settings, progress);
+    EXPECT_EQ(r.stats.non_finite_samples, 0u)
+        << scene.source << ": samples whose radiance was not finite";
+    EXPECT_EQ(r.stats.medium_overflows, 0u)
+        << scene.source << ": paths deeper than the medium stack";
+    return r;
+  }
+};
+inline constexpr CheckedRenderPath render_path{};
+
 inline PathTracerSettings small_settings(int size, std::uint32_t spp) {
   PathTracerSettings s;
   s.width = s.height = size;

@@ -4,6 +4,7 @@
 // several named layers) and PNG (8 or 16 bit, display-referred). Every write is atomic.
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -86,11 +87,18 @@ struct ExrLayer {
 /// Writes a linear EXR (ZIP compressed). Atomic.
 void write_exr(const std::filesystem::path& path, const Image& image,
                ExrPixelType type = ExrPixelType::kHalf);
-/// Writes a multi-layer EXR; all layers must have the same size. Atomic.
-void write_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers);
+/// String attributes of an EXR's header (name -> value), e.g. a render's counts.
+using ExrAttributes = std::map<std::string, std::string>;
+
+/// Writes a multi-layer EXR; all layers must have the same size; `attributes` are added to
+/// its header as string attributes. Atomic.
+void write_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers,
+                      const ExrAttributes& attributes = {});
 /// Reads every channel of an EXR: returns layer name -> image (channels in R,G,B,A order,
-/// or alphabetical for other names). The main layer has the name "".
-std::vector<std::pair<std::string, Image>> read_exr_layers(const std::filesystem::path& path);
+/// or alphabetical for other names). The main layer has the name "". With `attributes`,
+/// the header's string attributes are put there.
+std::vector<std::pair<std::string, Image>> read_exr_layers(const std::filesystem::path& path,
+                                                           ExrAttributes* attributes = nullptr);
 
 /// Writes a PNG from display-referred values in [0,1] (already tone-mapped and
 /// sRGB-encoded; values are clamped and quantised with rounding). Atomic.

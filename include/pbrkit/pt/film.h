@@ -34,6 +34,12 @@ struct Film {
   std::vector<float> depth_even;
   std::vector<float> count;  ///< samples taken (exact in float up to 2^24)
   std::vector<float> done;   ///< 1 when adaptive sampling stopped the pixel
+  /// Samples whose radiance was not finite (set to 0) and paths that overflowed the medium
+  /// stack, over every sample in the film (PathTracerStats has those of one call); written
+  /// to its EXRs as the header attributes kNonFiniteSamplesAttribute and
+  /// kMediumOverflowsAttribute, summed by merge.
+  std::uint64_t non_finite_samples = 0;
+  std::uint64_t medium_overflows = 0;
 
   Film() = default;
   Film(int w, int h);
@@ -63,6 +69,11 @@ struct Film {
   /// Adds `other` (a disjoint sample range of the same image) into this film.
   void merge(const Film& other);
 };
+
+/// The EXR header attributes (strings holding a decimal count) in which write_film and
+/// write_render_exr record Film::non_finite_samples and Film::medium_overflows.
+inline constexpr const char* kNonFiniteSamplesAttribute = "pbrkit:nonFiniteSamples";
+inline constexpr const char* kMediumOverflowsAttribute = "pbrkit:mediumOverflows";
 
 /// Writes the film's buffers as a float EXR ("accumulation" file: layers sum, sum_even,
 /// albedo, normal, depth, their even halves, count, done), atomically.

@@ -107,7 +107,17 @@ struct PathTracerStats {
   bool stopped = false;         ///< stopped early (flag, callback or time limit)
   bool complete = false;        ///< every pixel reached its target or converged
   double noise = 0.0;           ///< mean per-pixel noise estimate (0 when unknown)
+  /// Camera samples whose radiance came out NaN or infinite in this call: each was replaced
+  /// by 0 (so the image stays finite, a little darker). A correct integrator makes none;
+  /// render_path warns when there are any, and the film carries the count into its EXRs.
+  std::uint64_t non_finite_samples = 0;
+  /// Camera paths in this call that entered more nested volumes than the integrator tracks
+  /// (kMaxNestedVolumes): the innermost ones were not entered. Warned about, with the limit.
+  std::uint64_t medium_overflows = 0;
 };
+
+/// The deepest nesting of volumes (KHR_materials_volume) a path tracks.
+inline constexpr int kMaxNestedVolumes = 8;
 
 struct PathTracerResult {
   Film film;    ///< the accumulation buffers (sums and counts): merge/resume input

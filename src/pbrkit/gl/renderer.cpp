@@ -19,6 +19,7 @@
 #include "pbrkit/gl/shader_permutations.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/util/error.h"
+#include "pbrkit/util/log.h"
 
 namespace pbrkit::gl {
 
@@ -162,6 +163,9 @@ struct Renderer::State {
   GLuint empty_vao = 0;  // the background's full-screen triangle has no attributes
   RenderTargets targets;
   GpuTimer timer;
+  // Whether a frame has needed more than kMaxTransmissionCaptures captures (warned once per
+  // renderer: the viewer draws the same scene every frame).
+  bool capture_limit_warned = false;
 };
 
 Renderer::Renderer() : state_(std::make_unique<State>()) {
@@ -429,6 +433,13 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
         s.targets.capture_frame();
         ++captures;
         since_capture.clear();
+      } else if (covers && !s.capture_limit_warned) {
+        // This surface reads a capture without the glass it covers (drawn since the last one).
+        warn(
+            "OpenGL renderer: glass seen through glass needs more than {} captures of the frame "
+            "(the limit); a deeper layer shows what is behind it without the glass in between",
+            kMaxTransmissionCaptures);
+        s.capture_limit_warned = true;
       }
       since_capture.push_back(&t);
       draw(t.index);

@@ -11,6 +11,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfRgbaFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <OpenEXR/openexr.h>
 #include <png.h>
 
@@ -518,7 +519,8 @@ void write_exr(const std::filesystem::path& path, const Image& image, ExrPixelTy
   write_exr_layers(path, {layer});
 }
 
-void write_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers) {
+void write_exr_layers(const std::filesystem::path& path, const std::vector<ExrLayer>& layers,
+                      const ExrAttributes& attributes) {
   const std::string name = path.string();
   if (layers.empty()) fail("{}: no layers to write", name);
   const Image* first = layers.front().image;
@@ -527,6 +529,7 @@ void write_exr_layers(const std::filesystem::path& path, const std::vector<ExrLa
   if (w <= 0 || h <= 0) fail("{}: cannot write an empty image ({} x {})", name, w, h);
   Imf::Header header(w, h);
   header.compression() = Imf::ZIP_COMPRESSION;
+  for (const auto& [key, value] : attributes) header.insert(key, Imf::StringAttribute(value));
   Imf::FrameBuffer fb;
   std::set<std::string> seen;
   // OpenEXR does not convert float slices to half channels on output: half layers are
@@ -573,7 +576,8 @@ void write_exr_layers(const std::filesystem::path& path, const std::vector<ExrLa
   });
 }
 
-std::vector<std::pair<std::string, Image>> read_exr_layers(const std::filesystem::path& path) {
+std::vector<std::pair<std::string, Image>> read_exr_layers(const std::filesystem::path& path,
+                                                           ExrAttributes* attributes) {
   const std::string name = path.string();
   const std::string bytes = read_file_bytes(path);
   const auto* b = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -587,6 +591,10 @@ std::vector<std::pair<std::string, Image>> read_exr_layers(const std::filesystem
     const Imath::Box2i dw = file.header().dataWindow();
     check_size(name, static_cast<long long>(dw.max.x) - dw.min.x + 1,
                static_cast<long long>(dw.max.y) - dw.min.y + 1, ImageReadOptions{});
+    if (attributes)
+      for (auto it = file.header().begin(); it != file.header().end(); ++it)
+        if (const auto* a = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+          (*attributes)[it.name()] = a->value();
     std::map<std::string, std::vector<std::string>> by_layer;  // layer -> channel names
     for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it) {
       std::string layer, channel;

@@ -1,7 +1,9 @@
 #include "pbrkit/pt/film.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <string>
 
 #include "pbrkit/pt/adaptive_sampling.h"
 #include "pbrkit/util/error.h"
@@ -145,8 +147,39 @@ void Film::merge(const Film& other) {
     count[i] += other.count[i];
     done[i] = std::max(done[i], other.done[i]);
   }
+  non_finite_samples += other.non_finite_samples;
+  medium_overflows += other.medium_overflows;
   sample_begin = std::min(sample_begin, other.sample_begin);
 }
+
+namespace {
+
+// The film's counts as EXR header attributes (film.h); only the non-zero ones, so that a
+// clean render's files carry nothing new.
+ExrAttributes film_attributes(const Film& film) {
+  ExrAttributes a;
+  if (film.non_finite_samples > 0)
+    a[kNonFiniteSamplesAttribute] = std::to_string(film.non_finite_samples);
+  if (film.medium_overflows > 0)
+    a[kMediumOverflowsAttribute] = std::to_string(film.medium_overflows);
+  return a;
+}
+
+// A count attribute read back: absent is 0; anything but a whole decimal number is an error
+// naming the file.
+std::uint64_t count_attribute(const ExrAttributes& a, const char* key,
+                              const std::filesystem::path& path) {
+  const auto it = a.find(key);
+  if (it == a.end()) return 0;
+  const std::string& v = it->second;
+  std::uint64_t n = 0;
+  const auto r = std::from_chars(v.data(), v.data() + v.size(), n);
+  if (v.empty() || r.ec != std::errc() || r.ptr != v.data() + v.size())
+    fail("{}: header attribute '{}' is '{}', expected a whole number", path.string(), key, v);
+  return n;
+}
+
+}  // namespace
 
 void write_film(const std::filesystem::path& path, const Film& film) {
   const Image color = film.color();
@@ -158,21 +191,24 @@ void write_film(const std::filesystem::path& path, const Film& film) {
   const Image de_even = scalar_image(film, film.depth_even);
   const std::vector<std::string> rgb{"R", "G", "B"}, y{"Y"};
   const auto f = ExrPixelType::kFloat;
-  write_exr_layers(path, {{"", rgb, &color, f},
-                          {"pbrkit_sum", rgb, &s, f},
-                          {"pbrkit_sum_even", rgb, &se, f},
-                          {"pbrkit_albedo_sum", rgb, &al, f},
-                          {"pbrkit_normal_sum", rgb, &no, f},
-                          {"pbrkit_depth_sum", y, &de, f},
-                          {"pbrkit_albedo_even_sum", rgb, &ae, f},
-                          {"pbrkit_normal_even_sum", rgb, &ne, f},
-                          {"pbrkit_depth_even_sum", y, &de_even, f},
-                          {"pbrkit_count", y, &co, f},
-                          {"pbrkit_done", y, &dn, f}});
+  write_exr_layers(path,
+                   {{"", rgb, &color, f},
+                    {"pbrkit_sum", rgb, &s, f},
+                    {"pbrkit_sum_even", rgb, &se, f},
+                    {"pbrkit_albedo_sum", rgb, &al, f},
+                    {"pbrkit_normal_sum", rgb, &no, f},
+                    {"pbrkit_depth_sum", y, &de, f},
+                    {"pbrkit_albedo_even_sum", rgb, &ae, f},
+                    {"pbrkit_normal_even_sum", rgb, &ne, f},
+                    {"pbrkit_depth_even_sum", y, &de_even, f},
+                    {"pbrkit_count", y, &co, f},
+                    {"pbrkit_done", y, &dn, f}},
+                   film_attributes(film));
 }
 
 Film read_film(const std::filesystem::path& path) {
-  const auto layers = read_exr_layers(path);
+  ExrAttributes attributes;
+  const auto layers = read_exr_layers(path, &attributes);
   auto find_optional = [&](const std::string& name, int channels) -> const Image* {
     for (const auto& [n, image] : layers)
       if (n == name) {
@@ -232,6 +268,8 @@ Film read_film(const std::filesystem::path& path) {
       film.depth_even[i] = film.depth[i] * share;
     }
   }
+  film.non_finite_samples = count_attribute(attributes, kNonFiniteSamplesAttribute, path);
+  film.medium_overflows = count_attribute(attributes, kMediumOverflowsAttribute, path);
   return film;
 }
 
@@ -296,7 +334,7 @@ void write_render_exr(const std::filesystem::path& path, const Film& film,
     }
   }
   for (std::size_t i = 0; i < layers.size(); ++i) layers[i].image = &images[i];
-  write_exr_layers(path, layers);
+  write_exr_layers(path, layers, film_attributes(film));
 }
 
 }  // namespace pbrkit

@@ -258,7 +258,14 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     origin = offset_ray_origin(hit.p, transmitted ? -hit.ng : hit.ng);
     direction = wi;
   }
-  if (!std::isfinite(out.L.x + out.L.y + out.L.z)) out.L = glm::vec3(0.0f);
+  // A non-finite contribution would poison the pixel's mean (and a NaN every later sum):
+  // it is dropped, and flagged so that the render counts and reports it rather than
+  // showing it only as darkening.
+  if (!std::isfinite(out.L.x + out.L.y + out.L.z)) [[unlikely]] {
+    out.L = glm::vec3(0.0f);
+    out.non_finite = true;
+  }
+  out.medium_overflow = media.overflowed;
   return out;
 }
 
@@ -285,9 +292,10 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   tl.thin_walled = !volume;
   n_material = material.ior;
   sigma_near = sigma_far = media.sigma_a();
-  if (volume && material.dispersion && material.dispersion->dispersion > 0.0f) {
+  if (volume && tl.weight > 0.0f && material.dispersion && material.dispersion->dispersion > 0.0f) {
     // KHR_materials_dispersion: the path takes one channel's wavelength from here on
-    // (core/dispersion.h); paths that never meet dispersion pay nothing.
+    // (core/dispersion.h); paths that never meet dispersion pay nothing, nor do those
+    // through a diffuse transmitter only (nothing refracts there).
     if (channel < 0) {
       const ChannelSample cs = sample_channel(u_channel);
       channel = cs.channel;

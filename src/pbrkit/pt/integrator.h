@@ -38,11 +38,15 @@ struct MediumStack {
     float ior;           ///< its ior (at the path's wavelength under dispersion)
     glm::vec3 sigma_a;   ///< Beer-Lambert absorption coefficient (core/transmission.h)
   };
-  static constexpr int kCapacity = 8;  ///< deeper nesting is not tracked (entries dropped)
+  /// Deeper nesting is not tracked: an entry past it is dropped (the path then takes the
+  /// enclosing medium's ior and absorption inside it) and `overflowed` records it, so that
+  /// the render counts and reports such paths (path_tracer.h, PathTracerStats).
+  static constexpr int kCapacity = kMaxNestedVolumes;
   // Left uninitialised: every path starts one, and only `size` entries are ever read
   // (initialising all 8 cost 1% of the instructions of an opaque scene's path).
   Entry entries[kCapacity];
   int size = 0;
+  bool overflowed = false;
 
   float ior() const { return size > 0 ? entries[size - 1].ior : 1.0f; }
   glm::vec3 sigma_a() const { return size > 0 ? entries[size - 1].sigma_a : glm::vec3(0.0f); }
@@ -61,7 +65,10 @@ struct MediumStack {
   }
   // (Out of line: Li, which calls them, keeps its inlining budget for opaque surfaces.)
   [[gnu::noinline]] void push(const Entry& e) {
-    if (size < kCapacity) entries[size++] = e;
+    if (size < kCapacity)
+      entries[size++] = e;
+    else
+      overflowed = true;
   }
   [[gnu::noinline]] void remove(std::uint32_t geom) {
     for (int k = size - 1; k >= 0; --k)
@@ -73,12 +80,18 @@ struct MediumStack {
   }
 };
 
-/// What one camera path brings back: radiance and the first hit's AOVs.
+/// What one camera path brings back: radiance and the first hit's AOVs, and what the path
+/// could not represent (counted per render and reported: path_tracer.h, PathTracerStats).
 struct PathSample {
   glm::vec3 L{0.0f};
   glm::vec3 albedo{0.0f};
   glm::vec3 normal{0.0f};
   float depth = 0.0f;
+  /// The radiance came out NaN or infinite (an integrator or material bug, or a degenerate
+  /// input the code does not guard): L was set to 0 so the pixel stays usable.
+  bool non_finite = false;
+  /// The path entered more nested volumes than MediumStack::kCapacity.
+  bool medium_overflow = false;
 };
 
 class Integrator {

@@ -131,7 +131,24 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
     }
     return false;
   };
-  tbb::enumerable_thread_specific<std::uint64_t> ray_counts(0);
+  // Per-thread counts, summed after the render: rays traced, and the camera paths the
+  // integrator could not represent (PathSample).
+  struct PathCounts {
+    std::uint64_t rays = 0, non_finite = 0, medium_overflows = 0;
+  };
+  tbb::enumerable_thread_specific<PathCounts> path_counts;
+  // The film's counts are those of every sample in it: the resumed film's, plus this call's,
+  // brought up to date before each checkpoint and at the end.
+  const std::uint64_t resumed_non_finite = film.non_finite_samples;
+  const std::uint64_t resumed_medium_overflows = film.medium_overflows;
+  auto update_film_counts = [&] {
+    film.non_finite_samples = resumed_non_finite;
+    film.medium_overflows = resumed_medium_overflows;
+    for (const PathCounts& c : path_counts) {
+      film.non_finite_samples += c.non_finite;
+      film.medium_overflows += c.medium_overflows;
+    }
+  };
   // Progress state shared with the worker threads: atomics only (the film itself is read
   // by the reporter only between passes).
   std::atomic<std::uint64_t> samples_taken{0};
@@ -178,7 +195,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
   // index are traced all the same, so every camera ray is intersected in the same packet
   // whatever the thread count, sample range or checkpoint, and renders stay bit-identical
   // (a lane's hit can depend on the rest of its packet; see intersect_packet).
-  auto render_packet = [&](int bx, int by, std::uint64_t& rays) -> std::uint64_t {
+  auto render_packet = [&](int bx, int by, PathCounts& counts) -> std::uint64_t {
     constexpr int kLanes = SceneGeometry::kPacketSize;
     std::size_t pixel_of[kLanes];
     int px[kLanes], py[kLanes];
@@ -219,7 +236,9 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
         const std::size_t i = pixel_of[k];
         if (!inside[k] || film.done[i] > 0.0f || s < std::uint32_t(film.count[i])) continue;
         const PathSample ps = integrator.Li(origins[k], directions[k], hits[k], *samplers[k],
-                                            std::uint32_t(i), index, rays);
+                                            std::uint32_t(i), index, counts.rays);
+        counts.non_finite += ps.non_finite ? 1 : 0;
+        counts.medium_overflows += ps.medium_overflow ? 1 : 0;
         film.sum[i] += ps.L;
         film.albedo[i] += ps.albedo;
         film.normal[i] += ps.normal;
@@ -244,7 +263,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
       pbrkit::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1),
                            [&](const tbb::blocked_range2d<int>& r) {
                              set_ftz_daz();
-                             std::uint64_t& rays = ray_counts.local();
+                             PathCounts& counts = path_counts.local();
                              for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
                                for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
                                  if (should_stop()) return;
@@ -253,7 +272,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
                                  const int y1 = std::min(settings.height, (ty + 1) * kTileSize);
                                  for (int by = ty * kTileSize; by < y1; by += kPacketSide)
                                    for (int bx = tx * kTileSize; bx < x1; bx += kPacketSide)
-                                     tile_samples += render_packet(bx, by, rays);
+                                     tile_samples += render_packet(bx, by, counts);
                                  // Shared counters are touched once per tile, not per sample.
                                  samples_taken.fetch_add(tile_samples, std::memory_order_relaxed);
                                  work_done.fetch_add(double(tile_samples),
@@ -270,6 +289,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
     pass_statistics();
     if (!complete && settings.checkpoint && settings.checkpoint_interval > 0.0 &&
         elapsed() - last_checkpoint >= settings.checkpoint_interval) {
+      update_film_counts();
       settings.checkpoint(film);
       last_checkpoint = elapsed();
     }
@@ -284,7 +304,24 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
   report(true);
 
   result.stats.render_seconds = elapsed();
-  for (auto c : ray_counts) result.stats.rays += c;
+  for (const PathCounts& c : path_counts) {
+    result.stats.rays += c.rays;
+    result.stats.non_finite_samples += c.non_finite;
+    result.stats.medium_overflows += c.medium_overflows;
+  }
+  update_film_counts();
+  // Once per render: what the image could not represent, with the limit it reached.
+  if (result.stats.non_finite_samples > 0)
+    warn(
+        "path tracer: {} of {} samples had a radiance that was not finite (NaN or infinite) and "
+        "were set to 0: the image is darker there; this is a bug, please report it with the "
+        "scene",
+        result.stats.non_finite_samples, samples_taken.load());
+  if (result.stats.medium_overflows > 0)
+    warn(
+        "path tracer: {} paths entered more than {} nested volumes (the path tracer's "
+        "limit); inside the deeper ones they took the enclosing medium's ior and absorption",
+        result.stats.medium_overflows, kMaxNestedVolumes);
   result.stats.samples = samples_taken.load();
   result.stats.complete = complete;
   result.stats.stopped = !complete;

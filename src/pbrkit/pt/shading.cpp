@@ -138,11 +138,21 @@ ShadingInputs shade_inputs(const Scene& scene, const Material& m, const SurfaceH
   // the surface depends on the medium the ray is in: the integrator sets it (the material's
   // ior against vacuum here).
   s.params.transmission.eta = m.ior;
-  if (m.transmission) {
+  if (m.transmission)
     s.params.transmission.weight =
         m.transmission->factor * lookup(scene, m.transmission->texture, hit).r;
-    // Thin-walled unless a volume of non-zero thickness is behind the surface (volume
-    // README); the integrator also makes open meshes thin.
+  if (m.diffuse_transmission) {
+    const DiffuseTransmissionExtension& d = *m.diffuse_transmission;
+    s.params.diffuse_transmission.weight = d.factor * lookup(scene, d.texture, hit).a;
+    s.params.diffuse_transmission.color =
+        d.color_factor * glm::vec3(lookup(scene, d.color_texture, hit));
+  }
+  // Thin-walled unless a volume of non-zero thickness is behind the surface (volume
+  // README); the integrator also makes open meshes thin. The volume is entered by either
+  // kind of transmission: the volume README's "combined with an extension which allows
+  // light to transmit through the surface", which the diffuse_transmission README's
+  // translucent (volumetric) case is, its light then absorbed along its path inside.
+  if (m.transmission || m.diffuse_transmission) {
     float thickness = 0.0f;
     if (m.volume)
       thickness =
@@ -150,12 +160,6 @@ ShadingInputs shade_inputs(const Scene& scene, const Material& m, const SurfaceH
                                             ? lookup(scene, m.volume->thickness_texture, hit).g
                                             : 1.0f);
     s.params.transmission.thin_walled = !(thickness > 0.0f);
-  }
-  if (m.diffuse_transmission) {
-    const DiffuseTransmissionExtension& d = *m.diffuse_transmission;
-    s.params.diffuse_transmission.weight = d.factor * lookup(scene, d.texture, hit).a;
-    s.params.diffuse_transmission.color =
-        d.color_factor * glm::vec3(lookup(scene, d.color_texture, hit));
   }
   if (m.clearcoat) {
     const ClearcoatExtension& cc = *m.clearcoat;
