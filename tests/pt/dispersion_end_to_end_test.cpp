@@ -76,8 +76,8 @@ Scene slab_scene(float dispersion) {
 }
 
 // Per channel, the world x where the row-averaged profile falls through half way between
-// its left (emitter) and right (dark) levels, interpolated between pixel centres (a box
-// filter makes a step a one-pixel ramp through its position).
+// its left (emitter, pixels 48..63, x in [-1.25, -1)) and right (dark, the last 16 pixels)
+// levels, searched from pixel 64 on and interpolated between pixel centres.
 glm::dvec3 measured_edges(const Image& image) {
   glm::dvec3 edge(0.0);
   for (int c = 0; c < 3; ++c) {
@@ -86,12 +86,12 @@ glm::dvec3 measured_edges(const Image& image) {
       for (int x = 0; x < image.width; ++x) profile[std::size_t(x)] += image.rgb(x, y)[c];
     double left = 0.0, right = 0.0;
     for (int x = 0; x < 16; ++x) {
-      left += profile[std::size_t(x)] / 16.0;
+      left += profile[std::size_t(48 + x)] / 16.0;
       right += profile[std::size_t(image.width - 1 - x)] / 16.0;
     }
     const double half = 0.5 * (left + right);
     double px = -1.0;
-    for (int x = 0; x + 1 < image.width; ++x) {
+    for (int x = 64; x + 1 < image.width; ++x) {
       const double a = profile[std::size_t(x)], b = profile[std::size_t(x + 1)];
       if (a >= half && b < half) {
         px = double(x) + 0.5 + (a - half) / (a - b);
