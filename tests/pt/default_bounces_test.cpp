@@ -89,8 +89,8 @@ Deficit deficit(const Luminance& shallow, const Luminance& deep) {
 void expect_default_within_one_percent(const std::string& name) {
   const int bounces = PathTracerSettings{}.max_bounces;
   const Scene scene = builtin_scene(name);
-  const Deficit d = deficit(render_luminance(scene, 96, 16, bounces),
-                            render_luminance(scene, 96, 16, kConverged));
+  const Deficit d = deficit(render_luminance(scene, 64, 16, bounces),
+                            render_luminance(scene, 64, 16, kConverged));
   std::printf("%s: %d bounces %.4f +- %.4f below %d (worst 16x16 block %.4f)\n", name.c_str(),
               bounces, d.deficit, d.std_error, kConverged, d.worst_block);
   EXPECT_LT(d.deficit, 0.01) << name << ": +- " << d.std_error;
