@@ -7,6 +7,8 @@
 //
 // Usage: denoise_bench [--size N] [--ref-spp N] [--cache DIR] [--crops PNG] [--threads N]
 //                      [--only NAME] [--spp-count 1|2] [--skip-timing 1] [--debug 1]
+//                      [--noise-threshold X (adaptive sampling of the raw renders, as
+//                       `pbrkit render`'s default 0.02; default 0: off)]
 //                      [DenoiseOptions: --radius --variance-radius --error-radius
 //                       --selection-radius --prefilter-radius --patch-radius --feature-k
 //                       --feature-gradient --candidates k1[:r1],k2,... --outlier-k
@@ -142,14 +144,16 @@ struct Renderer {
   Environment env;
   RenderView view;
   int threads = 2;
+  /// Adaptive sampling of the raw renders (0: off); the references never use it.
+  float noise_threshold = 0.0f;
 
-  PathTracerResult render(std::uint32_t spp, std::uint32_t seed) const {
+  PathTracerResult render(std::uint32_t spp, std::uint32_t seed, bool adaptive = true) const {
     PathTracerSettings s;
     s.width = view.size.width;
     s.height = view.size.height;
     s.spp = spp;
     s.seed = seed;
-    s.noise_threshold = 0.0f;
+    s.noise_threshold = adaptive ? noise_threshold : 0.0f;
     s.threads = threads;
     return render_path(scene, &env, view.camera, s);
   }
@@ -175,6 +179,7 @@ void paste(Image& dst, const Image& src, int x0, int y0, int scale) {
 int main(int argc, char** argv) {
   int size = 128, threads = 2;
   bool skip_timing = false, debug = false;
+  float noise_threshold = 0.0f;
   DenoiseOptions options;
   int spp_count = 2;
   std::string only;
@@ -251,6 +256,8 @@ int main(int argc, char** argv) {
       debug = v == "1";
     else if (a == "--only")
       only = v;
+    else if (a == "--noise-threshold")
+      noise_threshold = std::stof(v);
     else if (a == "--skip-timing")
       skip_timing = v == "1";
     else {
@@ -269,7 +276,9 @@ int main(int argc, char** argv) {
       {"bunny / sunset", assets + "/models/bunny.glb", assets + "/hdri/sunset.exr"},
   };
   fs::create_directories(cache);
-  std::printf("%dx%d, references %u spp, %d threads\n\n", size, size, ref_spp, threads);
+  std::printf("%dx%d, references %u spp, %d threads, raw renders' noise threshold %g%s\n\n", size,
+              size, ref_spp, threads, double(noise_threshold),
+              noise_threshold > 0.0f ? " (adaptive sampling, min 16 spp)" : " (off)");
   std::printf(
       "| scene | spp | raw relMSE | denoised relMSE | ratio | raw at equal time (spp) | "
       "its relMSE | ratio | worst block mean, raw | denoised | worst object mean, raw | "
@@ -286,6 +295,7 @@ int main(int argc, char** argv) {
     r.env = load_environment_or_default(bs.env, 0.0f, 1.0f);
     r.view = select_view(r.scene, std::nullopt, size, size);
     r.threads = threads;
+    r.noise_threshold = noise_threshold;
     const std::vector<int> ids = object_ids(r.scene, r.view);
     std::string key = bs.name;
     for (char& c : key)
@@ -297,7 +307,7 @@ int main(int argc, char** argv) {
       reference = read_image(ref_path);
     } else {
       std::fprintf(stderr, "rendering the reference of %s (%u spp)...\n", bs.name.c_str(), ref_spp);
-      reference = r.render(ref_spp, 12345).film.color();
+      reference = r.render(ref_spp, 12345, false).film.color();
       write_exr(ref_path, reference, ExrPixelType::kFloat);
     }
     for (int k = 0; k < spp_count; ++k) {

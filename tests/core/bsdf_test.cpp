@@ -4,6 +4,7 @@
 // albedo <= 1, the white furnace of each combination, and closed forms written here.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -232,31 +233,34 @@ double albedo(const Bsdf& bsdf, glm::vec3 wo, int channel) {
       2e-5);
 }
 
-// White furnace: the directional albedo of a white material at several view angles.
-// Compensated combinations (the base layer's dielectric, metal, ior, specular) must stay
-// within [0.99, 1.01]; the uncompensated layers lose what MODEL.md states, which is
-// measured here and bounded (each bound a little below the loss printed at the time the
-// test was written, so a change that loses more energy fails). Anisotropy is compensated
-// through the isotropic tables at the geometric-mean alpha: measured 0.84 at normal
-// incidence (alpha 0.70 x 0.16) and 1.01 at grazing.
+// White furnace: the directional albedo of a white material at several view angles, every
+// channel. The quadrature is deterministic and accurate to its tolerance (2e-5), so the
+// bounds are the model's, not noise: compensated combinations (the base layer's
+// dielectric, metal, ior, specular) stay within 0.1% of 1 (MODEL.md, "Energy"; measured
+// 0.9991..1.0000); the uncompensated layers lose what MODEL.md states, and each lower bound
+// is the smallest albedo measured over the angles and channels less 0.005, so a change that
+// loses half a percent more energy anywhere fails; none may exceed 1 by more than 0.1%.
+// Anisotropy is compensated through the isotropic tables at the geometric-mean alpha:
+// measured 0.8386 at normal incidence (alpha 0.70 x 0.16) and 1.0098 at grazing, its upper
+// bound likewise 0.005 above.
 TEST(LayeredBsdf, WhiteFurnaceOfEachCombination) {
   struct Expect {
     const char* name;
     double lo, hi;
   };
   const Expect expect[] = {
-      {"dielectric", 0.99, 1.01},
-      {"metal", 0.99, 1.01},
-      {"half metal rough", 0.99, 1.01},
-      {"ior 2.0", 0.99, 1.01},
-      {"ior 1.0", 0.99, 1.01},
-      {"specular 0.3", 0.99, 1.01},
-      {"anisotropy 0.8 metal", 0.80, 1.02},
-      {"iridescence", 0.85, 1.01},
-      {"clearcoat", 0.90, 1.01},
-      {"clearcoat tilted normal", 0.90, 1.01},
-      {"sheen", 0.75, 1.01},
-      {"everything", 0.75, 1.01},
+      {"dielectric", 0.999, 1.001},               // measured 0.9995..1.0000
+      {"metal", 0.999, 1.001},                    // 0.9991..1.0000
+      {"half metal rough", 0.999, 1.001},         // 0.9995..0.9997
+      {"ior 2.0", 0.999, 1.001},                  // 0.9995..1.0000
+      {"ior 1.0", 0.999, 1.001},                  // 1.0000
+      {"specular 0.3", 0.999, 1.001},             // 0.9999..1.0000
+      {"anisotropy 0.8 metal", 0.833, 1.015},     // 0.8386..1.0098
+      {"iridescence", 0.947, 1.001},              // 0.9526..1.0006
+      {"clearcoat", 0.953, 1.001},                // 0.9584..0.9881
+      {"clearcoat tilted normal", 0.942, 1.001},  // 0.9478..0.9783
+      {"sheen", 0.864, 1.001},                    // 0.8691..0.9960
+      {"everything", 0.872, 1.001},               // 0.8778..0.9735
   };
   const std::vector<Combo> all = combos();
   ASSERT_EQ(all.size(), std::size(expect));
@@ -264,10 +268,13 @@ TEST(LayeredBsdf, WhiteFurnaceOfEachCombination) {
     ASSERT_EQ(all[i].name, expect[i].name);
     const Bsdf bsdf(all[i].p);
     std::string row;
+    double lowest = 2.0, highest = 0.0;
     for (double mu : {1.0, 0.7, 0.4, 0.15}) {
       const glm::vec3 wo(float(std::sqrt(1.0 - mu * mu)), 0.0f, float(mu));
       for (int ch = 0; ch < 3; ++ch) {
         const double a = albedo(bsdf, wo, ch);
+        lowest = std::min(lowest, a);
+        highest = std::max(highest, a);
         EXPECT_GE(a, expect[i].lo) << all[i].name << " mu " << mu << " channel " << ch;
         EXPECT_LE(a, expect[i].hi) << all[i].name << " mu " << mu << " channel " << ch;
         if (ch == 1) {
@@ -277,7 +284,8 @@ TEST(LayeredBsdf, WhiteFurnaceOfEachCombination) {
         }
       }
     }
-    std::printf("furnace %-24s mu 1, 0.7, 0.4, 0.15:%s\n", all[i].name.c_str(), row.c_str());
+    std::printf("furnace %-24s mu 1, 0.7, 0.4, 0.15:%s (all channels: %.4f..%.4f)\n",
+                all[i].name.c_str(), row.c_str(), lowest, highest);
   }
 }
 

@@ -48,6 +48,14 @@ std::vector<std::vector<double>> albedo_table(const char* title, glm::vec3 base,
   return table;
 }
 
+// The compensated albedo's lower bound at mu: 1 within 0.1% (MODEL.md, "Energy") from
+// mu = 0.2 up; towards grazing the tables' interpolation leaves more (measured 0.9990 at
+// mu = 0.1, 0.9926 at mu = 0.05 for the reference metal at alpha 0.05), bounded just below
+// that. The quadrature is deterministic, so these are the model's bounds, not noise's.
+double compensated_lower_bound(float mu) {
+  return mu < 0.075f ? 0.992 : mu < 0.15f ? 0.9985 : 0.999;
+}
+
 TEST(WhiteFurnace, CompensatedWhiteMetalIsOne) {
   for (BrdfModel model : {BrdfModel::kReference, BrdfModel::kClassic}) {
     const std::string title =
@@ -55,8 +63,9 @@ TEST(WhiteFurnace, CompensatedWhiteMetalIsOne) {
     const auto table = albedo_table(title.c_str(), glm::vec3(1.0f), 1.0f, {model, true});
     for (std::size_t a = 0; a < table.size(); ++a)
       for (std::size_t m = 0; m < table[a].size(); ++m) {
-        EXPECT_GE(table[a][m], 0.99) << "alpha " << kAlphas[a] << " mu " << kMus[m];
-        EXPECT_LE(table[a][m], 1.01) << "alpha " << kAlphas[a] << " mu " << kMus[m];
+        EXPECT_GE(table[a][m], compensated_lower_bound(kMus[m]))
+            << "alpha " << kAlphas[a] << " mu " << kMus[m];
+        EXPECT_LE(table[a][m], 1.001) << "alpha " << kAlphas[a] << " mu " << kMus[m];
       }
   }
 }
@@ -68,8 +77,9 @@ TEST(WhiteFurnace, CompensatedWhiteDielectricIsOne) {
     const auto table = albedo_table(title.c_str(), glm::vec3(1.0f), 0.0f, {model, true});
     for (std::size_t a = 0; a < table.size(); ++a)
       for (std::size_t m = 0; m < table[a].size(); ++m) {
-        EXPECT_GE(table[a][m], 0.99) << "alpha " << kAlphas[a] << " mu " << kMus[m];
-        EXPECT_LE(table[a][m], 1.01) << "alpha " << kAlphas[a] << " mu " << kMus[m];
+        EXPECT_GE(table[a][m], compensated_lower_bound(kMus[m]))
+            << "alpha " << kAlphas[a] << " mu " << kMus[m];
+        EXPECT_LE(table[a][m], 1.001) << "alpha " << kAlphas[a] << " mu " << kMus[m];
       }
   }
 }

@@ -60,15 +60,18 @@ FurnaceResult render_furnace(bool multiscatter, float metallic) {
   return r;
 }
 
+// The GL render is deterministic: the tolerances are the tables' interpolation (the core
+// model is within 0.1% of 1 compensated, MODEL.md) and the LUT's resolution, measured
+// 1.0000 compensated and within 0.001 of the split sum's prediction uncompensated.
 TEST(GlFurnace, CompensatedDielectricDisappears) {
   const FurnaceResult r = render_furnace(true, 0.0f);
   ASSERT_GT(r.pixels, 1000);
-  EXPECT_NEAR(r.mean, 1.0, 0.02);
+  EXPECT_NEAR(r.mean, 1.0, 0.002);
 }
 
 TEST(GlFurnace, CompensatedMetalDisappears) {
   const FurnaceResult r = render_furnace(true, 1.0f);
-  EXPECT_NEAR(r.mean, 1.0, 0.02);
+  EXPECT_NEAR(r.mean, 1.0, 0.002);
 }
 
 TEST(GlFurnace, UncompensatedMetalLosesTheKnownEnergy) {
@@ -77,12 +80,12 @@ TEST(GlFurnace, UncompensatedMetalLosesTheKnownEnergy) {
   // predicts.
   const FurnaceResult r = render_furnace(false, 1.0f);
   EXPECT_LT(r.mean, 0.9);
-  EXPECT_NEAR(r.mean, r.expected_loss, 0.01);
+  EXPECT_NEAR(r.mean, r.expected_loss, 0.003);
 }
 
 TEST(GlFurnace, UncompensatedDielectricMatchesTheSplitSum) {
   const FurnaceResult r = render_furnace(false, 0.0f);
-  EXPECT_NEAR(r.mean, r.expected_loss, 0.01);
+  EXPECT_NEAR(r.mean, r.expected_loss, 0.003);
   EXPECT_GT(std::abs(r.mean - 1.0), 0.02);  // and it is not energy-conserving
 }
 

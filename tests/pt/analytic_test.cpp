@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "pbrkit/core/brdf.h"
@@ -179,7 +180,9 @@ TEST(PathTracerAnalytic, VertexNormalsAgainstWindingShadeLikeConsistentOnes) {
 // BRDF's directional albedo a(mu): for metals the core's tabulated F0 A + B (+ the
 // multiple-scattering term), otherwise a quadrature of Brdf::eval. With Kulla-Conty
 // compensation a white metal and a white dielectric conserve energy, so those pixels are 1
-// within 0.01 at every mu; without it the known single-scattering loss shows.
+// at every mu, to 4 standard errors of their mean plus the tessellation allowance (0.2%,
+// as for the albedo comparison below; the BSDF itself is within 0.1%, tests/core/
+// bsdf_test.cpp); without it the known single-scattering loss shows.
 //
 // Note: at metallic 0.5 the model of MODEL.md (kd = (1 - F)(1 - metallic) with F0 mixed
 // towards the base colour) is not energy conserving even for a white base colour (about
@@ -215,7 +218,11 @@ TEST(PathTracerAnalytic, WhiteFurnaceGrid) {
               }
             const ResidualStats st = residual_stats(r);
             ASSERT_GT(st.n, 10u);
-            EXPECT_LT(std::fabs(st.mean), 0.01 + 4.0 * st.std_error)
+            std::printf(
+                "white furnace, metallic %.0f roughness %.1f, mu in [%.2f, %.2f]: %.5f +- %.5f\n",
+                double(metallic), double(roughness), double(lo), double(hi), 1.0 + st.mean,
+                st.std_error);
+            EXPECT_LT(std::fabs(st.mean), 2e-3 + 4.0 * st.std_error)
                 << "mu in [" << lo << "," << hi << "]: mean " << 1.0 + st.mean;
           }
         }
