@@ -3,6 +3,7 @@
 // every component type the README's table allows; the node's mesh is not drawn besides
 // its instances; bad attributes are errors naming the file and the JSON path; large files
 // (10^6 instances, 176,400 nodes) load in seconds.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -247,9 +248,19 @@ TEST(GpuInstancing, ManyNodesSharingAMeshLoadInSeconds) {
   b.gltf["scenes"] = {{{"nodes", std::move(roots)}}};
   b.gltf["scene"] = 0;
   const auto path = b.write("many_nodes.glb");
+  // Progress is reported through the walk, rising, up to 1.
+  std::vector<double> reports;
+  LoadOptions options;
+  options.progress = [&](double fraction, const std::string&) {
+    reports.push_back(fraction);
+    return true;
+  };
   const auto start = std::chrono::steady_clock::now();
-  const Scene s = load_scene(path.string());
+  const Scene s = load_scene(path.string(), options);
   const double elapsed = seconds_since(start);
+  ASSERT_GT(reports.size(), 40u);  // every 4096 nodes
+  EXPECT_TRUE(std::is_sorted(reports.begin(), reports.end()));
+  EXPECT_EQ(reports.back(), 1.0);
   std::printf("%d nodes: loaded in %.2f s\n", side * side, elapsed);
   ASSERT_EQ(s.instances.size(), std::size_t(side * side));
   EXPECT_EQ(s.meshes.size(), 1u);

@@ -42,6 +42,10 @@ class Loader {
   // validation.cpp: messages name the file and the JSON path of the bad element.
   [[noreturn]] void error(const std::string& where, const std::string& what) const;
   void warning(const std::string& message);
+  // LoadOptions::progress, when given.
+  void report_progress(double fraction, const std::string& detail) const {
+    if (options_.progress) options_.progress(fraction, detail);
+  }
 
   // file_access.cpp: the file's bytes, the GLB container, tinygltf behind our callbacks.
   void read_container();

@@ -118,9 +118,16 @@ void Loader::build_nodes() {
   std::vector<std::pair<int, glm::mat4>> stack;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
   std::vector<int> morphed;  // a node's own meshes when its weights differ from the mesh's
+  // Progress: the JSON and the model are parsed by now (half the time of a file of many
+  // small nodes); the other half is this walk.
+  std::size_t visited = 0;
+  report_progress(0.5, "nodes");
   while (!stack.empty()) {
     const auto [node, parent_world] = stack.back();
     stack.pop_back();
+    if (++visited % 4096 == 0)
+      report_progress(0.5 + 0.5 * double(visited) / double(count),
+                      fmt::format("{} of {} nodes", visited, count));
     const auto& n = model_.nodes[std::size_t(node)];
     const glm::mat4 world = parent_world * local_transform(node);
     if (!finite_matrix(world))
