@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "commands.h"
 #include "gl_options.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/gl/context.h"
@@ -91,7 +92,7 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     settings.lights = !g->no_lights;
     const ToneMapper tone_mapper = parse_tone_mapper(o.tonemap);
 
-    const Scene scene = load_scene(o.scene);
+    const Scene scene = load_scene_showing_progress(o.scene);
     if (scene.lights.size() > 16)
       warn("{}: the OpenGL renderer uses the first 16 of {} lights", scene.source,
            scene.lights.size());

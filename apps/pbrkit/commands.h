@@ -1,12 +1,15 @@
 #pragma once
 // The pbrkit CLI: one file per subcommand (cmd_<name>.cpp), each a thin shell that parses
 // options and calls the library. Each file defines one register_<name>_command().
+#include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "pbrkit/scene/load.h"
+#include "pbrkit/util/progress.h"
 
 namespace pbrkit::cli {
 
@@ -17,6 +20,23 @@ struct ExitRequest {
 };
 
 /// The built-in scenes' names, comma-separated, for --help texts.
+/// load_scene with a progress bar on stderr once the load has taken a second (a file of
+/// 10^5 nodes takes a few).
+inline Scene load_scene_showing_progress(const std::string& scene) {
+  const auto start = std::chrono::steady_clock::now();
+  std::unique_ptr<ProgressBar> bar;
+  LoadOptions options;
+  options.progress = [&](double fraction, const std::string& detail) {
+    if (!bar && std::chrono::steady_clock::now() - start > std::chrono::seconds(1))
+      bar = std::make_unique<ProgressBar>("load");
+    if (bar) bar->update(fraction, detail);
+    return true;
+  };
+  Scene loaded = load_scene(scene, options);
+  if (bar) bar->finish();
+  return loaded;
+}
+
 inline std::string builtin_scene_list() {
   std::string s;
   for (const std::string& name : builtin_scene_names()) s += (s.empty() ? "" : ", ") + name;

@@ -398,6 +398,51 @@ TEST(BuiltinScenes, TransmissionScenesRoundTripThroughGlb) {
                                             "KHR_materials_transmission", "KHR_materials_volume"}));
 }
 
+TEST(BuiltinScenes, InstancesIsAFieldOfOneRockMadeOnce) {
+  const Scene s = load_scene("instances");
+  EXPECT_EQ(s.source, "builtin:instances");
+  ASSERT_EQ(s.meshes.size(), 3u);  // the ground, the rock, the glowing rock
+  ASSERT_EQ(s.instances.size(), 1u + 100u * 100u);
+  int rocks = 0, glowing = 0, mirrored = 0, squashed = 0;
+  for (const Instance& inst : s.instances) {
+    const Mesh& mesh = s.meshes[std::size_t(inst.mesh)];
+    const Material& m = s.material_of(mesh);
+    if (mesh.name == "ground") continue;
+    (m.emissive_factor != glm::vec3(0.0f) ? glowing : rocks)++;
+    const glm::mat3 a(inst.transform);
+    mirrored += glm::determinant(a) < 0.0f;
+    const float sx = glm::length(a[0]), sy = glm::length(a[1]);
+    squashed += std::fabs(sx / sy - 1.0f) > 0.5f;
+    // Every rock rests on the ground: its lowest vertex at y = 0.
+    float lowest = std::numeric_limits<float>::max();
+    for (const glm::vec3& p : mesh.positions)
+      lowest = std::min(lowest, (inst.transform * glm::vec4(p, 1.0f)).y);
+    EXPECT_NEAR(lowest, 0.0f, 1e-5f);
+  }
+  EXPECT_EQ(rocks, 9999);
+  EXPECT_EQ(glowing, 1);
+  EXPECT_GE(mirrored, 40);  // every 211th
+  EXPECT_GE(squashed, 50);  // every 173rd
+  // One rock mesh: 120 unique triangles for 1.2 M instanced ones; closed (the seam and
+  // poles of its sphere move together).
+  const Mesh& rock = s.meshes[1];
+  EXPECT_EQ(rock.triangle_count(), 120u);
+  EXPECT_TRUE(count_edges(rock).closed());
+  EXPECT_EQ(s.triangle_count(), 2u + 10000u * 120u);
+  // The camera sees the field's centre.
+  const glm::vec2 c = project(s.cameras.at(0), glm::vec3(0.0f));
+  EXPECT_LT(std::fabs(c.x), 0.5f);
+  EXPECT_LT(std::fabs(c.y), 0.9f);
+
+  // Written, the rock is one node with EXT_mesh_gpu_instancing.
+  const auto path = test::scratch_dir() / "instances.glb";
+  write_glb(s, path);
+  const Scene loaded = load_scene(path.string());
+  EXPECT_EQ(loaded.node_count, 4u);  // the ground, the rocks, the glowing rock, the camera
+  EXPECT_EQ(loaded.extensions_required, std::vector<std::string>{"EXT_mesh_gpu_instancing"});
+  EXPECT_EQ(loaded.instances.size(), s.instances.size());
+}
+
 TEST(BuiltinScenes, UnknownNameListsTheKnownOnes) {
   try {
     builtin_scene("teapot");

@@ -452,8 +452,8 @@ TEST(TransmissionExtensions, AVolumeOnAnOpenMeshIsAWarningAndRenderedThinWalled)
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_EQ(s.warnings[0],
             "meshes[0].primitives[2]: the material (materials[0]) has KHR_materials_volume, but "
-            "the primitive is not closed (4 edges not shared by exactly two triangles); it is "
-            "rendered thin-walled");
+            "the primitive is not closed, alone or with the mesh's other primitives of that "
+            "material (4 edges not shared by exactly two triangles); it is rendered thin-walled");
   ASSERT_EQ(log.lines.size(), 1u);
   EXPECT_EQ(log.lines[0].rfind(path.string() + ": meshes[0].primitives[2]", 0), 0u) << log.lines[0];
   int closed = 0, open = 0;

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "pbrkit/scene/scene.h"
+#include "pbrkit/util/progress.h"
 
 namespace pbrkit {
 
@@ -18,6 +19,9 @@ struct SceneLimits {
 
 struct LoadOptions {
   SceneLimits limits;
+  /// Called as a glTF file's nodes and instances are set up (a file of 10^5 nodes or 10^6
+  /// instances takes seconds); its return value is ignored. None: no reports.
+  ProgressCallback progress;
 };
 
 /// Loads a .gltf or .glb file, or a built-in scene when `path_or_name` is one of
@@ -35,7 +39,8 @@ std::vector<std::string> supported_gltf_extensions();
 /// "ior" and "unlit" (3 rows of 6 spheres: a control sphere without the extension, then a
 /// sweep of one parameter; builtin_scenes.cpp says which), and the transmission scenes
 /// "glass" (smooth, rough, tinted, thin-walled and dispersive glass before a checker
-/// backdrop) and "liquid" (a tumbler with a liquid beside an empty one).
+/// backdrop) and "liquid" (a tumbler with a liquid beside an empty one), and "instances" (a
+/// 100 x 100 field of one rock mesh, some mirrored, some squashed, one glowing).
 std::vector<std::string> builtin_scene_names();
 bool is_builtin_scene(const std::string& name);
 /// Generates a built-in scene (Error for an unknown name, listing the known ones).

@@ -1,8 +1,12 @@
 #include "pbrkit/gl/gpu_scene.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <numeric>
 #include <vector>
+
+#include <glm/gtc/matrix_inverse.hpp>
 
 namespace pbrkit::gl {
 
@@ -171,6 +175,45 @@ void GpuScene::upload(const Scene& scene) {
   materials = scene.materials;
   instances = scene.instances;
   lights = scene.lights;
+  upload_instances();
+}
+
+void GpuScene::upload_instances() {
+  // Slots ordered by (mesh, mirrored), instances of one key in scene order: each key's
+  // instances are one run. A mirrored instance (negative determinant) flips its triangles'
+  // winding, so it cannot share a draw (one glFrontFace) with unmirrored ones.
+  const auto mirrored = [&](std::size_t i) {
+    return glm::determinant(glm::mat3(instances[i].transform)) < 0.0f;
+  };
+  const auto valid = [&](std::size_t i) {
+    return instances[i].mesh >= 0 && std::size_t(instances[i].mesh) < meshes.size();
+  };
+  at_slot.resize(instances.size());
+  std::iota(at_slot.begin(), at_slot.end(), std::size_t(0));
+  std::stable_sort(at_slot.begin(), at_slot.end(), [&](std::size_t a, std::size_t b) {
+    const int ma = valid(a) ? instances[a].mesh : -1, mb = valid(b) ? instances[b].mesh : -1;
+    return ma != mb ? ma < mb : mirrored(a) < mirrored(b);
+  });
+  slot_of.assign(instances.size(), 0);
+  std::vector<glm::mat4> matrices(2 * std::max<std::size_t>(instances.size(), 1), glm::mat4(1.0f));
+  runs.clear();
+  for (std::size_t slot = 0; slot < at_slot.size(); ++slot) {
+    const std::size_t i = at_slot[slot];
+    slot_of[i] = slot;
+    matrices[2 * slot] = instances[i].transform;
+    matrices[2 * slot + 1] = glm::mat4(glm::inverseTranspose(glm::mat3(instances[i].transform)));
+    if (!valid(i)) continue;
+    const bool joins = !runs.empty() && slot > 0 && valid(at_slot[slot - 1]) &&
+                       instances[at_slot[slot - 1]].mesh == instances[i].mesh &&
+                       mirrored(at_slot[slot - 1]) == mirrored(i);
+    if (joins)
+      ++runs.back().count;
+    else
+      runs.push_back({slot, 1});
+  }
+  glCreateBuffers(1, &instance_buffer);
+  glNamedBufferStorage(instance_buffer, GLsizeiptr(matrices.size() * sizeof(glm::mat4)),
+                       matrices.data(), 0);
 }
 
 void GpuScene::release() {
@@ -179,6 +222,8 @@ void GpuScene::release() {
     glDeleteBuffers(GLsizei(m.buffers.size()), m.buffers.data());
   }
   meshes.clear();
+  if (instance_buffer) glDeleteBuffers(1, &instance_buffer);
+  instance_buffer = 0;
   if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
   textures.clear();
 }

@@ -30,6 +30,16 @@ struct GpuMesh {
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  ///< object-space bounding box
 };
 
+/// Instances that one glDrawElementsInstanced can draw: one mesh, one winding (mirrored
+/// or not), their transforms at consecutive slots of GpuScene::instance_buffer.
+struct InstanceRun {
+  std::size_t first_slot = 0;
+  std::size_t count = 0;
+};
+
+/// The binding point of GpuScene::instance_buffer (pbr_vertex.glsl's InstanceTransforms).
+inline constexpr GLuint kInstanceBufferBinding = 3;
+
 /// A Scene's meshes and textures on the GPU, with the materials, instances and lights
 /// that index them. Needs the current GL context for its whole life.
 struct GpuScene {
@@ -38,6 +48,13 @@ struct GpuScene {
   std::vector<Material> materials;
   std::vector<Instance> instances;
   std::vector<Light> lights;
+  /// Each instance's model matrix and normal matrix (the inverse transpose of its 3x3, in a
+  /// mat4's columns), at its slot: instances of a run sit side by side, so the vertex
+  /// shader finds an instance's matrices at uInstanceBase + gl_InstanceID.
+  GLuint instance_buffer = 0;
+  std::vector<std::size_t> slot_of;  ///< instance index -> slot
+  std::vector<std::size_t> at_slot;  ///< slot -> instance index
+  std::vector<InstanceRun> runs;     ///< the instances with a valid mesh, in slot order
 
   GpuScene() = default;
   ~GpuScene() { release(); }
@@ -47,6 +64,8 @@ struct GpuScene {
   /// Uploads `scene`, replacing what was there.
   void upload(const Scene& scene);
   void release();
+  /// The instance buffer, slots and runs of `instances` (upload() calls it).
+  void upload_instances();
   /// The mesh's material, or the glTF default material when it has none.
   const Material& material_of(const GpuMesh& mesh) const;
 };

@@ -8,7 +8,6 @@
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
-#include <glm/gtc/matrix_inverse.hpp>
 
 #include "pbrkit/core/math.h"
 #include "pbrkit/gl/context.h"
@@ -300,8 +299,11 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   std::vector<std::pair<float, std::size_t>> blended;
-  // `cull`: the faces to cull (GL_BACK, GL_FRONT), or 0 for the material's choice.
-  auto draw = [&](std::size_t index, GLenum cull = 0) {
+  // Instance `index` and the `count` - 1 after it in slot order (one run: the same mesh and
+  // winding), in one glDrawElementsInstanced. `cull`: the faces to cull (GL_BACK,
+  // GL_FRONT), or 0 for the material's choice.
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBufferBinding, s.scene.instance_buffer);
+  auto draw = [&](std::size_t index, GLenum cull = 0, std::size_t count = 1) {
     const Instance& inst = s.scene.instances[index];
     const GpuMesh& mesh = s.scene.meshes[std::size_t(inst.mesh)];
     const Material& m = s.scene.material_of(mesh);
@@ -324,8 +326,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     const Program& p = s.programs.surface(features);
     prepare(p);
     p.use();
-    p.set("uModel", inst.transform);
-    p.set("uNormalMatrix", glm::inverseTranspose(glm::mat3(inst.transform)));
+    p.set("uInstanceBase", GLint(s.scene.slot_of[index]));
     p.set("uBaseColorFactor", m.base_color_factor);
     p.set("uMetallicFactor", m.metallic_factor);
     p.set("uRoughnessFactor", m.roughness_factor);
@@ -357,26 +358,34 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     }
     glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
     glBindVertexArray(mesh.vao);
-    glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+    glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr,
+                            GLsizei(count));
   };
   // Surfaces with KHR_materials_transmission read the opaque frame: they wait for it.
   std::vector<TransmissiveDraw> transmissive;
   bool frame_read = false;  // a blended surface reads the frame too
-  for (std::size_t i = 0; i < s.scene.instances.size(); ++i) {
-    const Instance& inst = s.scene.instances[i];
-    if (inst.mesh < 0 || std::size_t(inst.mesh) >= s.scene.meshes.size()) continue;
-    const GpuMesh& mesh = s.scene.meshes[std::size_t(inst.mesh)];
+  // Opaque and masked instances a run at a time (GpuScene::runs: one mesh, one winding),
+  // the others one by one, in their passes.
+  for (const InstanceRun& run : s.scene.runs) {
+    const GpuMesh& mesh =
+        s.scene.meshes[std::size_t(s.scene.instances[s.scene.at_slot[run.first_slot]].mesh)];
     const Material& m = s.scene.material_of(mesh);
     const bool transmits = m.transmission.has_value() && m.transmission->factor > 0.0f;
-    const glm::vec4 c = view * inst.transform * glm::vec4(mesh.center, 1.0f);
-    if (mesh.alpha_mode == 2) {
-      blended.emplace_back(c.z, i);  // view space looks down -Z: most negative is farthest
-      frame_read = frame_read || transmits;
-    } else if (transmits) {
-      transmissive.push_back(
-          transmissive_draw(i, inst.transform, mesh.bounds_min, mesh.bounds_max, view, projection));
-    } else {
-      draw(i);
+    if (mesh.alpha_mode != 2 && !transmits) {
+      draw(s.scene.at_slot[run.first_slot], 0, run.count);
+      continue;
+    }
+    for (std::size_t slot = run.first_slot; slot < run.first_slot + run.count; ++slot) {
+      const std::size_t i = s.scene.at_slot[slot];
+      const Instance& inst = s.scene.instances[i];
+      const glm::vec4 c = view * inst.transform * glm::vec4(mesh.center, 1.0f);
+      if (mesh.alpha_mode == 2) {
+        blended.emplace_back(c.z, i);  // view space looks down -Z: most negative is farthest
+        frame_read = frame_read || transmits;
+      } else {
+        transmissive.push_back(transmissive_draw(i, inst.transform, mesh.bounds_min,
+                                                 mesh.bounds_max, view, projection));
+      }
     }
   }
   glDisable(GL_CULL_FACE);

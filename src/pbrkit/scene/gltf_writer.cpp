@@ -7,6 +7,9 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
+#include <vector>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include <stb_image_write.h>
 #include <tiny_gltf.h>
@@ -84,6 +87,7 @@ class Writer {
   void add_material(const Material& m);
   tinygltf::ExtensionMap material_extensions(const Material& m);
   void add_mesh(const Mesh& m);
+  int add_instanced_node(int mesh, const std::vector<const Instance*>& instances);
 
   const Scene& scene_;
   tinygltf::Model model_;
@@ -363,6 +367,75 @@ void Writer::add_mesh(const Mesh& m) {
   model_.meshes.push_back(g);
 }
 
+// An affine transform as glTF's translation, rotation (x, y, z, w) and scale, when it is one:
+// its 3x3 part's columns orthogonal (no shear), and nothing but a 1 in the last row. A
+// mirror (negative determinant) becomes a negative x scale. The transform rebuilt from the
+// three must match within float rounding, else there is none (the instance is written as
+// a node with a matrix instead).
+struct Trs {
+  glm::vec3 translation;
+  glm::quat rotation;
+  glm::vec3 scale;
+};
+std::optional<Trs> decompose(const glm::mat4& m) {
+  if (m[0][3] != 0.0f || m[1][3] != 0.0f || m[2][3] != 0.0f || m[3][3] != 1.0f) return {};
+  Trs trs;
+  trs.translation = glm::vec3(m[3]);
+  glm::mat3 r(m);
+  for (int c = 0; c < 3; ++c) {
+    trs.scale[c] = glm::length(r[c]);
+    if (!(trs.scale[c] > 0.0f) || !std::isfinite(trs.scale[c])) return {};
+    r[c] /= trs.scale[c];
+  }
+  if (glm::determinant(r) < 0.0f) {
+    trs.scale.x = -trs.scale.x;
+    r[0] = -r[0];
+  }
+  trs.rotation = glm::normalize(glm::quat_cast(r));
+  const glm::mat3 rebuilt = glm::mat3_cast(trs.rotation) * glm::mat3(glm::vec3(trs.scale.x, 0, 0),
+                                                                     glm::vec3(0, trs.scale.y, 0),
+                                                                     glm::vec3(0, 0, trs.scale.z));
+  const float size = std::max({trs.scale.x, trs.scale.y, trs.scale.z, -trs.scale.x});
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k)
+      if (std::fabs(rebuilt[c][k] - m[c][k]) > 1e-5f * size) return {};
+  return trs;
+}
+
+// EXT_mesh_gpu_instancing: one node drawing `mesh` at each instance's transform, as
+// TRANSLATION, ROTATION and SCALE accessors of FLOAT (the README's table); the node's own
+// transform is the identity, so an instance's world transform is its T * R * S.
+int Writer::add_instanced_node(int mesh, const std::vector<const Instance*>& instances) {
+  std::vector<glm::vec3> t, s;
+  std::vector<glm::vec4> r;
+  for (const Instance* inst : instances) {
+    const Trs trs = *decompose(inst->transform);
+    t.push_back(trs.translation);
+    r.push_back(glm::vec4(trs.rotation.x, trs.rotation.y, trs.rotation.z, trs.rotation.w));
+    s.push_back(trs.scale);
+  }
+  auto accessor = [&](const auto& values, int type) {
+    tinygltf::Accessor a;
+    a.bufferView = add_view(values.data(), values.size() * sizeof(values[0]), 0);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    a.type = type;
+    a.count = values.size();
+    model_.accessors.push_back(a);
+    return tinygltf::Value(int(model_.accessors.size()) - 1);
+  };
+  tinygltf::Value::Object attributes;
+  attributes["TRANSLATION"] = accessor(t, TINYGLTF_TYPE_VEC3);
+  attributes["ROTATION"] = accessor(r, TINYGLTF_TYPE_VEC4);
+  attributes["SCALE"] = accessor(s, TINYGLTF_TYPE_VEC3);
+  tinygltf::Value::Object extension;
+  extension["attributes"] = tinygltf::Value(attributes);
+  tinygltf::Node n;
+  n.mesh = mesh;
+  n.extensions["EXT_mesh_gpu_instancing"] = tinygltf::Value(extension);
+  model_.nodes.push_back(n);
+  return int(model_.nodes.size()) - 1;
+}
+
 // node.matrix, column-major; empty (left out) for the identity, which is its default.
 std::vector<double> matrix_values(const glm::mat4& m) {
   std::vector<double> v;
@@ -383,7 +456,32 @@ tinygltf::Model Writer::build() {
     add_mesh(m);
   }
   tinygltf::Scene gscene;
-  for (const Instance& inst : scene_.instances) {
+  // A mesh drawn more than once (each Mesh has one material, so its instances share it) is
+  // written as one node with EXT_mesh_gpu_instancing, in the order of its first instance;
+  // instances whose transform is not a translation, rotation and scale stay nodes of their
+  // own with a matrix.
+  std::vector<std::vector<const Instance*>> by_mesh(scene_.meshes.size());
+  std::vector<char> has_trs(scene_.instances.size(), 0);
+  for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
+    const Instance& inst = scene_.instances[i];
+    if (inst.mesh < 0 || std::size_t(inst.mesh) >= scene_.meshes.size())
+      fail("write_glb: an instance has an invalid mesh {}", inst.mesh);
+    has_trs[i] = decompose(inst.transform).has_value();
+    if (has_trs[i]) by_mesh[std::size_t(inst.mesh)].push_back(&inst);
+  }
+  std::vector<char> written(scene_.meshes.size(), 0);
+  bool instanced = false;
+  for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
+    const Instance& inst = scene_.instances[i];
+    const auto mesh = std::size_t(inst.mesh);
+    if (has_trs[i] && by_mesh[mesh].size() > 1) {
+      if (!written[mesh]) {
+        gscene.nodes.push_back(add_instanced_node(inst.mesh, by_mesh[mesh]));
+        written[mesh] = 1;
+        instanced = true;
+      }
+      continue;
+    }
     tinygltf::Node n;
     n.mesh = inst.mesh;
     n.matrix = matrix_values(inst.transform);
@@ -449,6 +547,12 @@ tinygltf::Model Writer::build() {
   if (model_.buffers[0].data.empty()) model_.buffers.clear();
   auto uses = [&](const char* ext) { model_.extensionsUsed.push_back(ext); };
   if (!scene_.lights.empty()) uses("KHR_lights_punctual");
+  if (instanced) {
+    // The README: "files that use the extension should specify it in extensionsRequired"
+    // (it has no fallback for viewers without it).
+    uses("EXT_mesh_gpu_instancing");
+    model_.extensionsRequired.push_back("EXT_mesh_gpu_instancing");
+  }
   if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
                   [](const Material& m) { return gltf_emission(m).strength != 1.0f; }))
     uses("KHR_materials_emissive_strength");

@@ -6,6 +6,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/gltf/cameras.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/draco.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/file_access.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/instancing.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/lights.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/loader.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/material_extensions.cpp

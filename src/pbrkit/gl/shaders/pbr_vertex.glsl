@@ -10,8 +10,11 @@ layout(location = 4) in vec2 aTexcoord1;
 #endif
 layout(location = 5) in vec4 aColor;  // COLOR_0 (HAS_COLOR_0)
 
-uniform mat4 uModel;
-uniform mat3 uNormalMatrix;  // inverse transpose of the model's upper 3x3
+// Every instance's model matrix and normal matrix (the inverse transpose of the model's
+// upper 3x3, in a mat4's columns), two per slot (gpu_scene.h, GpuScene::instance_buffer);
+// a draw of n instances (glDrawElementsInstanced) reads slots uInstanceBase ... + n - 1.
+layout(std430, binding = 3) readonly buffer InstanceTransforms { mat4 uInstanceMatrices[]; };
+uniform int uInstanceBase;
 uniform mat4 uViewProjection;
 
 out vec3 vPosition;
@@ -24,10 +27,13 @@ out vec4 vColor;
 #endif
 
 void main() {
-  vec4 world = uModel * vec4(aPosition, 1.0);
+  int slot = uInstanceBase + gl_InstanceID;
+  mat4 model = uInstanceMatrices[2 * slot];
+  mat3 normal_matrix = mat3(uInstanceMatrices[2 * slot + 1]);
+  vec4 world = model * vec4(aPosition, 1.0);
   vPosition = world.xyz;
-  vNormal = uNormalMatrix * aNormal;
-  vTangent = vec4(mat3(uModel) * aTangent.xyz, aTangent.w);
+  vNormal = normal_matrix * aNormal;
+  vTangent = vec4(mat3(model) * aTangent.xyz, aTangent.w);
   vTexcoord0 = aTexcoord0;
   vTexcoord1 = aTexcoord1;
 #if HAS_COLOR_0

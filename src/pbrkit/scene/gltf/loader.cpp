@@ -48,8 +48,10 @@ Scene Loader::load() {
   // The scene: materials (with their textures) first, since meshes generate tangents
   // for normal-mapped materials; then the nodes, which build meshes, cameras and lights.
   build_materials();  // materials.cpp, textures.cpp
-  build_nodes();      // nodes.cpp, meshes.cpp, accessors.cpp, cameras.cpp, lights.cpp
+  build_nodes();  // nodes.cpp, instancing.cpp, meshes.cpp, accessors.cpp, cameras.cpp, lights.cpp
   scene_.node_count = model_.nodes.size();
+  report_progress(
+      1.0, fmt::format("{} nodes, {} instances", model_.nodes.size(), scene_.instances.size()));
   return std::move(scene_);
 }
 

@@ -42,6 +42,10 @@ class Loader {
   // validation.cpp: messages name the file and the JSON path of the bad element.
   [[noreturn]] void error(const std::string& where, const std::string& what) const;
   void warning(const std::string& message);
+  // LoadOptions::progress, when given.
+  void report_progress(double fraction, const std::string& detail) const {
+    if (options_.progress) options_.progress(fraction, detail);
+  }
 
   // file_access.cpp: the file's bytes, the GLB container, tinygltf behind our callbacks.
   void read_container();
@@ -81,6 +85,10 @@ class Loader {
   std::vector<int> build_mesh(int mesh_index, const std::vector<double>& weights);
   void build_primitive(int mesh_index, int prim_index, const std::vector<double>& weights,
                        std::vector<int>& out);
+  // Mesh::closed for the primitives (scene meshes) built from one glTF mesh;
+  // gltf_primitive[i] is the index in the glTF mesh of primitives[i].
+  void decide_closure(int mesh_index, const std::vector<int>& primitives,
+                      const std::vector<int>& gltf_primitive);
 
   // materials.cpp: materials and their texture references.
   void build_materials();
@@ -111,6 +119,10 @@ class Loader {
   // nodes.cpp: the hierarchy, its transforms and mesh instances.
   void build_nodes();
   glm::mat4 local_transform(int node) const;
+  // instancing.cpp: EXT_mesh_gpu_instancing, one Instance per mesh primitive and per row
+  // of the node's instance attributes.
+  void add_gpu_instances(int node, const json& extension, const glm::mat4& world,
+                         const std::vector<int>& meshes);
   // cameras.cpp, lights.cpp: what a node carries besides a mesh.
   void add_camera(int camera, const glm::mat4& world, const std::string& where);
   void add_light(const tinygltf::Value& extension, const glm::mat4& world,
@@ -126,6 +138,7 @@ class Loader {
   tinygltf::Model model_;
   Scene scene_;
   std::vector<json> material_extensions_;  // materials[i].extensions (or {}), from check_json
+  std::map<int, json> node_instancing_;    // node -> its EXT_mesh_gpu_instancing, from check_json
   std::map<std::pair<int, bool>, int> texture_cache_;
   std::size_t texture_bytes_ = 0;
   std::size_t triangles_ = 0;

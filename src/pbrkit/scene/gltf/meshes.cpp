@@ -207,19 +207,6 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
       uv_source = &mat.anisotropy->texture;
     if (uv_source || mat.anisotropy) generate_tangents(mesh, uv_source ? uv_source->texcoord : 0);
   }
-  // KHR_materials_volume, "Extending Materials": a thickness above 0 makes the mesh a
-  // volume boundary, which "requires a manifold/closed mesh". Checked per primitive (a
-  // volume's material belongs to one), and only where a volume needs it: the edge count
-  // hashes every vertex.
-  if (mat.volume && mat.volume->thickness_factor > 0.0f) {
-    const EdgeCount edges = count_edges(mesh);
-    mesh.closed = edges.closed();
-    if (!mesh.closed)
-      warning(fmt::format(
-          "{}: the material (materials[{}]) has KHR_materials_volume, but the primitive is not "
-          "closed ({} edges not shared by exactly two triangles); it is rendered thin-walled",
-          where, mesh.material, edges.unpaired));
-  }
   scene_.meshes.push_back(std::move(mesh));
   out.push_back(int(scene_.meshes.size()) - 1);
 }
@@ -227,9 +214,46 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
 std::vector<int> Loader::build_mesh(int mesh_index, const std::vector<double>& weights) {
   std::vector<int> out;
   const auto& gmesh = model_.meshes[std::size_t(mesh_index)];
-  for (std::size_t p = 0; p < gmesh.primitives.size(); ++p)
+  std::vector<int> gltf_primitive;  // out[i] was built from primitives[gltf_primitive[i]]
+  for (std::size_t p = 0; p < gmesh.primitives.size(); ++p) {
     build_primitive(mesh_index, int(p), weights, out);
+    gltf_primitive.resize(out.size(), int(p));
+  }
+  decide_closure(mesh_index, out, gltf_primitive);
   return out;
+}
+
+void Loader::decide_closure(int mesh_index, const std::vector<int>& primitives,
+                            const std::vector<int>& gltf_primitive) {
+  // KHR_materials_volume, "Extending Materials": a thickness above 0 makes "the mesh to
+  // which the material is attached" a volume boundary, which "requires a manifold/closed
+  // mesh". A glTF mesh may split one shell across primitives (an exporter splits where the
+  // UV layout or a vertex limit asks), so a primitive is closed when its own triangles
+  // close, or when those of all the primitives of its glTF mesh with the same material
+  // close together: one medium, one boundary. Checked only where a volume needs it (the
+  // edge count hashes every vertex).
+  const auto has_volume = [&](int m) {
+    const Material& mat = scene_.material_of(scene_.meshes[std::size_t(m)]);
+    return mat.volume && mat.volume->thickness_factor > 0.0f;
+  };
+  for (std::size_t i = 0; i < primitives.size(); ++i) {
+    Mesh& mesh = scene_.meshes[std::size_t(primitives[i])];
+    if (!has_volume(primitives[i])) continue;
+    const EdgeCount own = count_edges(mesh);
+    mesh.closed = own.closed();
+    if (mesh.closed) continue;
+    std::vector<const Mesh*> shell;
+    for (const int other : primitives)
+      if (scene_.meshes[std::size_t(other)].material == mesh.material)
+        shell.push_back(&scene_.meshes[std::size_t(other)]);
+    if (shell.size() > 1) mesh.closed = count_edges(shell).closed();
+    if (!mesh.closed)
+      warning(fmt::format(
+          "meshes[{}].primitives[{}]: the material (materials[{}]) has KHR_materials_volume, but "
+          "the primitive is not closed, alone or with the mesh's other primitives of that "
+          "material ({} edges not shared by exactly two triangles); it is rendered thin-walled",
+          mesh_index, gltf_primitive[i], mesh.material, own.unpaired));
+  }
 }
 
 }  // namespace pbrkit::gltf

@@ -90,6 +90,7 @@ void Loader::build_nodes() {
   }
 
   std::vector<int> roots;
+  std::vector<char> listed(count, 0);  // a flag per node, not a search: scenes list 10^5 roots
   if (!model_.scenes.empty()) {
     int s = model_.defaultScene;
     if (s < 0) s = 0;
@@ -104,8 +105,8 @@ void Loader::build_nodes() {
       if (parent[std::size_t(r)] >= 0)
         error(where,
               fmt::format("node {} is not a root (its parent is {})", r, parent[std::size_t(r)]));
-      if (std::find(roots.begin(), roots.end(), r) != roots.end())
-        error(where, fmt::format("node {} is listed twice", r));
+      if (listed[std::size_t(r)]) error(where, fmt::format("node {} is listed twice", r));
+      listed[std::size_t(r)] = 1;
       roots.push_back(r);
     }
   } else {
@@ -116,30 +117,51 @@ void Loader::build_nodes() {
   std::map<int, std::vector<int>> mesh_cache;  // glTF mesh -> our meshes (default weights)
   std::vector<std::pair<int, glm::mat4>> stack;
   for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, glm::mat4(1.0f)});
+  std::vector<int> morphed;  // a node's own meshes when its weights differ from the mesh's
+  // Progress: the JSON and the model are parsed by now (half the time of a file of many
+  // small nodes); the other half is this walk.
+  std::size_t visited = 0;
+  report_progress(0.5, "nodes");
   while (!stack.empty()) {
     const auto [node, parent_world] = stack.back();
     stack.pop_back();
+    if (++visited % 4096 == 0)
+      report_progress(0.5 + 0.5 * double(visited) / double(count),
+                      fmt::format("{} of {} nodes", visited, count));
     const auto& n = model_.nodes[std::size_t(node)];
     const glm::mat4 world = parent_world * local_transform(node);
     if (!finite_matrix(world))
       error(fmt::format("nodes[{}]", node), "accumulated transform overflows");
     const std::string where = fmt::format("nodes[{}]", node);
+    const auto instancing = node_instancing_.find(node);
     if (n.mesh >= 0) {
       if (std::size_t(n.mesh) >= model_.meshes.size())
         error(where + ".mesh", fmt::format("mesh {} does not exist", n.mesh));
       const auto& gmesh = model_.meshes[std::size_t(n.mesh)];
-      std::vector<int> meshes;
+      const std::vector<int>* meshes = nullptr;
       if (!n.weights.empty() && n.weights != gmesh.weights) {
-        meshes = build_mesh(n.mesh, n.weights);
+        morphed = build_mesh(n.mesh, n.weights);
+        meshes = &morphed;
       } else {
         auto cached = mesh_cache.find(n.mesh);
         if (cached == mesh_cache.end())
           cached = mesh_cache.emplace(n.mesh, build_mesh(n.mesh, gmesh.weights)).first;
-        meshes = cached->second;
+        meshes = &cached->second;
       }
       // Instances share their mesh: what they cost is the renderer's to estimate (the path
       // tracer checks its geometry's memory before building, pt/geometry.h).
-      for (int m : meshes) scene_.instances.push_back({m, world, node});
+      if (instancing != node_instancing_.end()) {
+        // "When instancing is used on the node, the non-instanced version of the mesh
+        // should not be rendered" (EXT_mesh_gpu_instancing README).
+        add_gpu_instances(node, instancing->second, world, *meshes);  // instancing.cpp
+      } else {
+        for (int m : *meshes) scene_.instances.push_back({m, world, node});
+      }
+    } else if (instancing != node_instancing_.end()) {
+      warning(
+          fmt::format("{}: EXT_mesh_gpu_instancing on a node without a mesh has no defined "
+                      "meaning (README); ignored",
+                      where));
     }
     if (n.camera >= 0) add_camera(n.camera, world, where);  // cameras.cpp
     if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end())

@@ -33,7 +33,8 @@ const std::set<std::string> kSupportedExtensions = {"KHR_materials_emissive_stre
                                                     "KHR_lights_punctual",
                                                     "KHR_mesh_quantization",
                                                     "KHR_draco_mesh_compression",
-                                                    "EXT_meshopt_compression"};
+                                                    "EXT_meshopt_compression",
+                                                    "EXT_mesh_gpu_instancing"};
 
 }  // namespace
 
@@ -112,8 +113,19 @@ void Loader::check_json(const json& root) {
       material_extensions_.push_back(it != material.end() && it->is_object() ? *it
                                                                              : json::object());
     }
-  // Node count for the cycle checks and `info`.
-  if (root.contains("nodes")) scene_.node_count = root["nodes"].size();
+  // Node count for the cycle checks and `info`; each EXT_mesh_gpu_instancing object as the
+  // file has it, for instancing.cpp (tinygltf drops a value that is not an object).
+  node_instancing_.clear();
+  if (root.contains("nodes")) {
+    scene_.node_count = root["nodes"].size();
+    for (std::size_t i = 0; i < root["nodes"].size(); ++i) {
+      const json& node = root["nodes"][i];
+      const auto ext = node.find("extensions");
+      if (ext == node.end() || !ext->is_object()) continue;
+      const auto it = ext->find("EXT_mesh_gpu_instancing");
+      if (it != ext->end()) node_instancing_.emplace(int(i), *it);
+    }
+  }
 }
 
 void Loader::check_uris(const json& root) {
