@@ -89,8 +89,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
   result.stats.build_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
   {
     std::size_t texture_bytes = 0;
-    for (const Texture& t : scene.textures)
-      for (const auto& mip : t.mips) texture_bytes += mip.data.size() * sizeof(mip.data[0]);
+    for (const Texture& t : scene.textures) texture_bytes += t.bytes();
     const GeometryMemory& mem = geometry->memory();
     // Where the memory goes: what decides how large a scene fits.
     note(
