@@ -54,7 +54,9 @@ struct BrdfOptions {
   /// the complement of the dielectric's full specular albedo,
   /// (1 - Es(mu_o))(1 - Es(mu_i)) / (1 - Es_avg), so a white dielectric also conserves
   /// energy. Without it the diffuse weight is the spec's (1 - specular max3(F_dielectric(v.h)))
-  /// for `reference` and (1 - F(v.h)) for `classic`.
+  /// for `reference` and (1 - F(v.h)) for `classic`. The layered Bsdf (core/bsdf.h) takes
+  /// the same switch for its rough glass (core/transmission.h's DielectricCompensation) and
+  /// its diffuse transmission (weighted as this diffuse lobe).
   bool multiscatter = true;
 };
 

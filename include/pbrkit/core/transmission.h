@@ -92,10 +92,6 @@ struct Dielectric {
 /// one); builds the albedo tables at first use.
 void enable_dielectric_multiscatter(Dielectric& d);
 
-/// The interface's single-scattering albedo seen from wo's side at |wo.z| (tabulated; 1 for
-/// a smooth interface): what the compensation lobe tops up to 1.
-float dielectric_single_scattering_albedo(const Dielectric& d, glm::vec3 wo);
-
 /// True when the interface is a delta lobe (alpha below kSmoothDielectricAlpha or eta = 1,
 /// where nothing reflects and the light passes straight on).
 bool dielectric_is_smooth(const Dielectric& d);

@@ -234,14 +234,6 @@ void enable_dielectric_multiscatter(Dielectric& d) {
   ms.reflect[o] = 1.0f - t_o;
 }
 
-float dielectric_single_scattering_albedo(const Dielectric& d, glm::vec3 wo) {
-  if (dielectric_is_smooth(d)) return 1.0f;
-  Dielectric c = d;
-  if (!c.ms.on)
-    c.ms.roughness = std::clamp(std::sqrt(std::sqrt(d.alpha_x * d.alpha_y)), 0.0f, 1.0f);
-  return side_albedo(c, wo.z > 0.0f ? 0 : 1, std::abs(wo.z));
-}
-
 float dielectric_eval(const Dielectric& d, glm::vec3 wo, glm::vec3 wi, TransportMode mode) {
   const float f = eval_single(d, wo, wi, mode);
   if (!d.ms.on || wo.z == 0.0f || wi.z == 0.0f || dielectric_is_smooth(d)) return f;
