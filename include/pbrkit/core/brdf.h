@@ -54,7 +54,9 @@ struct BrdfOptions {
   /// the complement of the dielectric's full specular albedo,
   /// (1 - Es(mu_o))(1 - Es(mu_i)) / (1 - Es_avg), so a white dielectric also conserves
   /// energy. Without it the diffuse weight is the spec's (1 - specular max3(F_dielectric(v.h)))
-  /// for `reference` and (1 - F(v.h)) for `classic`.
+  /// for `reference` and (1 - F(v.h)) for `classic`. The layered Bsdf (core/bsdf.h) takes
+  /// the same switch for its rough glass (core/transmission.h's DielectricCompensation) and
+  /// its diffuse transmission (weighted as this diffuse lobe).
   bool multiscatter = true;
 };
 
@@ -189,6 +191,20 @@ class BoundBrdf {
   /// choice.
   float albedo_estimate() const { return albedo_est_; }
   const Brdf& brdf() const { return brdf_; }
+  /// Whether the diffuse lobe is weighted by the compensated, reciprocal complement of the
+  /// dielectric's specular albedo (reference with multiscatter on).
+  bool compensates_diffuse() const { return brdf_.options_.multiscatter && brdf_.reference(); }
+  /// That weight for a direction at |cos| mu_i (either side of the surface):
+  /// (1 - max3(Es(mu_o))) (1 - max3(Es(mu_i))) / (1 - max3(Es_avg)), Es the dielectric's
+  /// single- plus multiple-scattering specular albedo; its cosine-weighted integral over
+  /// mu_i is 1 - max3(Es(mu_o)), what the specular layer leaves. Only when
+  /// compensates_diffuse().
+  float compensated_diffuse_weight(float mu_i) const {
+    const Brdf& b = brdf_;
+    const glm::vec2 ab_i = b.table_->AB(mu_i, b.table_roughness_);
+    const glm::vec3 Es_i = b.dielectric_albedo(ab_i) + b.Fms_d_ * (1.0f - (ab_i.x + ab_i.y));
+    return diffuse_o_ * (1.0f - max3(Es_i));
+  }
 
  private:
   glm::vec3 specular_fresnel(float WOdotH, glm::vec3* diffuse_weight) const;

@@ -25,10 +25,13 @@
 //   f_base = (1 - m) [(1 - t) f_dielectric' + t f_glass] + m f_metal
 //
 //   f_dielectric' = the opaque dielectric (core/brdf.h, metallic 0) with its diffuse lobe
-//                   scaled by 1 - dt, plus dt diffuseTransmissionColor / pi
-//                   min(tau(|n.v|), tau(|n.l|)) below the surface, tau = 1 - max3(F_d)
+//                   scaled by 1 - dt, plus dt diffuseTransmissionColor / pi w below the
+//                   surface; w the diffuse lobe's compensated reciprocal weight with
+//                   multiscatter (BoundBrdf::compensated_diffuse_weight), else
+//                   min(tau(|n.v|), tau(|n.l|)), tau = 1 - max3(F_d)
 //   f_glass       = the exact dielectric interface (core/transmission.h): its Fresnel
-//                   reflection, and its refraction tinted by baseColor
+//                   reflection, and its refraction tinted by baseColor (with multiscatter,
+//                   its Kulla-Conty compensation lobe too)
 //
 // The glass part carries its own reflection (exact Fresnel) so that a smooth glass conserves
 // energy exactly; the README's single specular_brdf layer is its Schlick approximation.

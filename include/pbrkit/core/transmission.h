@@ -56,13 +56,41 @@ bool refract(glm::vec3 w, glm::vec3 n, float eta, glm::vec3& wt);
 /// importance is not.
 enum class TransportMode { kRadiance, kImportance };
 
+/// Multiple-scattering compensation of a rough interface (Kulla & Conty 2017, "Revisiting
+/// Physically Based Shading at Imageworks", the dielectric part): a diffuse-like lobe on
+/// each side holds the energy the single-scattering lobe loses, per side s (+Z: 0, -Z: 1)
+///
+///   f_ms(wo, wi) = (1 - E_s(mu_o)) (1 - E_s'(mu_i)) / (pi (1 - E_avg_s')) * share
+///
+/// with s' the side of wi, share = reflect[s] for a reflection and 1 - reflect[s] for a
+/// transmission (/ eta'^2 for radiance), E the tabulated single-scattering albedo of the
+/// interface (DielectricEnergyTable) seen from that side. Its albedo is 1 - E_s(mu_o), so
+/// a non-absorbing interface conserves energy from both sides. The shares obey the
+/// interface's reciprocity, (1 - reflect[0]) / (1 - E_avg_1) = eta^2 (1 - reflect[1]) /
+/// (1 - E_avg_0) (the transmission lobe's f(wo, wi) = eta'^2 f(wi, wo) in importance
+/// transport, as the single-scattering BTDF's); the rarer side's transmitted share is its
+/// single-scattering one, T_avg / E_avg, and the denser side's follows (clamped to [0, 1],
+/// where reciprocity gives way). Thin walls: the white GGX mirror's E (the thin wall's
+/// exact single-scattering albedo) on both sides, transmitted share 1 - R_avg / E_avg.
+struct DielectricCompensation {
+  bool on = false;
+  float roughness = 0.0f;  ///< the tables' roughness, sqrt(sqrt(alpha_x alpha_y))
+  float E_avg[2] = {1.0f, 1.0f};
+  float reflect[2] = {0.0f, 0.0f};
+};
+
 /// A dielectric interface at one shading point.
 struct Dielectric {
   float eta = 1.5f;      ///< ior below / ior above (n_-Z / n_+Z)
   float alpha_x = 0.0f;  ///< GGX alpha along +X (roughness^2)
   float alpha_y = 0.0f;  ///< GGX alpha along +Y
   bool thin_walled = false;
+  DielectricCompensation ms;  ///< off unless enable_dielectric_multiscatter is called
 };
+
+/// Turns on the multiple-scattering compensation of a rough interface (a no-op for a smooth
+/// one); builds the albedo tables at first use.
+void enable_dielectric_multiscatter(Dielectric& d);
 
 /// True when the interface is a delta lobe (alpha below kSmoothDielectricAlpha or eta = 1,
 /// where nothing reflects and the light passes straight on).

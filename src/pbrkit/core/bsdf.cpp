@@ -59,6 +59,9 @@ Bsdf::Bsdf(const SurfaceParams& params, const BrdfOptions& options) : base_(para
   glass.alpha_x = base_.alpha_x();
   glass.alpha_y = base_.alpha_y();
   glass.thin_walled = params.transmission.thin_walled;
+  // Kulla-Conty compensation of the rough interface, with the base's (the multiscatter
+  // option).
+  if (options.multiscatter) enable_dielectric_multiscatter(glass);
   metal_weight_ = m;
   if (m > 0.0f) {
     BaseLayer metal = params.base;
@@ -125,8 +128,15 @@ glm::vec3 BoundBsdf::eval_transmissive(glm::vec3 wi, float* pdf) const {
       p += p_metal_ * pm;
     }
   } else if (b.dt_weight_ > 0.0f) {
-    // The diffuse BTDF under the specular layer, in the reciprocal min form of the layers.
-    f += b.dt_weight_ * b.dt_color_ * std::min(tau(wo_.z), tau(-wi.z));
+    // The diffuse BTDF under the specular layer: with compensation, the same reciprocal
+    // weight as the diffuse reflection (what the specular layer's single and multiple
+    // scattering leave), so that a white material's reflected and transmitted diffuse light
+    // add up to what the specular leaves; without, the layers' reciprocal min form of
+    // Schlick's transmittance (which loses what the min and the missing multiple scattering
+    // drop).
+    const float w = base_.compensates_diffuse() ? base_.compensated_diffuse_weight(-wi.z)
+                                                : std::min(tau(wo_.z), tau(-wi.z));
+    f += b.dt_weight_ * b.dt_color_ * w;
     p += p_dt_ * cosine_hemisphere_pdf(-wi.z);
   }
   if (b.glass_weight_ > 0.0f && !dielectric_is_smooth(*b.glass_)) {

@@ -4,7 +4,9 @@
 #include <cmath>
 #include <limits>
 
+#include "pbrkit/core/energy.h"
 #include "pbrkit/core/microfacet.h"
+#include "pbrkit/core/sampling.h"
 
 namespace pbrkit {
 
@@ -101,9 +103,7 @@ bool thin_wall_pair(glm::vec3 wo, glm::vec3 wi, glm::vec3& o, glm::vec3& i) {
   return transmitted;
 }
 
-}  // namespace
-
-float dielectric_eval(const Dielectric& d, glm::vec3 wo, glm::vec3 wi, TransportMode mode) {
+float eval_single(const Dielectric& d, glm::vec3 wo, glm::vec3 wi, TransportMode mode) {
   if (dielectric_is_smooth(d) || wo.z == 0.0f || wi.z == 0.0f) return 0.0f;
   const float eta = sane_eta(d.eta);
   const float ax = d.alpha_x, ay = d.alpha_y;
@@ -137,7 +137,7 @@ float dielectric_eval(const Dielectric& d, glm::vec3 wo, glm::vec3 wi, Transport
   return std::isfinite(ft) ? ft : 0.0f;
 }
 
-float dielectric_pdf(const Dielectric& d, glm::vec3 wo, glm::vec3 wi) {
+float pdf_single(const Dielectric& d, glm::vec3 wo, glm::vec3 wi) {
   if (dielectric_is_smooth(d) || wo.z == 0.0f || wi.z == 0.0f) return 0.0f;
   const float eta = sane_eta(d.eta);
   const float ax = d.alpha_x, ay = d.alpha_y;
@@ -163,6 +163,88 @@ float dielectric_pdf(const Dielectric& d, glm::vec3 wo, glm::vec3 wi) {
   if (!(denom > 0.0f)) return 0.0f;
   const float p = (1.0f - F) * pdf_h * std::abs(ih) / denom;
   return std::isfinite(p) ? p : 0.0f;
+}
+
+// ---- Multiple-scattering compensation (transmission.h, DielectricCompensation). ----
+
+// The single-scattering albedo seen from side `side` (0: +Z, 1: -Z) at mu.
+float side_albedo(const Dielectric& d, int side, float mu) {
+  if (d.thin_walled) return EnergyTable::get(GeometryModel::kReference).E(mu, d.ms.roughness);
+  const float eta = sane_eta(d.eta);
+  return DielectricEnergyTable::get().E(mu, d.ms.roughness, side == 0 ? eta : 1.0f / eta);
+}
+
+// The probability of sampling the compensation lobe from wo: its albedo 1 - E(mu_o).
+float ms_probability(const Dielectric& d, glm::vec3 wo) {
+  return std::clamp(1.0f - side_albedo(d, wo.z > 0.0f ? 0 : 1, std::abs(wo.z)), 0.0f, 1.0f);
+}
+
+float eval_ms(const Dielectric& d, glm::vec3 wo, glm::vec3 wi, TransportMode mode) {
+  const int so = wo.z > 0.0f ? 0 : 1, si = wi.z > 0.0f ? 0 : 1;
+  const float denom = 1.0f - d.ms.E_avg[si];
+  if (!(denom > 1e-6f)) return 0.0f;
+  const float share = so == si ? d.ms.reflect[so] : 1.0f - d.ms.reflect[so];
+  float f = share * std::max(1.0f - side_albedo(d, so, std::abs(wo.z)), 0.0f) *
+            std::max(1.0f - side_albedo(d, si, std::abs(wi.z)), 0.0f) / (kPi * denom);
+  if (so != si && !d.thin_walled && mode == TransportMode::kRadiance) {
+    const float eta = sane_eta(d.eta);
+    f /= sqr(so == 0 ? eta : 1.0f / eta);
+  }
+  return f;
+}
+
+// The compensation lobe's sampler: reflect with probability reflect[side], a cosine lobe on
+// the side chosen.
+float pdf_ms(const Dielectric& d, glm::vec3 wo, glm::vec3 wi) {
+  const int so = wo.z > 0.0f ? 0 : 1;
+  const bool same = (wo.z > 0.0f) == (wi.z > 0.0f);
+  return (same ? d.ms.reflect[so] : 1.0f - d.ms.reflect[so]) * std::abs(wi.z) * kInvPi;
+}
+
+}  // namespace
+
+void enable_dielectric_multiscatter(Dielectric& d) {
+  if (dielectric_is_smooth(d)) return;
+  DielectricCompensation& ms = d.ms;
+  ms.on = true;
+  ms.roughness = std::clamp(std::sqrt(std::sqrt(d.alpha_x * d.alpha_y)), 0.0f, 1.0f);
+  const float eta = sane_eta(d.eta);
+  const DielectricEnergyTable& table = DielectricEnergyTable::get();
+  if (d.thin_walled) {
+    // Both sides see the same wall: any constant share is reciprocal.
+    const float E_avg = EnergyTable::get(GeometryModel::kReference).E_avg(ms.roughness);
+    const float R_avg = table.averages(ms.roughness, eta).y;
+    ms.E_avg[0] = ms.E_avg[1] = E_avg;
+    ms.reflect[0] = ms.reflect[1] = std::clamp(R_avg / std::max(E_avg, 1e-6f), 0.0f, 1.0f);
+    return;
+  }
+  const glm::vec2 a[2] = {table.averages(ms.roughness, eta),
+                          table.averages(ms.roughness, 1.0f / eta)};
+  ms.E_avg[0] = a[0].x;
+  ms.E_avg[1] = a[1].x;
+  // The rarer side r (its far side denser, ratio e >= 1) keeps its single-scattering split;
+  // the denser side's transmitted share follows from reciprocity.
+  const int r = eta >= 1.0f ? 0 : 1, o = 1 - r;
+  const float e = eta >= 1.0f ? eta : 1.0f / eta;
+  const float t_r = std::clamp((a[r].x - a[r].y) / std::max(a[r].x, 1e-6f), 0.0f, 1.0f);
+  const float loss_o = 1.0f - a[o].x;
+  const float t_o =
+      loss_o > 1e-6f ? std::clamp(t_r * (1.0f - a[r].x) / (e * e * loss_o), 0.0f, 1.0f) : t_r;
+  ms.reflect[r] = 1.0f - t_r;
+  ms.reflect[o] = 1.0f - t_o;
+}
+
+float dielectric_eval(const Dielectric& d, glm::vec3 wo, glm::vec3 wi, TransportMode mode) {
+  const float f = eval_single(d, wo, wi, mode);
+  if (!d.ms.on || wo.z == 0.0f || wi.z == 0.0f || dielectric_is_smooth(d)) return f;
+  return f + eval_ms(d, wo, wi, mode);
+}
+
+float dielectric_pdf(const Dielectric& d, glm::vec3 wo, glm::vec3 wi) {
+  const float p = pdf_single(d, wo, wi);
+  if (!d.ms.on || wo.z == 0.0f || wi.z == 0.0f || dielectric_is_smooth(d)) return p;
+  const float P = ms_probability(d, wo);
+  return (1.0f - P) * p + P * pdf_ms(d, wo, wi);
 }
 
 namespace {
@@ -206,6 +288,25 @@ DielectricSample dielectric_sample(const Dielectric& d, glm::vec3 wo, float u_lo
   if (wo.z == 0.0f) return {};
   if (dielectric_is_smooth(d)) return sample_smooth(d, wo, u_lobe, mode);
   DielectricSample s;
+  if (d.ms.on) {
+    // The compensation lobe with probability P = 1 - E(mu_o), else the single-scattering
+    // sampler with u_lobe rescaled; the weight uses the mixture's pdf.
+    const float P = ms_probability(d, wo);
+    if (u_lobe < P) {
+      const int so = wo.z > 0.0f ? 0 : 1;
+      s.transmitted = u_lobe / P >= d.ms.reflect[so];
+      const glm::vec3 c = sample_cosine_hemisphere(u).direction;
+      const float side = (wo.z > 0.0f) != s.transmitted ? 1.0f : -1.0f;
+      s.wi = glm::vec3(c.x, c.y, side * c.z);
+      s.f = dielectric_eval(d, wo, s.wi, mode);
+      s.pdf = dielectric_pdf(d, wo, s.wi);
+      if (!(s.pdf > 0.0f) || !std::isfinite(s.f)) return s;
+      s.weight = s.f * std::abs(s.wi.z) / s.pdf;
+      s.valid = std::isfinite(s.weight);
+      return s;
+    }
+    u_lobe = std::min((u_lobe - P) / (1.0f - P), 0x1.fffffep-1f);
+  }
   const float eta = sane_eta(d.eta);
   const float ax = d.alpha_x, ay = d.alpha_y;
   // The visible normal from wo's side (for wo below, from -wo: the microfacets face +Z).
