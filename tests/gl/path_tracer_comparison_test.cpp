@@ -201,12 +201,6 @@ TEST(GlVersusPathTracer, InstancesFieldWithinMeasuredBound) {
   testing::context();
   Scene scene = builtin_scene("instances");
   for (Material& m : scene.materials) m.emissive_factor = glm::vec3(0.0f);
-  // The path tracer's flattened geometry shades a mirrored instance's faces as back faces
-  // (black: its world-space winding is reversed; glTF 2.0 section 3.7.4 says the
-  // determinant decides the winding), which alone makes one tile 0.62 off: the mirrored
-  // rocks are turned into their unmirrored twins here until it keeps their orientation.
-  for (Instance& inst : scene.instances)
-    if (glm::determinant(glm::mat3(inst.transform)) < 0.0f) inst.transform[0] = -inst.transform[0];
   const Environment env = load_environment_or_default("", 0.0f, 1.0f);
   const IblMaps maps = testing::small_ibl_maps(env);
   constexpr int kSize = 128, kTile = 8;
