@@ -181,7 +181,7 @@ TEST_P(GlassTruthTable, ScreenSpaceRefractionPerChannelAsMeasured) {
 // and liquids"; the path tracer's standard errors 0.3-0.9%, so each bound is 2.7-6%).
 // Summed over R+G+B the tinted block was +0.30; per channel it is -0.28, +0.56, +0.13.
 const std::vector<ObjectError> kGlass = {
-    {"sphere_smooth", -0.769, -0.779, -0.783},    {"sphere_rough", -0.028, -0.069, -0.079},
+    {"sphere_smooth", -0.769, -0.779, -0.783},    {"sphere_rough", -0.123, -0.160, -0.169},
     {"block_tinted", -0.277, +0.560, +0.130},     {"sheet_thin", +0.285, +0.255, +0.243},
     {"prism_dispersive", -0.317, -0.365, -0.415},
 };
