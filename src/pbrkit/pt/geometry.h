@@ -97,8 +97,8 @@ struct SurfaceHit {
   /// Width of the ray's footprint across the surface, w / |n.d| (ray cones, for texture
   /// level of detail; set by the integrator). 0: textures are read at level 0.
   float footprint = 0.0f;
-  std::uint32_t geom = 0;   ///< the instance (index in Scene::instances)
-  std::uint32_t prim = 0;   ///< the triangle in the instance's mesh
+  std::uint32_t geom = 0;  ///< the instance (index in Scene::instances)
+  std::uint32_t prim = 0;  ///< the triangle in the instance's mesh
 };
 
 /// Sees every ray query a SceneGeometry answers, from the render threads (concurrently).
