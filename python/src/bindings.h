@@ -1,0 +1,14 @@
+#pragma once
+// The pbrkit Python module's parts: one registration function per concept, each in its
+// own file, all called from module.cpp.
+#include <pybind11/pybind11.h>
+
+namespace pbrkit::python {
+
+void bind_scene(pybind11::module_& m);   ///< load(), Scene, Camera, look_at()
+void bind_render(pybind11::module_& m);  ///< render()
+void bind_images(pybind11::module_& m);  ///< read/write_image, compare, tonemap, denoise
+void bind_bake(pybind11::module_& m);    ///< bake()
+void bind_brdf(pybind11::module_& m);    ///< D, G, F, albedo
+
+}  // namespace pbrkit::python
