@@ -21,6 +21,7 @@ struct ViewNames {
   std::string model{brdf_model_name(ViewerOptions{}.brdf.model)};
   std::optional<bool> multiscatter;
   std::string background = "env";
+  std::string mode{view_mode_name(ViewerOptions{}.mode)};
 };
 
 }  // namespace
@@ -30,9 +31,11 @@ void register_view_command(CLI::App& app) {
   auto names = std::make_shared<ViewNames>();
   auto* cmd = app.add_subcommand(
       "view",
-      "Interactive OpenGL viewer: orbit (drag), pan (right drag), zoom (wheel); a panel for "
-      "environment, exposure, tone mapper, model, compensation, IBL, lights and material "
-      "overrides; F12/P screenshot (PNG + EXR), R reload, Esc quit. Needs an X display.");
+      "Interactive viewer: the OpenGL image and the path-traced truth of the same view (keys "
+      "1-4: raster, path, split, difference); orbit (drag), pan (right drag), zoom (wheel); a "
+      "panel for environment, exposure, tone mapper, model, compensation, IBL, lights and "
+      "material overrides; F12/P screenshot (PNG + EXR), R reload, Esc quit; drop a "
+      ".gltf/.glb or .hdr/.exr on the window. Needs an X display (xvfb-run for scripts).");
   cmd->add_option("scene", o->scene,
                   "a .gltf/.glb file or a built-in scene: " + builtin_scene_list())
       ->capture_default_str();
@@ -60,6 +63,24 @@ void register_view_command(CLI::App& app) {
   cmd->add_option("--msaa", o->msaa,
                   "MSAA samples (default: 4 on a GPU, 1 on a software rasteriser such as llvmpipe)")
       ->check(CLI::Range(1, 16));
+  cmd->add_option("--mode", names->mode,
+                  "raster (OpenGL), path (the path tracer converging), split (raster left, path "
+                  "right of a draggable divider) or difference (the raster image's relative "
+                  "luminance error against the path-traced one)")
+      ->check(CLI::IsMember({"raster", "path", "split", "difference"}))
+      ->capture_default_str();
+  cmd->add_option("--split", o->split, "the split view's divider, a fraction of the width")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+  cmd->add_option("--spp", o->spp,
+                  "path views: samples per pixel the path tracer renders every pixel to (as "
+                  "'pbrkit render --spp N --noise-threshold 0')")
+      ->check(CLI::Range(1u, 1u << 24))
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed, "path views: the path tracer's seed")->capture_default_str();
+  cmd->add_flag("--exit", o->exit_when_done,
+                "automation: once the view is final (the path tracer at --spp; raster: after "
+                "--frames, at least 2), save --screenshot and quit");
   cmd->add_option("--frames", o->frames,
                   "automation: render this many frames, save --screenshot, and quit")
       ->check(CLI::NonNegativeNumber);
@@ -70,6 +91,7 @@ void register_view_command(CLI::App& app) {
     o->brdf.model = parse_brdf_model(names->model);
     o->brdf.multiscatter = names->multiscatter.value_or(default_multiscatter(o->brdf.model));
     o->background = parse_background(names->background);
+    o->mode = parse_view_mode(names->mode);
     run_viewer(*o);
   });
 }

@@ -7,4 +7,5 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/lights.cpp
   ${CMAKE_CURRENT_LIST_DIR}/path_tracer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pixel_filter.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/progressive_render.cpp
   ${CMAKE_CURRENT_LIST_DIR}/shading.cpp)

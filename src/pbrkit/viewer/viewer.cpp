@@ -4,7 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <epoxy/gl.h>
@@ -19,14 +21,17 @@
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/ibl/bake.h"
+#include "pbrkit/image/compare.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image_io.h"
+#include "pbrkit/pt/progressive_render.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
 #include "pbrkit/util/data_dir.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
+#include "truth_view.h"
 
 namespace pbrkit {
 
@@ -105,6 +110,26 @@ struct ViewerState {
     glm::vec3 diffuse_transmission_color{1.0f};
   } ext;
   Orbit orbit;
+  // Until the user moves the camera the view is exactly the one `pbrkit render` takes
+  // (select_view at the framebuffer's size), so that screenshots equal renders.
+  bool orbit_moved = false;
+
+  // The truth modes.
+  ViewMode mode = ViewMode::kRaster;
+  float split = 0.5f;
+  bool dragging_divider = false;
+  ProgressiveRender path;
+  bool path_dirty = true;  // a change the path-traced image must restart for
+  std::uint64_t path_job = 0, path_seen = 0;
+  std::optional<ProgressiveSnapshot> snapshot;  // the newest of the current job
+  int path_channel = 0;                         // 0 colour, 1 albedo, 2 normal, 3 depth
+  DisplayTexture path_texture, error_texture;
+  bool path_display_dirty = false;
+  DisplaySettings shown_display;  // what path_texture was made with
+  ErrorView error;
+  Clock::time_point error_time{};
+  std::vector<std::string> dropped;  // files dropped on the window, handled next frame
+  std::string message;               // the last problem with a dropped file or a reload
 };
 
 // The scene's materials with the panel's extension overrides.
@@ -245,21 +270,157 @@ void reset_orbit(ViewerState& s, float aspect) {
       Orbit::from_camera(select_camera(s.scene, s.options.camera, aspect), s.scene.world_bounds());
 }
 
-void save_screenshot(const std::string& png, const Image& frame, const ViewerState& s) {
+// The camera of this frame: the exact initial view until the user moves it, the orbit after.
+Camera current_camera(const ViewerState& s, int width, int height) {
+  if (!s.orbit_moved) return select_view(s.scene, s.options.camera, width, height).camera;
+  return s.orbit.camera();
+}
+
+// Writes `linear` as a float EXR and, through the display transform, a PNG (or, for the
+// error view, `display` as is).
+void save_screenshot(const std::string& png, const Image& linear, const ViewerState& s,
+                     const Image* display = nullptr) {
   const std::filesystem::path parent = std::filesystem::path(png).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
   const std::string exr = std::filesystem::path(png).replace_extension(".exr").string();
-  write_exr(exr, rgb_channels(frame), ExrPixelType::kFloat);
-  write_display_png(png, frame, s.display);
+  write_exr(exr, linear.channels == 1 ? linear : rgb_channels(linear), ExrPixelType::kFloat);
+  if (display)
+    write_png(png, *display);
+  else
+    write_display_png(png, linear, s.display);
   note("wrote {} and {}", png, exr);
 }
 
-void draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gpu_ms) {
+// The scene the path tracer renders: the panel's material overrides applied to the
+// materials (metallic and roughness replace the factor and the texture's value, as the
+// raster shader's overrides do) and the lights the panel turned off left out.
+std::shared_ptr<const Scene> path_scene(const ViewerState& s) {
+  auto scene = std::make_shared<Scene>(s.scene);
+  scene->materials = overridden_materials(s);
+  for (Material& m : scene->materials) {
+    if (s.override_metallic || s.override_roughness) m.metallic_roughness_texture = {};
+    if (s.override_metallic) m.metallic_factor = s.metallic;
+    if (s.override_roughness) m.roughness_factor = s.roughness;
+  }
+  scene->lights.clear();
+  for (std::size_t i = 0; i < s.scene.lights.size(); ++i)
+    if (i >= s.settings.light_enabled.size() || s.settings.light_enabled[i])
+      scene->lights.push_back(s.scene.lights[i]);
+  return scene;
+}
+
+// Starts the path tracer on this frame's scene, camera, size and options: every pixel to
+// options.spp samples, on all cores but one (the window draws on it).
+void start_path(ViewerState& s, int width, int height) {
+  ProgressiveJob job;
+  job.scene = path_scene(s);
+  if (s.env) {
+    auto env = std::make_shared<Environment>(*s.env);
+    env->rotation_deg = s.settings.env_rotation_deg;
+    env->intensity = s.settings.env_intensity;
+    job.env = std::move(env);
+  }
+  job.camera = current_camera(s, width, height);
+  PathTracerSettings& p = job.settings;
+  p.width = width;
+  p.height = height;
+  p.spp = s.options.spp;
+  p.min_spp = 1;
+  p.noise_threshold = 0.0f;
+  p.seed = s.options.seed;
+  p.brdf = s.settings.brdf;
+  p.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);
+  p.checkpoint_interval = 0.1;
+  s.path_job = s.path.start(std::move(job));
+  s.snapshot.reset();
+  s.path_dirty = false;
+}
+
+// The snapshot's image of the chosen channel, display-referred.
+Image path_display(const ViewerState& s) {
+  const ProgressiveSnapshot& snap = *s.snapshot;
+  if (s.path_channel == 0 || snap.preview) return display_image(snap.color, s.display);
+  if (s.path_channel == 1) return display_image(snap.albedo, {0.0f, ToneMapper::kNone});
+  Image out(snap.color.width, snap.color.height, 3);
+  if (s.path_channel == 2) {
+    for (int y = 0; y < out.height; ++y)
+      for (int x = 0; x < out.width; ++x) out.set_rgb(x, y, 0.5f * snap.normal.rgb(x, y) + 0.5f);
+    return display_image(out, {0.0f, ToneMapper::kNone});
+  }
+  float far = 0.0f;
+  for (float d : snap.depth.data) far = std::max(far, d);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      out.set_rgb(x, y, glm::vec3(far > 0.0f ? snap.depth.pixel(x, y)[0] / far : 0.0f));
+  return display_image(out, {0.0f, ToneMapper::kNone});
+}
+
+// The error view's colour bar: the viridis ramp from 0 to `scale` (and above).
+void draw_colour_bar(float scale) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  const float w = ImGui::GetContentRegionAvail().x, h = 12.0f;
+  const int steps = 32;
+  for (int i = 0; i < steps; ++i) {
+    const glm::vec3 c = viridis((float(i) + 0.5f) / float(steps));
+    draw->AddRectFilled(ImVec2(p.x + w * float(i) / steps, p.y),
+                        ImVec2(p.x + w * float(i + 1) / steps, p.y + h),
+                        ImGui::GetColorU32(ImVec4(c.r, c.g, c.b, 1.0f)));
+  }
+  ImGui::Dummy(ImVec2(w, h));
+  ImGui::Text("0%%%*s%.0f%%+", int(w / ImGui::CalcTextSize(" ").x) - 8, "", 100.0f * scale);
+}
+
+// The truth modes' part of the panel: the mode, the path tracer's progress, the error.
+// Returns true when the path-traced image must restart.
+bool draw_truth_panel(ViewerState& s) {
+  bool changed = false;
+  int mode = int(s.mode);
+  const char* modes[] = {"1 raster", "2 path", "3 split", "4 difference"};
+  if (ImGui::Combo("view", &mode, modes, 4)) s.mode = ViewMode(mode);
+  if (s.mode == ViewMode::kRaster) return false;
+  if (s.snapshot) {
+    const ProgressiveSnapshot& p = *s.snapshot;
+    ImGui::Text("path: %.1f / %u spp, %.1f s, noise %.4f%s", p.spp, s.options.spp, p.seconds,
+                p.noise,
+                p.complete  ? " (done)"
+                : p.preview ? " (preview)"
+                            : "");
+  } else {
+    ImGui::TextUnformatted("path: starting");
+  }
+  if (const auto error = s.path.error()) ImGui::TextWrapped("path tracer: %s", error->c_str());
+  if (s.mode == ViewMode::kPath) {
+    const char* channels[] = {"colour", "albedo", "normal", "depth"};
+    if (ImGui::Combo("channel", &s.path_channel, channels, 4)) s.path_display_dirty = true;
+  }
+  if (s.mode == ViewMode::kSplit) ImGui::SliderFloat("split", &s.split, 0.0f, 1.0f);
+  if (s.mode == ViewMode::kDifference) {
+    ImGui::Text("relative luminance error: mean %.1f%%, 95th pct %.1f%%", 100.0 * s.error.mean,
+                100.0 * s.error.p95);
+    ImGui::Text("(against a path-traced image of noise %.4f)",
+                s.snapshot ? s.snapshot->noise : 0.0);
+    draw_colour_bar(0.5f);
+  }
+  int spp = int(s.options.spp);
+  if (ImGui::InputInt("target spp", &spp, 64, 1024) && spp >= 1) {
+    s.options.spp = std::uint32_t(spp);
+    changed = true;
+  }
+  return changed;
+}
+
+// The panel; returns true when something the path-traced image depends on changed.
+bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gpu_ms) {
+  bool changed = false;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(320, 0), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(340, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("pbrkit view");
   ImGui::Text("frame %.1f ms (GPU %.1f ms)", cpu_ms, gpu_ms);
   ImGui::Text("%s", s.scene.source.c_str());
+  if (!s.message.empty()) ImGui::TextWrapped("%s", s.message.c_str());
+  changed |= draw_truth_panel(s);
+  ImGui::Separator();
   if (!s.options.no_env &&
       ImGui::BeginCombo("environment",
                         s.env_choices[std::size_t(s.env_choice)].empty()
@@ -274,12 +435,14 @@ void draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
       if (ImGui::Selectable(label.c_str(), int(i) == s.env_choice) && int(i) != s.env_choice) {
         s.env_choice = int(i);
         load_environment(s, renderer);
+        changed = true;
       }
     }
     ImGui::EndCombo();
   }
-  ImGui::SliderFloat("rotation", &s.settings.env_rotation_deg, -180.0f, 180.0f, "%.0f deg");
-  ImGui::SliderFloat("intensity", &s.settings.env_intensity, 0.0f, 4.0f);
+  changed |=
+      ImGui::SliderFloat("rotation", &s.settings.env_rotation_deg, -180.0f, 180.0f, "%.0f deg");
+  changed |= ImGui::SliderFloat("intensity", &s.settings.env_intensity, 0.0f, 4.0f);
   ImGui::SliderFloat("exposure", &s.display.exposure_ev, -6.0f, 6.0f, "%.1f EV");
   int tm = int(s.display.tone_mapper);
   static const std::vector<std::string> names = tone_mapper_names();
@@ -292,9 +455,11 @@ void draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
     s.display.tone_mapper = ToneMapper(tm);
   int model = s.settings.brdf.model == BrdfModel::kReference ? 0 : 1;
   const char* models[] = {"reference", "classic"};
-  if (ImGui::Combo("model", &model, models, 2))
+  if (ImGui::Combo("model", &model, models, 2)) {
     s.settings.brdf.model = model == 0 ? BrdfModel::kReference : BrdfModel::kClassic;
-  ImGui::Checkbox("multiple scattering", &s.settings.brdf.multiscatter);
+    changed = true;
+  }
+  changed |= ImGui::Checkbox("multiple scattering", &s.settings.brdf.multiscatter);
   // Choice k is 2^k samples, up to what the context supports (the renderer clamps to it).
   const char* msaa_modes[] = {"off", "2x", "4x", "8x"};
   int msaa = 0, msaa_choices = 1;
@@ -309,17 +474,67 @@ void draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
   for (std::size_t i = 0; i < s.scene.lights.size() && i < 16; ++i) {
     bool on = s.settings.light_enabled[i];
     const std::string label = "light " + std::to_string(i) + " " + s.scene.lights[i].name;
-    if (ImGui::Checkbox(label.c_str(), &on)) s.settings.light_enabled[i] = on;
+    if (ImGui::Checkbox(label.c_str(), &on)) {
+      s.settings.light_enabled[i] = on;
+      changed = true;
+    }
   }
   ImGui::Separator();
-  ImGui::Checkbox("override metallic", &s.override_metallic);
-  if (s.override_metallic) ImGui::SliderFloat("metallic", &s.metallic, 0.0f, 1.0f);
-  ImGui::Checkbox("override roughness", &s.override_roughness);
-  if (s.override_roughness) ImGui::SliderFloat("roughness", &s.roughness, 0.0f, 1.0f);
-  if (draw_extension_controls(s)) renderer.set_materials(overridden_materials(s));
+  changed |= ImGui::Checkbox("override metallic", &s.override_metallic);
+  if (s.override_metallic) changed |= ImGui::SliderFloat("metallic", &s.metallic, 0.0f, 1.0f);
+  changed |= ImGui::Checkbox("override roughness", &s.override_roughness);
+  if (s.override_roughness) changed |= ImGui::SliderFloat("roughness", &s.roughness, 0.0f, 1.0f);
+  if (draw_extension_controls(s)) {
+    renderer.set_materials(overridden_materials(s));
+    changed = true;
+  }
   ImGui::TextUnformatted("drag: orbit, right drag: pan, wheel: zoom");
+  ImGui::TextUnformatted("1-4: raster, path, split, difference");
   ImGui::TextUnformatted("F12/P: screenshot, R: reload, Esc: quit");
+  ImGui::TextUnformatted("drop a .gltf/.glb or an .hdr/.exr on the window");
   ImGui::End();
+  return changed;
+}
+
+// Files dropped on the window: a scene or an environment; a bad file leaves the current
+// one in place and says why in the panel.
+void handle_drops(ViewerState& s, gl::Renderer& renderer, float aspect) {
+  for (const std::string& path : s.dropped) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".gltf" || ext == ".glb") {
+      const std::string previous = s.options.scene;
+      try {
+        s.options.scene = path;
+        s.options.camera.reset();
+        load_scene_into(s, renderer);
+        reset_orbit(s, aspect);
+        s.orbit_moved = false;
+        s.message.clear();
+      } catch (const Error& e) {
+        s.options.scene = previous;
+        s.message = std::string("not loaded: ") + e.what();
+      }
+    } else if (ext == ".hdr" || ext == ".exr") {
+      const int previous = s.env_choice;
+      try {
+        s.env_choices.push_back(path);
+        s.env_choice = int(s.env_choices.size()) - 1;
+        s.options.no_env = false;
+        load_environment(s, renderer);
+        s.message.clear();
+      } catch (const Error& e) {
+        s.env_choices.pop_back();
+        s.env_choice = previous;
+        load_environment(s, renderer);
+        s.message = std::string("not loaded: ") + e.what();
+      }
+    } else {
+      s.message = path + ": not a .gltf/.glb scene or an .hdr/.exr environment";
+    }
+    s.path_dirty = true;
+  }
+  s.dropped.clear();
 }
 
 }  // namespace
@@ -342,7 +557,7 @@ void run_viewer(const ViewerOptions& options) {
     fail("pbrkit view: cannot create a {}x{} OpenGL 4.5 core window", options.width,
          options.height);
   glfwMakeContextCurrent(window);
-  glfwSwapInterval(options.frames > 0 ? 0 : 1);
+  glfwSwapInterval(options.frames > 0 || options.exit_when_done ? 0 : 1);
 
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -377,8 +592,16 @@ void run_viewer(const ViewerOptions& options) {
     reset_orbit(s, framebuffer_aspect(window, options));
     load_environment(s, renderer);
 
+    s.mode = options.mode;
+    s.split = std::clamp(options.split, 0.0f, 1.0f);
+    glfwSetWindowUserPointer(window, &s);
+    glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+      auto* state = static_cast<ViewerState*>(glfwGetWindowUserPointer(w));
+      for (int i = 0; i < count; ++i) state->dropped.emplace_back(paths[i]);
+    });
+
     double cpu_ms = 0.0, gpu_ms = 0.0;
-    Image frame;
+    int last_w = 0, last_h = 0;
     for (int frame_index = 0; !glfwWindowShouldClose(window); ++frame_index) {
       const auto t0 = Clock::now();
       glfwPollEvents();
@@ -386,72 +609,171 @@ void run_viewer(const ViewerOptions& options) {
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
       ImGuiIO& io = ImGui::GetIO();
+      int fb_w = 0, fb_h = 0;
+      glfwGetFramebufferSize(window, &fb_w, &fb_h);
+      if (!s.dropped.empty()) handle_drops(s, renderer, framebuffer_aspect(window, options));
 
-      // Camera controls (when the panel does not want the mouse).
+      // Camera controls (when the panel does not want the mouse); in the split view a drag
+      // that starts on the divider moves the divider.
       if (!io.WantCaptureMouse) {
-        if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+        const float divider_x = s.split * io.DisplaySize.x;
+        if (s.mode == ViewMode::kSplit && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+            std::fabs(io.MousePos.x - divider_x) < 8.0f)
+          s.dragging_divider = true;
+        if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) s.dragging_divider = false;
+        if (s.dragging_divider) {
+          if (io.DisplaySize.x > 0.0f)
+            s.split = std::clamp(io.MousePos.x / io.DisplaySize.x, 0.0f, 1.0f);
+        } else if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
           s.orbit.yaw -= io.MouseDelta.x * 0.01f;
           s.orbit.pitch = std::clamp(s.orbit.pitch + io.MouseDelta.y * 0.01f, -1.5f, 1.5f);
+          s.orbit_moved = s.path_dirty = true;
         }
         if (ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
           const Camera c = s.orbit.camera();
           const glm::vec3 right(c.camera_to_world[0]), up(c.camera_to_world[1]);
           const float scale = s.orbit.distance * 0.002f;
           s.orbit.target += (-io.MouseDelta.x * right + io.MouseDelta.y * up) * scale;
+          s.orbit_moved = s.path_dirty = true;
         }
-        if (io.MouseWheel != 0.0f) s.orbit.distance *= std::pow(0.9f, io.MouseWheel);
+        if (io.MouseWheel != 0.0f) {
+          s.orbit.distance *= std::pow(0.9f, io.MouseWheel);
+          s.orbit_moved = s.path_dirty = true;
+        }
       }
       bool screenshot = false;
-      const bool last_frame = options.frames > 0 && frame_index + 1 >= options.frames;
       if (!io.WantCaptureKeyboard) {
         if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window, GLFW_TRUE);
         if (ImGui::IsKeyPressed(GLFW_KEY_F12) || ImGui::IsKeyPressed(GLFW_KEY_P)) screenshot = true;
+        const int mode_keys[] = {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4};
+        for (int m = 0; m < 4; ++m)
+          if (ImGui::IsKeyPressed(mode_keys[m])) s.mode = ViewMode(m);
         if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
           try {
             load_scene_into(s, renderer);
+            s.message.clear();
           } catch (const Error& e) {
+            s.message = std::string("reload failed: ") + e.what();
             warn("reload failed: {}", e.what());
           }
+          s.path_dirty = true;
         }
       }
-      draw_panel(s, renderer, cpu_ms, gpu_ms);
+      s.path_dirty |= draw_panel(s, renderer, cpu_ms, gpu_ms);
       s.settings.metallic_override = s.override_metallic ? s.metallic : -1.0f;
       s.settings.roughness_override = s.override_roughness ? s.roughness : -1.0f;
 
-      int fb_w = 0, fb_h = 0;
-      glfwGetFramebufferSize(window, &fb_w, &fb_h);
-      if (fb_w > 0 && fb_h > 0) {
-        // At the framebuffer's size of this frame, so the projection has the window's
-        // aspect, also right after a resize.
-        Camera camera = s.orbit.camera();
-        renderer.render(camera, fb_w, fb_h, s.settings);
-        gpu_ms = renderer.latest_gpu_time_ms();
-        // The display transform on the GPU, straight into the window (display.glsl, the
-        // PNG outputs' code, held to it by tests/gl/display_glsl_test.cpp); the float
-        // frame is read back only for a screenshot.
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        renderer.display(s.display.exposure_ev, s.display.tone_mapper);
-        if (screenshot || last_frame) frame = renderer.read_back();
+      const bool truth = s.mode != ViewMode::kRaster;
+      const bool raster = s.mode != ViewMode::kPath;
+      if (fb_w != last_w || fb_h != last_h) s.path_dirty = true;
+      last_w = fb_w;
+      last_h = fb_h;
+      // The path tracer runs only while a truth view is shown; it restarts on any change of
+      // what it renders, and keeps its image across switches between the truth views.
+      if (truth && s.path_dirty && fb_w > 0 && fb_h > 0) start_path(s, fb_w, fb_h);
+      if (auto snap = s.path.latest(s.path_seen)) {
+        s.path_seen = snap->serial;
+        if (snap->job == s.path_job) {
+          s.snapshot = std::move(*snap);
+          s.path_display_dirty = true;
+        }
       }
+      if (s.shown_display.exposure_ev != s.display.exposure_ev ||
+          s.shown_display.tone_mapper != s.display.tone_mapper)
+        s.path_display_dirty = true;
+      if (truth && s.snapshot && s.path_display_dirty) {
+        s.path_texture.upload(path_display(s));
+        s.shown_display = s.display;
+        s.path_display_dirty = false;
+      }
+
+      const bool automation = options.frames > 0 || options.exit_when_done;
+      bool done = false;
+      if (options.exit_when_done)
+        done = truth ? (s.snapshot && s.snapshot->complete && frame_index + 1 >= options.frames)
+                     : frame_index + 1 >= std::max(options.frames, 2);
+      else if (options.frames > 0)
+        done = frame_index + 1 >= options.frames;
+      if (automation && truth && s.path.error()) fail("path tracer: {}", *s.path.error());
+
+      Image frame;  // the raster frame, read back only when it is needed on the CPU
+      const bool error_due = s.mode == ViewMode::kDifference && s.snapshot &&
+                             !s.snapshot->preview &&
+                             (Clock::now() - s.error_time > std::chrono::milliseconds(200) || done);
+      if (fb_w > 0 && fb_h > 0) {
+        if (raster) {
+          // At the framebuffer's size of this frame, so the projection has the window's
+          // aspect, also right after a resize.
+          renderer.render(current_camera(s, fb_w, fb_h), fb_w, fb_h, s.settings);
+          gpu_ms = renderer.latest_gpu_time_ms();
+          // The display transform on the GPU, straight into the window (display.glsl, the
+          // PNG outputs' code, held to it by tests/gl/display_glsl_test.cpp); the float
+          // frame is read back only for a screenshot or the error view.
+          glBindFramebuffer(GL_FRAMEBUFFER, 0);
+          renderer.display(s.display.exposure_ev, s.display.tone_mapper);
+          if (screenshot || done || error_due) frame = renderer.read_back();
+        } else {
+          glBindFramebuffer(GL_FRAMEBUFFER, 0);
+          glViewport(0, 0, fb_w, fb_h);
+          glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+          glClear(GL_COLOR_BUFFER_BIT);
+        }
+      }
+      if (error_due && !frame.empty() && frame.width == s.snapshot->color.width &&
+          frame.height == s.snapshot->color.height) {
+        s.error = luminance_error(frame, s.snapshot->color);
+        s.error_texture.upload(error_heatmap(s.error.error, 0.5f));
+        s.error_time = Clock::now();
+      }
+      // The truth views over the raster frame, behind the panel.
+      ImDrawList* back = ImGui::GetBackgroundDrawList();
+      const ImVec2 size = io.DisplaySize;
+      const auto texture = [](const DisplayTexture& t) {
+        return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(t.id()));
+      };
+      if (s.mode == ViewMode::kPath && !s.path_texture.empty())
+        back->AddImage(texture(s.path_texture), ImVec2(0, 0), size);
+      if (s.mode == ViewMode::kSplit && !s.path_texture.empty()) {
+        const float x = s.split * size.x;
+        back->AddImage(texture(s.path_texture), ImVec2(x, 0), size, ImVec2(s.split, 0),
+                       ImVec2(1, 1));
+        back->AddLine(ImVec2(x, 0), ImVec2(x, size.y), IM_COL32(255, 255, 255, 200), 2.0f);
+      }
+      if (s.mode == ViewMode::kDifference && !s.error_texture.empty())
+        back->AddImage(texture(s.error_texture), ImVec2(0, 0), size);
+
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
       glViewport(0, 0, fb_w, fb_h);
       ImGui::Render();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 
-      if (screenshot && !frame.empty()) {
-        const std::string path = options.screenshot.empty()
-                                     ? "out/view_" + std::to_string(frame_index) + ".png"
-                                     : options.screenshot;
-        save_screenshot(path, frame, s);
+      if ((screenshot || (done && !options.screenshot.empty())) && fb_w > 0 && fb_h > 0) {
+        const std::string path = !options.screenshot.empty()
+                                     ? options.screenshot
+                                     : "out/view_" + std::to_string(frame_index) + ".png";
+        if (s.mode == ViewMode::kRaster && !frame.empty()) {
+          save_screenshot(path, frame, s);
+        } else if (s.mode == ViewMode::kPath && s.snapshot) {
+          save_screenshot(path, s.snapshot->color, s);
+        } else if (s.mode == ViewMode::kSplit && s.snapshot && !frame.empty()) {
+          save_screenshot(
+              path,
+              split_image(rgb_channels(frame), s.snapshot->color, split_column(s.split, fb_w)), s);
+        } else if (s.mode == ViewMode::kDifference && s.snapshot && !frame.empty()) {
+          const ErrorView e = luminance_error(frame, s.snapshot->color);
+          const Image heat = error_heatmap(e.error, 0.5f);
+          save_screenshot(path, e.error, s, &heat);
+          note("view: relative luminance error mean {:.4f}, 95th percentile {:.4f}", e.mean, e.p95);
+        }
       }
       glfwSwapBuffers(window);
       cpu_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-      if (last_frame) {
-        if (!options.screenshot.empty() && !frame.empty())
-          save_screenshot(options.screenshot, frame, s);
-        break;
-      }
+      if (done) break;
+      // While the path tracer works and nothing else moves, draw at most ~30 frames a
+      // second: it has the other cores, and the window needs no more.
+      if (truth && !automation) std::this_thread::sleep_for(std::chrono::milliseconds(15));
     }
+    s.path.stop();
   }  // the renderer's GL objects go before the context
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();

@@ -2,16 +2,28 @@
 // `pbrkit view`: the interactive viewer. A GLFW window (X11) running the same Renderer as
 // the headless path, with an orbit / pan / zoom camera and a Dear ImGui panel for the
 // environment, exposure, tone mapper, model, compensation, IBL and lights, and live
-// metallic / roughness overrides (the seeds' sphere-grid experiment). Keys: F12 or P saves
-// a screenshot (EXR + PNG), R reloads the scene, Esc quits.
+// metallic / roughness overrides (the seeds' sphere-grid experiment). Four views of the
+// same scene and camera (keys 1-4): the raster image, the path-traced truth converging on
+// worker threads, a draggable split between them, and the per-pixel error of the raster
+// image against the truth. Keys: F12 or P saves a screenshot (EXR + PNG), R reloads the
+// scene, Esc quits; a .gltf/.glb dropped on the window loads it, an .hdr/.exr becomes the
+// environment.
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/image/display.h"
 
 namespace pbrkit {
+
+/// What the window shows: the OpenGL image, the path-traced one, the two split by a
+/// divider (raster left), or the raster image's relative error against the path-traced one.
+enum class ViewMode { kRaster, kPath, kSplit, kDifference };
+ViewMode parse_view_mode(std::string_view name);  ///< raster | path | split | difference
+std::string_view view_mode_name(ViewMode mode);
 
 struct ViewerOptions {
   std::string scene = "spheres";  ///< .gltf/.glb or a built-in scene name
@@ -28,6 +40,16 @@ struct ViewerOptions {
   int msaa = 0;
   int bake_size = gl::realtime_bake_options().face_size;
   int bake_samples = gl::realtime_bake_options().samples;
+  ViewMode mode = ViewMode::kRaster;
+  float split = 0.5f;  ///< the divider of the split view, as a fraction of the width
+  /// The path tracer's target and seed in the path views; it renders every pixel to `spp`
+  /// samples (no adaptive stopping), so a finished view equals `pbrkit render --spp N
+  /// --noise-threshold 0 --seed S` of the same scene, camera and size.
+  std::uint32_t spp = 1024;
+  std::uint32_t seed = 0;
+  /// Automation: once the mode's image is final (the path tracer at `spp`; the raster view
+  /// after `frames` frames, at least 2), save `screenshot` and quit.
+  bool exit_when_done = false;
   /// Automation (CI): render this many frames, save `screenshot`, quit (0: interactive).
   int frames = 0;
   std::string screenshot;  ///< PNG path (the EXR goes beside it); also the F12 target
