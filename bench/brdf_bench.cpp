@@ -99,7 +99,7 @@ void BM_Construct(benchmark::State& state) {
 // ---- The layered material (core/bsdf.h): each extension alone and all together, with the
 // default options (reference, compensated), bound once per call as the path tracer does. ----
 
-// kRoughGlass, kSmoothGlass, kDiffuseTransmission (issue 12): transmission through a
+// kRoughGlass, kSmoothGlass, kDiffuseTransmission: transmission through a
 // volume boundary (eta 1.5) and the diffuse BTDF; their eval and pdf take every other wi
 // mirrored below the surface, so that half the calls evaluate the transmission.
 enum class Layer {

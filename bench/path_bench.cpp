@@ -51,8 +51,8 @@ void BM_PathTraceSpheres(benchmark::State& state) {
   s.noise_threshold = 0.0f;  // no adaptive stopping (the library's default is on)
   s.max_bounces = 8;
   s.threads = threads;
-  // A fourth argument 0 turns compensation off (the default before issue 11, to compare
-  // like with like across that change).
+  // A fourth argument 0 turns compensation off (to compare like with like with renders
+  // made without it).
   if (state.range(3) == 0) s.brdf.multiscatter = false;
   double samples = 0, rays = 0, seconds = 0, build = 0, bvh = 0, cpu = 0;
   for (auto _ : state) {
@@ -105,7 +105,7 @@ BENCHMARK(BM_PathTraceSpheres)
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 
-// Issue 12: the built-in `glass` scene (smooth, rough, tinted, thin-walled and dispersive
+// Transmission: the built-in `glass` scene (smooth, rough, tinted, thin-walled and dispersive
 // glass before a checker backdrop) at 512x512, 2 threads, max 16 bounces (light crosses
 // several interfaces). Reports samples x pixels per second and the mean per-pixel relative
 // noise after `spp` samples; the time to a mean relative noise of 2% is extrapolated from
@@ -145,8 +145,8 @@ BENCHMARK(BM_PathTraceGlass)
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 
-// Embree's raw rate for the renderer's own mix of rays (issue 5 asks for a ray rate of at
-// least 70% of it): a render's every ray query (camera packets, closest-hit bounce rays,
+// Embree's raw rate for the renderer's own mix of rays (the integrator's target is a ray rate of
+// at least 70% of it): a render's every ray query (camera packets, closest-hit bounce rays,
 // shadow rays, with their origins, directions, extents and masks) is recorded, then the
 // same queries are replayed through the same SceneGeometry calls, with no shading in
 // between, on the same number of threads. Replayed back to back, the queries find the BVH

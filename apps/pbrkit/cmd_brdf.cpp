@@ -1,4 +1,5 @@
-// pbrkit brdf: the seeds' curves as CSV tables and gnuplot PNGs (data from
+// pbrkit brdf: the BRDF's building blocks in LearnOpenGL's form (de Vries, "PBR: Theory")
+// as CSV tables and gnuplot PNGs (data from
 // pbrkit/core/brdf_plots.h, i.e. from the very functions the renderers call).
 #include <spawn.h>
 #include <sys/wait.h>
@@ -33,7 +34,7 @@ constexpr const char* kHelp =
     "  brdf_G1       G1 vs n.v: Schlick-GGX with k_direct = (r+1)^2/8 and k_IBL = alpha/2,\n"
     "                and Smith's exact G1 for GGX, at roughness 0.25, 0.5, 1. All fall to 0\n"
     "                at grazing angles; k_direct masks more than the exact G1 at low r.\n"
-    "  brdf_fresnel  Fresnel-Schlick (luminance) vs v.h for the seeds' F0 table (water ..\n"
+    "  brdf_fresnel  Fresnel-Schlick (luminance) vs v.h for LearnOpenGL's F0 table (water ..\n"
     "                silver), coloured by F0. Every curve rises to 1 at v.h = 0.\n"
     "  brdf_albedo   directional albedo E(mu) of a white metal (F0 = 1), integrated over\n"
     "                the hemisphere from the BRDF itself: single scattering loses energy at\n"
@@ -120,20 +121,21 @@ std::vector<Plot> make_plots() {
     std::string colours;
     for (const auto& m : fresnel_materials())
       colours += (colours.empty() ? "" : " ") + hex_colour(m.F0);
-    p.body = common +
-             "set title \"Fresnel-Schlick F = F0 + (1 - F0)(1 - v.h)^5 (luminance) for the seeds' "
-             "F0 table,\\ncurves coloured by F0 (sRGB).  Every curve rises to 1 at v.h = 0 "
-             "(grazing).\"\nset key opaque\n"
-             "set object 1 rectangle from graph 0,0 to graph 1,1 behind fc rgb '#f4f4f4' "
-             "fs solid noborder\n"
-             "set xlabel 'v.h'\nset ylabel 'F (luminance)'\nset xrange [0:1]\n"
-             "set yrange [0:1.02]\n"
-             "colours = \"" +
-             colours +
-             "\"\n"
-             "plot for [i=2:11] DATA using 1:i with lines lw 4.5 lc rgb '#202020' notitle, \\\n"
-             "     for [i=2:11] DATA using 1:i with lines lw 3.5 lc rgb word(colours, i-1) "
-             "title columnhead(i) noenhanced\n";
+    p.body =
+        common +
+        "set title \"Fresnel-Schlick F = F0 + (1 - F0)(1 - v.h)^5 (luminance) for LearnOpenGL's "
+        "F0 table,\\ncurves coloured by F0 (sRGB).  Every curve rises to 1 at v.h = 0 "
+        "(grazing).\"\nset key opaque\n"
+        "set object 1 rectangle from graph 0,0 to graph 1,1 behind fc rgb '#f4f4f4' "
+        "fs solid noborder\n"
+        "set xlabel 'v.h'\nset ylabel 'F (luminance)'\nset xrange [0:1]\n"
+        "set yrange [0:1.02]\n"
+        "colours = \"" +
+        colours +
+        "\"\n"
+        "plot for [i=2:11] DATA using 1:i with lines lw 4.5 lc rgb '#202020' notitle, \\\n"
+        "     for [i=2:11] DATA using 1:i with lines lw 3.5 lc rgb word(colours, i-1) "
+        "title columnhead(i) noenhanced\n";
     plots.push_back(std::move(p));
   }
   {

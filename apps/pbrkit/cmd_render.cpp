@@ -82,7 +82,7 @@ void register_render_command(CLI::App& app) {
       ->check(CLI::IsMember(tone_mapper_names()))
       ->capture_default_str();
   cmd->add_option("--model", options->model,
-                  "BRDF model: reference (height-correlated Smith) or classic (the seeds' "
+                  "BRDF model: reference (height-correlated Smith) or classic (LearnOpenGL's "
                   "Schlick-GGX)")
       ->check(CLI::IsMember({"reference", "classic"}))
       ->capture_default_str();

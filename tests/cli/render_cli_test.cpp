@@ -133,8 +133,8 @@ TEST(RenderAspect, CentreSphereOfAWideImageIsRoundInBothRenderers) {
   EXPECT_LE(std::abs(raster.y - path.y), 2);
 }
 
-// Multiple-scattering compensation is on by default for `reference` and off for `classic`
-// (issue 11); --multiscatter / --no-multiscatter override either. The GL renderer is
+// Multiple-scattering compensation is on by default for `reference` and off for `classic`;
+// --multiscatter / --no-multiscatter override either. The GL renderer is
 // deterministic, so "the same setting" is bit-identical and a different one is not: the
 // rough metals of `spheres` gain up to 2x with compensation.
 TEST(RenderCli, CompensationDefaultsFollowTheModel) {

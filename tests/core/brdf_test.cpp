@@ -1,4 +1,4 @@
-// The metallic-roughness BRDF (core/brdf.h): `classic` against the seeds' formulas and
+// The metallic-roughness BRDF (core/brdf.h): `classic` against LearnOpenGL's formulas and
 // `reference` against Heitz 2014 written independently here, reciprocity, positivity,
 // energy bounds, a chi-square fit of Brdf::sample against Brdf::pdf, and the bound form
 // (Brdf::at) reused across calls.
@@ -19,7 +19,7 @@ namespace {
 constexpr double kPiD = std::numbers::pi;
 using dvec3 = glm::dvec3;
 
-// ---- The seeds' GLSL (LearnOpenGL "PBR/Lighting"), transcribed as plain C++ in double. ----
+// ---- LearnOpenGL's GLSL ("PBR/Lighting"), transcribed as plain C++ in double. ----
 double DistributionGGX_seed(dvec3 N, dvec3 H, double roughness) {
   const double a = roughness * roughness;
   const double a2 = a * a;
@@ -42,7 +42,7 @@ double GeometrySmith_seed(dvec3 N, dvec3 V, dvec3 L, double roughness) {
 dvec3 fresnelSchlick_seed(double cosTheta, dvec3 F0) {
   return F0 + (1.0 - F0) * std::pow(std::clamp(1.0 - cosTheta, 0.0, 1.0), 5.0);
 }
-// The seeds' loop body without the light's radiance and NdotL. LearnOpenGL adds 0.0001 to
+// LearnOpenGL's loop body without the light's radiance and NdotL. LearnOpenGL adds 0.0001 to
 // the specular denominator only to avoid a division by zero; it is left out here.
 dvec3 cook_torrance_seed(dvec3 V, dvec3 L, dvec3 albedo, double metallic, double roughness) {
   const dvec3 N(0, 0, 1);

@@ -1,4 +1,4 @@
-// The shader unit test of issue #6: brdf.glsl evaluated on the GPU (llvmpipe in CI) for
+// The shader unit test of the base layer: brdf.glsl evaluated on the GPU (llvmpipe in CI) for
 // many random inputs must match the C++ Brdf::eval to 1e-4 relative, for both G models,
 // with and without multiple-scattering compensation. This is how we know the OpenGL
 // renderer and the path tracer render one material model.

@@ -1,4 +1,4 @@
-// Issue 11's shader unit tests: the GLSL base layer with KHR_materials_ior, _specular,
+// The extensions' shader unit tests: the GLSL base layer with KHR_materials_ior, _specular,
 // _anisotropy and _iridescence (brdf.glsl) against the C++ Brdf, and the layered material
 // (bsdf.glsl: clearcoat over sheen over the base) against the C++ Bsdf, to 1e-4 relative
 // as tests/gl/brdf_glsl_test.cpp does for the plain base layer.

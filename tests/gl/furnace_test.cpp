@@ -1,4 +1,4 @@
-// The GL white furnace (issue #6): a uniform white environment, the built-in `furnace`
+// The GL white furnace: a uniform white environment, the built-in `furnace`
 // sphere; with the `reference` model and compensation the sphere must disappear (mean 1
 // within 0.02); without compensation it must show the known single-scattering loss, the
 // value the split sum predicts from the foundation's EnergyTable.

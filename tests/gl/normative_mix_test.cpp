@@ -1,4 +1,4 @@
-// Issue 11's consistency check of the reference model's structure: the built-in `spheres`
+// A consistency check of the reference model's structure: the built-in `spheres`
 // grid rendered by the OpenGL renderer in a uniform white environment (compensation off),
 // where every sphere's centre shows its directional albedo at n.v ~ 1, against an
 // independent quadrature of glTF 2.0 Appendix B's formula written out below
@@ -27,7 +27,7 @@ namespace {
 constexpr double kPiD = std::numbers::pi;
 
 // The directional albedo at n.v = mu of the Appendix B material (height-correlated Smith
-// GGX, Schlick Fresnel, F0 0.04 for the dielectric), or of the seeds' weighting
+// GGX, Schlick Fresnel, F0 0.04 for the dielectric), or of LearnOpenGL's weighting
 // (1 - F(v.h))(1 - metallic) with the mixed F0 when `old_weighting`.
 double appendix_b_albedo(glm::dvec3 base, double metallic, double roughness, double mu, int ch,
                          bool old_weighting) {
@@ -81,7 +81,7 @@ TEST(NormativeMix, SpheresMatchAppendixBInAUniformEnvironment) {
 
   std::printf(
       "GL / Appendix B - 1 at each sphere's centre (n.v > 0.97), uniform white light;\n"
-      "in brackets the seeds' weighting / Appendix B - 1. Rows metallic 1 (top) .. 0.\n");
+      "in brackets LearnOpenGL's weighting / Appendix B - 1. Rows metallic 1 (top) .. 0.\n");
   double worst = 0.0, worst_old = 0.0;
   for (int row = 6; row >= 0; --row) {
     double row_sum = 0.0;
@@ -115,7 +115,7 @@ TEST(NormativeMix, SpheresMatchAppendixBInAUniformEnvironment) {
     }
     std::printf("  row mean %+6.3f\n", row_sum / 7.0);
   }
-  std::printf("largest |GL / Appendix B - 1| %.4f; seeds' weighting up to %.4f\n", worst,
+  std::printf("largest |GL / Appendix B - 1| %.4f; LearnOpenGL's weighting up to %.4f\n", worst,
               worst_old);
   // Measured 2-core llvmpipe: largest 0.0016 (docs/SPLIT_SUM_ERRORS.md). At n.v ~ 1 the split
   // sum's own approximations (the diffuse weight at n.v instead of per v.h, the LUT's

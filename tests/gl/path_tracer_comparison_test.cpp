@@ -1,4 +1,4 @@
-// The OpenGL renderer against the path tracer (the ground truth), issue #6:
+// The OpenGL renderer against the path tracer (the ground truth):
 //  * one point light, no environment, direct lighting only: both compute the same
 //    integral exactly (a delta light needs no sampling), so they agree to within the path
 //    tracer's pixel-footprint noise;
@@ -90,7 +90,7 @@ TEST(GlVersusPathTracer, PointLightAgreesWithinNoise) {
   expect_point_light_agrees([](Scene&, Material&) {});
 }
 
-// Issue 11: every KHR_materials surface extension at once (clearcoat, sheen, ior, specular,
+// Every KHR_materials surface extension at once (clearcoat, sheen, ior, specular,
 // anisotropy along tangents around the sphere's axis, iridescence), so the fragment
 // shader's inputs (factors, the anisotropy frame, the coat normal) are the path tracer's.
 TEST(GlVersusPathTracer, PointLightWithExtensionsAgreesWithinNoise) {
@@ -178,11 +178,11 @@ TEST(GlVersusPathTracer, SplitSumSpheresWithinMeasuredBound) {
   }
   std::printf("mean |error| %.4f, largest %.4f\n", sum / 49.0, worst);
   // Measured (2-core Debian 12, llvmpipe), with the reference model of glTF Appendix B and
-  // compensation on (the default since issue 11): mean |error| 0.048, largest 0.21
+  // compensation on (the reference model's default): mean |error| 0.048, largest 0.21
   // (metallic 0.67, roughness 0.05: a near-mirror, where the 64-texel prefiltered cube and
   // the path tracer's 32 samples both resolve the bright sky's small features only
-  // roughly). Before issue 11 (the seeds' mix, no compensation) it was 0.049 and 0.22 with
-  // rough metals 5-11% dark; with compensation the metals are within +-8% and the pattern
+  // roughly). With LearnOpenGL's mix (de Vries, "PBR: Theory") and no compensation it was 0.049 and
+  // 0.22 with rough metals 5-11% dark; with compensation the metals are within +-8% and the pattern
   // left is the dielectrics' 4-12% bright. Likely causes (not separated here): the
   // prefilter's n = v = r lobe is rotationally symmetric about r, while the true lobe at
   // high roughness is stretched and tilted towards the normal, and the split sum weights

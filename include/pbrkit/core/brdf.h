@@ -2,12 +2,11 @@
 // The base layer of docs/MODEL.md: glTF's metallic-roughness BRDF (Lambert diffuse plus
 // GGX Cook-Torrance specular) with the surface extensions that change it in place
 // (KHR_materials_ior, _specular, _anisotropy, _iridescence), a selectable model
-// ("reference": the glTF specification's Appendix B structure; "classic": the seeds'
-// LearnOpenGL form) and multiple-scattering energy compensation. The coat and sheen layers
-// over it are core/bsdf.h. One implementation for every renderer:
-// the path tracer binds it to the view direction at each vertex (Brdf::at, BoundBrdf) and
-// calls eval/sample there, the GL shaders mirror eval line by line, and the baker's LUT
-// integrates the same specular lobe.
+// ("reference": the glTF specification's Appendix B structure; "classic": LearnOpenGL's
+// form, de Vries "PBR: Theory") and multiple-scattering energy compensation. The coat and sheen
+// layers over it are core/bsdf.h. One implementation for every renderer: the path tracer binds it
+// to the view direction at each vertex (Brdf::at, BoundBrdf) and calls eval/sample there, the GL
+// shaders mirror eval line by line, and the baker's LUT integrates the same specular lobe.
 //
 // All directions are in the local shading frame (n = +Z), both pointing away from the
 // surface: wo towards the viewer (v), wi towards the light (l).
@@ -27,7 +26,7 @@
 namespace pbrkit {
 
 /// The named model (MODEL.md): `reference` (default; glTF Appendix B's
-/// mix(dielectric, metal, metallic) with height-correlated Smith) or `classic` (the seeds'
+/// mix(dielectric, metal, metallic) with height-correlated Smith) or `classic` (LearnOpenGL's
 /// kd = (1 - F)(1 - metallic) with Schlick-GGX and k_direct; k_IBL is used by the LUT/IBL).
 enum class BrdfModel { kReference, kClassic };
 BrdfModel parse_brdf_model(std::string_view name);  ///< "reference" | "classic"
@@ -38,7 +37,7 @@ GeometryModel direct_geometry(BrdfModel model);
 GeometryModel ibl_geometry(BrdfModel model);
 /// Whether multiple-scattering compensation is on when nobody says: on for `reference`
 /// (the Khronos Sample Viewer, Filament and Cycles conserve energy by default), off for
-/// `classic` (the seeds have none).
+/// `classic` (LearnOpenGL has none).
 inline bool default_multiscatter(BrdfModel model) {
   return model == BrdfModel::kReference;
 }
@@ -66,7 +65,7 @@ struct BrdfOptions {
 inline glm::vec3 dielectric_f0(float ior, glm::vec3 specular_color) {
   const float r = (ior - 1.0f) / (ior + 1.0f);
   // 0.04 exactly for the default ior (0.2f * 0.2f rounds above it), so materials without
-  // the extensions keep the seeds' F0 to the bit.
+  // the extensions keep LearnOpenGL's F0 to the bit.
   const float r2 = ior == 1.5f ? 0.04f : r * r;
   return glm::min(r2 * specular_color, glm::vec3(1.0f));
 }
@@ -298,7 +297,7 @@ inline glm::vec3 BoundBrdf::specular_fresnel(float WOdotH, glm::vec3* diffuse_we
   const float c = std::max(WOdotH, 0.0f);
   const float m = 1.0f - c, m2 = m * m, w5 = m2 * m2 * m;  // Schlick's (1 - v.h)^5
   if (!b.reference()) {
-    // The seeds: F = F0 + (1 - F0)(1 - v.h)^5 with the mixed F0; kd = 1 - F.
+    // LearnOpenGL: F = F0 + (1 - F0)(1 - v.h)^5 with the mixed F0; kd = 1 - F.
     glm::vec3 F = b.F0_ + (1.0f - b.F0_) * w5;
     if (b.iridescence_ > 0.0f)
       F = glm::mix(F, iridescence_fresnel(c, b.film_ior_, b.film_thickness_, b.F0_),
@@ -375,7 +374,7 @@ inline glm::vec3 BoundBrdf::eval(glm::vec3 wi, float* pdf) const {
     // Height-correlated Smith (Heitz 2014, eq. 99): 1 / (1 + Lambda(v) + Lambda(l)).
     G = 1.0f / (1.0f + lambda_o_ + SmithLambdaGGXAniso(wi, b.alpha_x_, b.alpha_y_));
   } else {
-    // The seeds' GeometrySmith: G1(n.v) G1(n.l) with Schlick-GGX and k_direct.
+    // LearnOpenGL's GeometrySmith: G1(n.v) G1(n.l) with Schlick-GGX and k_direct.
     G = schlick_o_ * GeometrySchlickGGX(wi.z, k_direct(b.roughness_));
   }
   return D * G * F / (4.0f * wo_.z * wi.z) + eval_diffuse_and_ms(wi, diffuse_weight);

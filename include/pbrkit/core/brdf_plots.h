@@ -1,5 +1,5 @@
 #pragma once
-// The data behind `pbrkit brdf`: the seeds' curves (GGX D, Smith/Schlick-GGX G1, Schlick
+// The data behind `pbrkit brdf`: LearnOpenGL's curves (GGX D, Smith/Schlick-GGX G1, Schlick
 // Fresnel for a table of F0, and the directional albedo of a white metal with and without
 // multiple-scattering compensation), tabulated from the library's own BRDF code so the
 // plots show exactly what the renderers evaluate.
@@ -33,7 +33,7 @@ PlotTable ndf_plot_table(int points = 201);
 /// "r=0.25 Smith exact", ...
 PlotTable g1_plot_table(int points = 200);
 
-/// The seeds' F0 table (linear RGB).
+/// LearnOpenGL's F0 table (linear RGB).
 struct FresnelMaterial {
   std::string name;
   glm::vec3 F0;

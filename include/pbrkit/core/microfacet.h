@@ -1,7 +1,7 @@
 #pragma once
 // GGX / Trowbridge-Reitz microfacet terms, in the local shading frame (n = +Z) unless a
-// function takes cosines. Names mirror the seeds (DistributionGGX, GeometrySchlickGGX,
-// fresnelSchlick) so a reader with the papers open can check each line.
+// function takes cosines. Names mirror LearnOpenGL's "PBR: Theory" (de Vries; DistributionGGX,
+// GeometrySchlickGGX, fresnelSchlick) so a reader with the papers open can check each line.
 //
 // alpha = roughness^2 throughout (Burley 2012 / Karis 2013 remap).
 #include <algorithm>
@@ -36,7 +36,7 @@ float SmithG1GGX(glm::vec3 w, float alpha);
 /// Height-correlated masking-shadowing (Heitz 2014, eq. 99): 1 / (1 + Lambda(v) + Lambda(l)).
 float SmithG2HeightCorrelated(glm::vec3 wo, glm::vec3 wi, float alpha);
 
-/// Schlick-GGX (the seeds' GeometrySchlickGGX): n.x / ((n.x)(1 - k) + k).
+/// Schlick-GGX (LearnOpenGL's GeometrySchlickGGX): n.x / ((n.x)(1 - k) + k).
 float GeometrySchlickGGX(float NdotX, float k);
 /// k for punctual lights: (roughness + 1)^2 / 8 (Karis 2013, after Burley's remap).
 inline float k_direct(float roughness) {
@@ -46,7 +46,7 @@ inline float k_direct(float roughness) {
 inline float k_ibl(float roughness) {
   return roughness * roughness / 2.0f;
 }
-/// The seeds' GeometrySmith: G1(n.v) G1(n.l) with the given k.
+/// LearnOpenGL's GeometrySmith: G1(n.v) G1(n.l) with the given k.
 float GeometrySmithSchlick(float NdotV, float NdotL, float k);
 
 /// G(l, v) for the chosen model; directions in the local frame.
@@ -66,7 +66,7 @@ struct HalfVectorSample {
   float pdf;
 };
 
-/// GGX NDF sampling as in the seeds' ImportanceSampleGGX (Karis 2013):
+/// GGX NDF sampling as in LearnOpenGL's ImportanceSampleGGX (Karis 2013):
 /// phi = 2 pi u.x, cos(theta) = sqrt((1 - u.y) / (1 + (alpha^2 - 1) u.y)); pdf = D(h)(n.h).
 HalfVectorSample sample_ggx_ndf(glm::vec2 u, float alpha);
 float ggx_ndf_pdf(glm::vec3 h, float alpha);

@@ -56,7 +56,7 @@ Brdf::Brdf(const BaseLayer& layer, const BrdfOptions& options)
   table_roughness_ = aniso > 0.0f ? std::sqrt(std::sqrt(alpha_x_ * alpha_y_)) : roughness_;
   // F0 = mix(0.04, baseColor, metallic) (MODEL.md), with the dielectric's 0.04 from its ior,
   // specular colour and weight (reference: what the dielectric and metal Fresnel mix to at
-  // normal incidence; classic: the seeds' F0).
+  // normal incidence; classic: LearnOpenGL's F0).
   F0_ = glm::mix(spec_weight_ * F0_d_, base_color_, metallic_);
   if (options_.multiscatter) {
     const glm::vec2 ab_avg = table_->AB_avg(table_roughness_);

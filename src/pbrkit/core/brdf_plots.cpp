@@ -72,7 +72,7 @@ PlotTable g1_plot_table(int points) {
 }
 
 const std::vector<FresnelMaterial>& fresnel_materials() {
-  // The seeds' table of F0 (linear), dielectrics as grey values.
+  // LearnOpenGL's table of F0 (linear), dielectrics as grey values.
   static const std::vector<FresnelMaterial> kTable = {
       {"water", glm::vec3(0.02f)},
       {"plastic/glass (low)", glm::vec3(0.03f)},

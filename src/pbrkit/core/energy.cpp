@@ -16,7 +16,7 @@ namespace pbrkit {
 glm::vec2 EnergyTable::integrate_AB(GeometryModel model, float mu, float roughness, int samples) {
   // With visible-normal sampling the estimator of int f cos dwi is G(wo, wi) F / G1(wo)
   // (the D and cosine terms cancel against the pdf G1 D / (4 n.wo)), which is bounded
-  // and so converges much faster than the seeds' NDF sampling. Splitting Schlick's
+  // and so converges much faster than NDF sampling (Karis 2013's). Splitting Schlick's
   // F = F0 (1 - Fc) + Fc gives A (the F0 scale) and B (the bias) of Karis 2013.
   roughness = std::clamp(roughness, kMinRoughness, 1.0f);
   mu = std::clamp(mu, 1e-4f, 1.0f);

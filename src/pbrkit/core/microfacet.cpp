@@ -8,7 +8,7 @@
 namespace pbrkit {
 
 float DistributionGGX(float NdotH, float alpha) {
-  // The seeds' DistributionGGX with a = alpha (already squared roughness).
+  // LearnOpenGL's DistributionGGX with a = alpha (already squared roughness).
   const float a2 = alpha * alpha;
   const float NdotH2 = NdotH * NdotH;
   const float denom = NdotH2 * (a2 - 1.0f) + 1.0f;

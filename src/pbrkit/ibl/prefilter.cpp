@@ -52,7 +52,7 @@ int specular_levels(int face_size, int min_face_size) {
 }
 
 float ggx_cone_fraction(float alpha, float cos_theta_h) {
-  // The GGX NDF's CDF in theta_h (the inverse of the seeds' sampling formula):
+  // The GGX NDF's CDF in theta_h (the inverse of Karis 2013's sampling formula):
   // P(theta_h < t) = tan^2 t / (alpha^2 + tan^2 t).
   if (cos_theta_h <= 0.0f) return 1.0f;
   const float c2 = cos_theta_h * cos_theta_h;

@@ -87,8 +87,8 @@ struct ViewerState {
   DisplaySettings display;
   bool override_metallic = false, override_roughness = false;
   float metallic = 1.0f, roughness = 0.5f;
-  // The KHR_materials extensions' factors, each an override of every material when on
-  // (issue 11); applied through Renderer::set_materials when a control changes.
+  // The KHR_materials extensions' factors, each an override of every material when on;
+  // applied through Renderer::set_materials when a control changes.
   struct Extensions {
     bool ior_on = false, specular_on = false, clearcoat_on = false, sheen_on = false;
     bool anisotropy_on = false, iridescence_on = false;
@@ -98,7 +98,7 @@ struct ViewerState {
     float sheen_roughness = 0.5f;
     float anisotropy = 0.5f, anisotropy_rotation_deg = 0.0f;
     float iridescence = 1.0f, iridescence_thickness = 400.0f;
-    // Issue 12's: transmission, volume (thickness, attenuation), dispersion, diffuse
+    // Transmission, volume (thickness, attenuation), dispersion, diffuse
     // transmission.
     bool transmission_on = false, volume_on = false, dispersion_on = false;
     bool diffuse_transmission_on = false;

@@ -2,7 +2,7 @@
 // `pbrkit view`: the interactive viewer. A GLFW window (X11) running the same Renderer as
 // the headless path, with an orbit / pan / zoom camera and a Dear ImGui panel for the
 // environment, exposure, tone mapper, model, compensation, IBL and lights, and live
-// metallic / roughness overrides (the seeds' sphere-grid experiment). Four views of the
+// metallic / roughness overrides (LearnOpenGL's sphere-grid experiment). Four views of the
 // same scene and camera (keys 1-4): the raster image, the path-traced truth converging on
 // worker threads, a draggable split between them, and the per-pixel error of the raster
 // image against the truth. Keys: F12 or P saves a screenshot (EXR + PNG), R reloads the

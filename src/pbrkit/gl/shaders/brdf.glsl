@@ -50,7 +50,7 @@ float SmithG2HeightCorrelated(vec3 wo, vec3 wi, float alpha) {
   return 1.0 / (1.0 + SmithLambdaGGX(wo, alpha) + SmithLambdaGGX(wi, alpha));
 }
 
-// The seeds' GeometrySchlickGGX.
+// LearnOpenGL's GeometrySchlickGGX (de Vries, "PBR: Theory").
 float GeometrySchlickGGX(float NdotX, float k) {
   float nom = NdotX;
   float denom = NdotX * (1.0 - k) + k;
@@ -354,7 +354,7 @@ vec3 brdf_eval(Brdf b, sampler2D table, vec3 wo, vec3 wi) {
     G = 1.0 / (1.0 + SmithLambdaGGXAniso(wo, b.alpha_x, b.alpha_y) +
                SmithLambdaGGXAniso(wi, b.alpha_x, b.alpha_y));
   } else {
-    // The seeds' GeometrySmith: Schlick-GGX with k_direct.
+    // LearnOpenGL's GeometrySmith: Schlick-GGX with k_direct.
     G = GeometrySchlickGGX(max(wo.z, 0.0), k_direct(b.roughness)) *
         GeometrySchlickGGX(wi.z, k_direct(b.roughness));
   }

@@ -1,4 +1,4 @@
-// Transmission in real time (issue 12): KHR_materials_transmission, _volume, _dispersion and
+// Transmission in real time: KHR_materials_transmission, _volume, _dispersion and
 // _diffuse_transmission as the Khronos glTF Sample Viewer (ibl.glsl getIBLVolumeRefraction,
 // punctual.glsl applyVolumeAttenuation) and Filament's screen-space refraction do. The
 // renderer draws the opaque scene (and the background) first into a mip-mapped colour
