@@ -40,7 +40,9 @@ std::vector<std::string> supported_gltf_extensions();
 /// sweep of one parameter; builtin_scenes.cpp says which), and the transmission scenes
 /// "glass" (smooth, rough, tinted, thin-walled and dispersive glass before a checker
 /// backdrop) and "liquid" (a tumbler with a liquid beside an empty one), and "instances" (a
-/// 100 x 100 field of one rock mesh, some mirrored, some squashed, one glowing).
+/// 100 x 100 field of one rock mesh, some mirrored, some squashed, one glowing), and
+/// "lights" (a closed room lit by emissive ceiling and wall panels and 82 point and spot
+/// lights with a range; no environment: render it with none).
 std::vector<std::string> builtin_scene_names();
 bool is_builtin_scene(const std::string& name);
 /// Generates a built-in scene (Error for an unknown name, listing the known ones).
