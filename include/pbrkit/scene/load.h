@@ -48,8 +48,19 @@ bool is_builtin_scene(const std::string& name);
 /// Generates a built-in scene (Error for an unknown name, listing the known ones).
 Scene builtin_scene(const std::string& name);
 
+/// How write_glb lays out the scene's nodes.
+struct GltfWriteOptions {
+  /// Every instance its own node (the nodes of one mesh share it by index: standard glTF
+  /// 2.0, which every importer reads) instead of one node per repeated mesh with
+  /// EXT_mesh_gpu_instancing, which some importers refuse when it is in
+  /// extensionsRequired (Blender 3.4). The file grows by a node per instance.
+  bool flatten_instances = false;
+};
+
 /// Writes a scene as a binary glTF (.glb), atomically, so other tools can render exactly
-/// the same scene.
-void write_glb(const Scene& scene, const std::filesystem::path& path);
+/// the same scene. A mesh placed more than once is written as one node with
+/// EXT_mesh_gpu_instancing (required), unless `options.flatten_instances`.
+void write_glb(const Scene& scene, const std::filesystem::path& path,
+               const GltfWriteOptions& options = {});
 
 }  // namespace pbrkit
