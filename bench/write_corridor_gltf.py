@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes a glTF 2.0 many-lights scene: a corridor 100 m long and 4 m wide of N small
-emissive panels 2 m above a floor, and a camera at one end looking down the corridor.
+emissive panels 2 m above a floor, and a camera in it looking down the corridor.
 No punctual lights; render it with --no-env (the scene has no environment).
 
     bench/write_corridor_gltf.py OUT.gltf N [--no-camera]
@@ -12,9 +12,10 @@ powers (a factor of 0.5 to 2) vary deterministically from panel to panel, and th
 emissive strength scales with 1000 / N, so the corridor's total emitted power is about the
 same at every N: what changes with N is only how many lights share it.
 
-The camera (1.5 m up, pitched 20 degrees down, yfov 0.6, aspect 2) sees only the floor,
-from 2 m to 30 m ahead: the panels stay above the frame and the floor (40 m wide) reaches
-past its sides. An image error then measures the lighting alone: a tiny panel seen
+The camera (35 m along the corridor, 1.5 m up, pitched 20 degrees down, yfov 0.6, aspect
+2) sees only the floor, from 2 m to 30 m ahead (the middle panel, the only one at N = 1,
+lights it 15 m ahead; most panels are behind or far ahead): the panels stay above the
+frame and the floor (40 m wide) reaches past its sides. An image error then measures the lighting alone: a tiny panel seen
 directly, or the floor's edge against the black, would add the pixel filter's coverage
 noise, the same for every light sampler. The buffer is written beside OUT.gltf as OUT.bin.
 """
@@ -110,10 +111,10 @@ def main():
                       "translation": [-h + (column + 0.5) * dx, HEIGHT, -(row + 0.5) * dz]})
     cameras = []
     if camera:
-        # At one end, 1.5 m up, looking down the corridor 20 degrees below the horizon: the
+        # 35 m in, 1.5 m up, looking down the corridor 20 degrees below the horizon: the
         # top of the frame (half of yfov 0.6 above the axis) is 2.8 degrees below it.
         pitch = math.radians(-20.0)
-        nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 1.5, 1.0],
+        nodes.append({"name": "camera", "camera": 0, "translation": [0.0, 1.5, -35.0],
                       "rotation": [math.sin(pitch / 2), 0.0, 0.0, math.cos(pitch / 2)]})
         cameras = [{"type": "perspective",
                     "perspective": {"yfov": 0.6, "aspectRatio": 2.0, "znear": 0.05}}]
