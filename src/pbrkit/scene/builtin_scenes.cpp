@@ -695,13 +695,15 @@ Scene make_lights() {
   panel.material = cool_m;
   scene.meshes.push_back(panel);
   const int cool_mesh = int(scene.meshes.size()) - 1;
-  for (int k = 0; k < 6; ++k) {
-    const float z = -5.5f + 2.2f * float(k);
+  // Each mesh's instances together (a glTF file holds them so: one node per repeated mesh).
+  for (int k = 0; k < 6; ++k)
     for (const float x : {-2.6f, 2.6f}) {
-      const glm::mat4 at = glm::translate(glm::mat4(1.0f), {x, h - 0.01f, z});
+      const glm::mat4 at = glm::translate(glm::mat4(1.0f), {x, h - 0.01f, -5.5f + 2.2f * float(k)});
       scene.instances.push_back({warm_mesh, glm::scale(at, {0.6f, 1.0f, 0.6f}), -1});
     }
-    const glm::mat4 at = glm::translate(glm::mat4(1.0f), {0.0f, h - 0.01f, z});
+  for (int k = 0; k < 6; ++k) {
+    const glm::mat4 at =
+        glm::translate(glm::mat4(1.0f), {0.0f, h - 0.01f, -5.5f + 2.2f * float(k)});
     scene.instances.push_back({cool_mesh, glm::scale(at, {0.25f, 1.0f, 1.5f}), -1});
   }
   // Coloured panels on the back wall, 1 cm in front of it.
