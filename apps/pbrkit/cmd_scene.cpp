@@ -13,6 +13,7 @@ namespace {
 struct SceneWriteOptions {
   std::string name;
   std::string output;
+  bool flatten_instances = false;
 };
 
 }  // namespace
@@ -30,9 +31,15 @@ void register_scene_command(CLI::App& app) {
   CLI::App* write = cmd->add_subcommand("write", "Write a built-in scene as binary glTF");
   write->add_option("name", opt->name, "the built-in scene: " + builtin_scene_list())->required();
   write->add_option("output", opt->output, "Output .glb path")->required();
+  write->add_flag("--flatten-instances", opt->flatten_instances,
+                  "write each placement of a repeated mesh as a node of its own (sharing the "
+                  "mesh) instead of EXT_mesh_gpu_instancing, which Blender 3.4 and some other "
+                  "importers refuse");
   write->callback([opt] {
     const Scene scene = builtin_scene(opt->name);
-    write_glb(scene, opt->output);
+    GltfWriteOptions options;
+    options.flatten_instances = opt->flatten_instances;
+    write_glb(scene, opt->output, options);
     std::printf("wrote %s (%zu triangles)\n", opt->output.c_str(), scene.triangle_count());
   });
 }

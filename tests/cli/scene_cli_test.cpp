@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -33,6 +34,32 @@ TEST(SceneCli, EveryBuiltinSceneWritesAValidGltf) {
     ++count;
   }
   EXPECT_GE(count, 10) << list;  // spheres, furnace, cornell and the 7 KHR_materials scenes
+}
+
+// --flatten-instances: the same field with no EXT_mesh_gpu_instancing anywhere in the file
+// (Blender 3.4 refuses a file that requires it) and still valid.
+TEST(SceneCli, FlattenInstancesWritesNoInstancingExtension) {
+  const fs::path dir = test::scratch_dir();
+  const fs::path instanced = dir / "instances_cli.glb", flat = dir / "instances_cli_flat.glb";
+  std::string log;
+  ASSERT_EQ(test::run_command(
+                test::cli_path().string() + " scene write instances " + instanced.string(), &log),
+            0)
+      << log;
+  ASSERT_EQ(test::run_command(test::cli_path().string() + " scene write instances " +
+                                  flat.string() + " --flatten-instances",
+                              &log),
+            0)
+      << log;
+  EXPECT_EQ(test::validate_gltf(flat), "");
+  auto bytes = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_NE(bytes(instanced).find("EXT_mesh_gpu_instancing"), std::string::npos);
+  EXPECT_EQ(bytes(flat).find("EXT_mesh_gpu_instancing"), std::string::npos);
+  // The same triangles in both (the command reports the count).
+  EXPECT_NE(log.find("(1200002 triangles)"), std::string::npos) << log;
 }
 
 // The validator itself catches the defect this test exists for: a camera with zfar 0.

@@ -443,6 +443,103 @@ TEST(BuiltinScenes, InstancesIsAFieldOfOneRockMadeOnce) {
   EXPECT_EQ(loaded.instances.size(), s.instances.size());
 }
 
+// Power of an emitter in luminance-weighted watts-like units (the scene's radiometric
+// units): a point light 4 pi I, a spot 2 pi (1 - cos(outer)) I at most, a one-sided
+// emissive quad pi L A.
+float luminance(glm::vec3 c) {
+  return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b;
+}
+
+TEST(BuiltinScenes, LightsIsAClosedRoomWithManyVariedEmitters) {
+  const Scene s = load_scene("lights");
+  EXPECT_EQ(s.source, "builtin:lights");
+  // Everything lies in the room x in [-4, 4], y in [0, 3], z in [-7, 7], whose six walls
+  // are its bounds.
+  const Bounds b = s.world_bounds();
+  EXPECT_NEAR(b.min.x, -4.0f, 1e-5f);
+  EXPECT_NEAR(b.max.x, 4.0f, 1e-5f);
+  EXPECT_NEAR(b.min.y, 0.0f, 1e-5f);
+  EXPECT_NEAR(b.max.y, 3.0f, 1e-5f);
+  EXPECT_NEAR(b.min.z, -7.0f, 1e-5f);
+  EXPECT_NEAR(b.max.z, 7.0f, 1e-5f);
+  auto strictly_inside = [](glm::vec3 p) {
+    return std::fabs(p.x) < 4.0f && p.y > 0.0f && p.y < 3.0f && std::fabs(p.z) < 7.0f;
+  };
+
+  std::vector<float> powers;
+  int spots = 0, points = 0;
+  for (const Light& l : s.lights) {
+    ASSERT_NE(l.type, Light::Type::kDirectional) << l.name;
+    ASSERT_TRUE(l.range.has_value()) << l.name;
+    EXPECT_GT(*l.range, 0.5f) << l.name;
+    EXPECT_TRUE(strictly_inside(l.position)) << l.name;
+    if (l.type == Light::Type::kSpot) {
+      ++spots;
+      EXPECT_LT(l.inner_cone_angle, l.outer_cone_angle) << l.name;
+      // Pointing down, reaching the floor within its range: a pool of light.
+      const glm::vec3 d = glm::normalize(l.direction);
+      ASSERT_LT(d.y, -0.5f) << l.name;
+      EXPECT_LT(l.position.y / -d.y, *l.range) << l.name;
+      powers.push_back(2.0f * 3.14159265f * (1.0f - std::cos(l.outer_cone_angle)) * l.intensity *
+                       luminance(l.color));
+    } else {
+      ++points;
+      powers.push_back(4.0f * 3.14159265f * l.intensity * luminance(l.color));
+    }
+  }
+  EXPECT_EQ(spots, 6);
+  EXPECT_EQ(points, 76);
+  // The first lights are the spots (a renderer that shades only a few shows the pools).
+  for (int k = 0; k < spots; ++k) EXPECT_EQ(s.lights[std::size_t(k)].type, Light::Type::kSpot);
+
+  int emitters = 0, most_uses = 0;
+  std::vector<int> uses(s.meshes.size(), 0);
+  for (const Instance& inst : s.instances) {
+    const Mesh& mesh = s.meshes[std::size_t(inst.mesh)];
+    const Material& m = s.material_of(mesh);
+    if (m.emissive_factor == glm::vec3(0.0f)) continue;
+    ++emitters;
+    most_uses = std::max(most_uses, ++uses[std::size_t(inst.mesh)]);
+    ASSERT_EQ(mesh.triangle_count(), 2u) << mesh.name;
+    float area = 0.0f;
+    for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
+      glm::vec3 p[3];
+      for (int k = 0; k < 3; ++k)
+        p[k] = glm::vec3(inst.transform * glm::vec4(mesh.positions[mesh.indices[t + k]], 1.0f));
+      area += 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+      EXPECT_TRUE(strictly_inside((p[0] + p[1] + p[2]) / 3.0f)) << mesh.name;
+    }
+    powers.push_back(3.14159265f * m.emissive_strength * luminance(m.emissive_factor) * area);
+  }
+  EXPECT_EQ(emitters, 23);
+  EXPECT_EQ(most_uses, 12);  // the warm ceiling panels: one mesh, twelve instances
+  EXPECT_EQ(powers.size(), 105u);
+  // Different powers: over more than a decade.
+  const auto [lo, hi] = std::minmax_element(powers.begin(), powers.end());
+  EXPECT_GT(*lo, 0.0f);
+  EXPECT_GT(*hi / *lo, 20.0f);
+
+  // The camera stands in the room and sees the plinth with the gold sphere.
+  const Camera& camera = s.cameras.at(0);
+  EXPECT_TRUE(strictly_inside(camera.position()));
+  const glm::vec2 c = project(camera, {0.0f, 1.0f, -3.0f});
+  EXPECT_LT(std::fabs(c.x), 0.5f);
+  EXPECT_LT(std::fabs(c.y), 0.9f);
+
+  // Written and read back: the same lights (with their ranges) and instances.
+  const auto path = test::scratch_dir() / "lights.glb";
+  write_glb(s, path);
+  const Scene loaded = load_scene(path.string());
+  ASSERT_EQ(loaded.lights.size(), s.lights.size());
+  for (std::size_t i = 0; i < s.lights.size(); ++i) {
+    ASSERT_TRUE(loaded.lights[i].range.has_value());
+    EXPECT_FLOAT_EQ(*loaded.lights[i].range, *s.lights[i].range);
+    EXPECT_NEAR(glm::distance(loaded.lights[i].position, s.lights[i].position), 0.0f, 1e-5f);
+  }
+  EXPECT_EQ(loaded.instances.size(), s.instances.size());
+  EXPECT_EQ(loaded.triangle_count(), s.triangle_count());
+}
+
 TEST(BuiltinScenes, UnknownNameListsTheKnownOnes) {
   try {
     builtin_scene("teapot");

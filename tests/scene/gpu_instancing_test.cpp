@@ -325,5 +325,44 @@ TEST(GpuInstancing, WriterInstancesARepeatedMeshAndItReadsBack) {
   expect_near(loaded.instances[5].transform, s.instances[2].transform, 0.0f);
 }
 
+// Flattened (for importers that refuse EXT_mesh_gpu_instancing, Blender 3.4 among them):
+// the built-in `instances` field as 10,001 nodes of its own that share the rock mesh by
+// index, no extension, the validator clean, and read back the same placements in the same
+// order (mirrored and squashed rocks included) and the same triangles.
+TEST(GpuInstancing, WriterFlattensInstancesIntoNodesSharingTheMesh) {
+  const Scene s = load_scene("instances");
+  const auto path = test::scratch_dir() / "instances_flat.glb";
+  GltfWriteOptions options;
+  options.flatten_instances = true;
+  write_glb(s, path, options);
+  EXPECT_EQ(test::validate_gltf(path), "");
+
+  const json gltf = glb_json(path);
+  EXPECT_FALSE(gltf.contains("extensionsRequired")) << gltf["extensionsRequired"];
+  for (const json& name : gltf.value("extensionsUsed", json::array()))
+    EXPECT_NE(name, "EXT_mesh_gpu_instancing");
+  // One node per instance plus the camera; the meshes are written once each.
+  ASSERT_EQ(gltf["nodes"].size(), s.instances.size() + 1);
+  EXPECT_EQ(gltf["meshes"].size(), s.meshes.size());
+  for (const json& node : gltf["nodes"]) EXPECT_FALSE(node.contains("extensions"));
+
+  const Scene loaded = load_scene(path.string());
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front();
+  EXPECT_TRUE(loaded.extensions_required.empty());
+  EXPECT_EQ(loaded.node_count, s.instances.size() + 1);
+  EXPECT_EQ(loaded.meshes.size(), s.meshes.size());  // shared by index, not copied
+  EXPECT_EQ(loaded.triangle_count(), s.triangle_count());
+  ASSERT_EQ(loaded.instances.size(), s.instances.size());
+  int mirrored = 0;
+  for (std::size_t i = 0; i < s.instances.size(); ++i) {
+    SCOPED_TRACE(i);
+    EXPECT_EQ(loaded.instances[i].mesh, s.instances[i].mesh);
+    expect_near(loaded.instances[i].transform, s.instances[i].transform, 0.0f);
+    mirrored += glm::determinant(glm::mat3(loaded.instances[i].transform)) < 0.0f;
+    if (HasFailure()) break;
+  }
+  EXPECT_GE(mirrored, 40);
+}
+
 }  // namespace
 }  // namespace pbrkit

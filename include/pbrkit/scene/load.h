@@ -40,14 +40,27 @@ std::vector<std::string> supported_gltf_extensions();
 /// sweep of one parameter; builtin_scenes.cpp says which), and the transmission scenes
 /// "glass" (smooth, rough, tinted, thin-walled and dispersive glass before a checker
 /// backdrop) and "liquid" (a tumbler with a liquid beside an empty one), and "instances" (a
-/// 100 x 100 field of one rock mesh, some mirrored, some squashed, one glowing).
+/// 100 x 100 field of one rock mesh, some mirrored, some squashed, one glowing), and
+/// "lights" (a closed room lit by emissive ceiling and wall panels and 82 point and spot
+/// lights with a range; no environment: render it with none).
 std::vector<std::string> builtin_scene_names();
 bool is_builtin_scene(const std::string& name);
 /// Generates a built-in scene (Error for an unknown name, listing the known ones).
 Scene builtin_scene(const std::string& name);
 
+/// How write_glb lays out the scene's nodes.
+struct GltfWriteOptions {
+  /// Every instance its own node (the nodes of one mesh share it by index: standard glTF
+  /// 2.0, which every importer reads) instead of one node per repeated mesh with
+  /// EXT_mesh_gpu_instancing, which some importers refuse when it is in
+  /// extensionsRequired (Blender 3.4). The file grows by a node per instance.
+  bool flatten_instances = false;
+};
+
 /// Writes a scene as a binary glTF (.glb), atomically, so other tools can render exactly
-/// the same scene.
-void write_glb(const Scene& scene, const std::filesystem::path& path);
+/// the same scene. A mesh placed more than once is written as one node with
+/// EXT_mesh_gpu_instancing (required), unless `options.flatten_instances`.
+void write_glb(const Scene& scene, const std::filesystem::path& path,
+               const GltfWriteOptions& options = {});
 
 }  // namespace pbrkit

@@ -41,7 +41,9 @@ GltfEmission gltf_emission(const Material& m) {
 
 class Writer {
  public:
-  explicit Writer(const Scene& scene) : scene_(scene) { model_.buffers.emplace_back(); }
+  Writer(const Scene& scene, const GltfWriteOptions& options) : scene_(scene), options_(options) {
+    model_.buffers.emplace_back();
+  }
 
   tinygltf::Model build();
 
@@ -90,6 +92,7 @@ class Writer {
   int add_instanced_node(int mesh, const std::vector<const Instance*>& instances);
 
   const Scene& scene_;
+  const GltfWriteOptions& options_;
   tinygltf::Model model_;
 };
 
@@ -459,7 +462,7 @@ tinygltf::Model Writer::build() {
   // A mesh drawn more than once (each Mesh has one material, so its instances share it) is
   // written as one node with EXT_mesh_gpu_instancing, in the order of its first instance;
   // instances whose transform is not a translation, rotation and scale stay nodes of their
-  // own with a matrix.
+  // own with a matrix. Flattened, every instance is a node of its own (sharing its mesh).
   std::vector<std::vector<const Instance*>> by_mesh(scene_.meshes.size());
   std::vector<char> has_trs(scene_.instances.size(), 0);
   for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
@@ -474,7 +477,7 @@ tinygltf::Model Writer::build() {
   for (std::size_t i = 0; i < scene_.instances.size(); ++i) {
     const Instance& inst = scene_.instances[i];
     const auto mesh = std::size_t(inst.mesh);
-    if (has_trs[i] && by_mesh[mesh].size() > 1) {
+    if (!options_.flatten_instances && has_trs[i] && by_mesh[mesh].size() > 1) {
       if (!written[mesh]) {
         gscene.nodes.push_back(add_instanced_node(inst.mesh, by_mesh[mesh]));
         written[mesh] = 1;
@@ -617,8 +620,9 @@ std::string omit_absent_camera_values(const std::string& glb, const Scene& scene
 
 }  // namespace
 
-void write_glb(const Scene& scene, const std::filesystem::path& path) {
-  tinygltf::Model model = Writer(scene).build();
+void write_glb(const Scene& scene, const std::filesystem::path& path,
+               const GltfWriteOptions& options) {
+  tinygltf::Model model = Writer(scene, options).build();
   std::ostringstream glb;
   tinygltf::TinyGLTF gltf;
   // prettyPrint, writeBinary (buffers and images go into the BIN chunk)
