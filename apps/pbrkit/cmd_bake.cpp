@@ -153,7 +153,7 @@ void register_bake_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--model", o->model,
                   "G used by the BRDF LUT in BakeResult (both LUTs are written)")
-      ->check(CLI::IsMember({"reference", "classic"}))
+      ->check(CLI::IsMember(brdf_model_names()))
       ->capture_default_str();
   cmd->add_option("--rotation", o->rotation,
                   "environment rotation about +Y in degrees (counter-clockwise from above)")

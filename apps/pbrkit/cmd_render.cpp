@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "commands.h"
+#include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -84,7 +85,7 @@ void register_render_command(CLI::App& app) {
   cmd->add_option("--model", options->model,
                   "BRDF model: reference (height-correlated Smith) or classic (LearnOpenGL's "
                   "Schlick-GGX)")
-      ->check(CLI::IsMember({"reference", "classic"}))
+      ->check(CLI::IsMember(brdf_model_names()))
       ->capture_default_str();
   // (Callbacks, as add_multiscatter_flags: the optional stays unset without either.)
   auto* half = cmd->add_flag_callback(

@@ -53,7 +53,7 @@ void register_view_command(CLI::App& app) {
       ->check(CLI::IsMember(tone_mapper_names()))
       ->capture_default_str();
   cmd->add_option("--model", names->model, "BRDF model: reference or classic")
-      ->check(CLI::IsMember({"reference", "classic"}))
+      ->check(CLI::IsMember(brdf_model_names()))
       ->capture_default_str();
   add_multiscatter_flags(*cmd, names->multiscatter,
                          "multiple-scattering compensation (default: on for reference, off for "

@@ -12,7 +12,9 @@
 // surface: wo towards the viewer (v), wi towards the light (l).
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -31,6 +33,7 @@ namespace pbrkit {
 enum class BrdfModel { kReference, kClassic };
 BrdfModel parse_brdf_model(std::string_view name);  ///< "reference" | "classic"
 std::string_view brdf_model_name(BrdfModel model);
+std::vector<std::string> brdf_model_names();  ///< every model's name, in enum order
 /// G for evaluating the BRDF with explicit directions (lights, path tracing).
 GeometryModel direct_geometry(BrdfModel model);
 /// G for image-based lighting and the split-sum LUT.

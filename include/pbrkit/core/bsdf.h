@@ -109,7 +109,6 @@ class Bsdf {
 
   const Brdf& base() const { return base_; }
   bool has_coat() const { return coat_.has_value(); }
-  bool has_sheen() const { return sheen_max_ > 0.0f; }
   /// Whether any light goes through the surface (transmission or diffuse transmission on a
   /// material that is not fully metallic).
   bool has_transmission() const { return transmissive_; }

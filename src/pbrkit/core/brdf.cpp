@@ -13,6 +13,11 @@ BrdfModel parse_brdf_model(std::string_view name) {
   fail("unknown BRDF model '{}' (expected 'reference' or 'classic')", name);
 }
 
+std::vector<std::string> brdf_model_names() {
+  return {std::string(brdf_model_name(BrdfModel::kReference)),
+          std::string(brdf_model_name(BrdfModel::kClassic))};
+}
+
 std::string_view brdf_model_name(BrdfModel model) {
   return model == BrdfModel::kReference ? "reference" : "classic";
 }

@@ -28,10 +28,4 @@ inline glm::vec3 offset_ray_origin(glm::vec3 p, glm::vec3 n) {
   return out;
 }
 
-/// Spawn point for a ray leaving the surface in direction `d`: offset to the side of the
-/// geometric normal `ng` that `d` points into (transmission and reflection alike).
-inline glm::vec3 spawn_origin(glm::vec3 p, glm::vec3 ng, glm::vec3 d) {
-  return offset_ray_origin(p, glm::dot(d, ng) >= 0.0f ? ng : -ng);
-}
-
 }  // namespace pbrkit

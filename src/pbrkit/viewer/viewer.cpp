@@ -453,10 +453,11 @@ bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
   if (ImGui::Combo("tone mapper", &tm, getter, const_cast<std::vector<std::string>*>(&names),
                    int(names.size())))
     s.display.tone_mapper = ToneMapper(tm);
-  int model = s.settings.brdf.model == BrdfModel::kReference ? 0 : 1;
-  const char* models[] = {"reference", "classic"};
-  if (ImGui::Combo("model", &model, models, 2)) {
-    s.settings.brdf.model = model == 0 ? BrdfModel::kReference : BrdfModel::kClassic;
+  int model = int(s.settings.brdf.model);
+  static const std::vector<std::string> model_names = brdf_model_names();
+  if (ImGui::Combo("model", &model, getter, const_cast<std::vector<std::string>*>(&model_names),
+                   int(model_names.size()))) {
+    s.settings.brdf.model = BrdfModel(model);
     changed = true;
   }
   changed |= ImGui::Checkbox("multiple scattering", &s.settings.brdf.multiscatter);
