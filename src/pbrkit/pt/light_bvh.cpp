@@ -1,0 +1,309 @@
+#include "pbrkit/pt/light_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "pbrkit/core/math.h"
+#include "pbrkit/core/sampling.h"
+
+namespace pbrkit {
+
+namespace {
+
+// Importance is clamped to this, so that the sum of two children stays finite (a point
+// light at the shading point itself, a huge power).
+constexpr float kMaxImportance = 1e30f;
+// The squared distance is at least this (a point light at the shading point).
+constexpr float kMinDistance2 = 1e-12f;
+
+// cos(max(0, a - b)) and sin(max(0, a - b)) from the sines and cosines of angles a and b
+// in [0, pi] (pbrt-v4's cosSubClamped / sinSubClamped).
+float cos_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
+  if (cos_a > cos_b) return 1.0f;
+  return cos_a * cos_b + sin_a * sin_b;
+}
+float sin_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
+  if (cos_a > cos_b) return 0.0f;
+  return sin_a * cos_b - cos_a * sin_b;
+}
+
+// The angle between unit vectors, accurate near 0 and pi (pbrt-v4 AngleBetween).
+float angle_between(glm::vec3 a, glm::vec3 b) {
+  if (glm::dot(a, b) < 0.0f) return kPi - 2.0f * std::asin(std::min(glm::length(a + b) / 2, 1.0f));
+  return 2.0f * std::asin(std::min(glm::length(b - a) / 2, 1.0f));
+}
+
+float safe_acos(float x) {
+  return std::acos(std::clamp(x, -1.0f, 1.0f));
+}
+
+// The orientation measure of a cone (Conty Estevez & Kulla 2018, eq. 1; pbrt-v4
+// BVHLightSampler::EvaluateCost): the solid angle of the normals' cone plus the cosine-
+// weighted spread of the emission beyond it.
+double orientation_measure(const LightBounds& b) {
+  const double theta_o = safe_acos(b.cos_theta_o), theta_e = safe_acos(b.cos_theta_e);
+  const double theta_w = std::min(theta_o + theta_e, double(kPi));
+  const double sin_o = std::sqrt(std::max(0.0, 1.0 - double(b.cos_theta_o) * b.cos_theta_o));
+  return 2.0 * kPi * (1.0 - b.cos_theta_o) +
+         kPi / 2.0 *
+             (2.0 * theta_w * sin_o - std::cos(theta_o - 2.0 * theta_w) - 2.0 * theta_o * sin_o +
+              b.cos_theta_o);
+}
+
+double surface_area(const LightBounds& b) {
+  const glm::dvec3 d = glm::dvec3(b.hi) - glm::dvec3(b.lo);
+  return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
+}
+
+// The cost of a node holding `b` split along `axis` of a parent box whose extent is
+// `extent` (Conty Estevez & Kulla 2018, eq. 2: power x orientation measure x surface
+// area, with the regularisation K_r = longest extent / extent along the axis, which keeps
+// thin boxes from being cut across).
+double split_cost(const LightBounds& b, glm::vec3 extent, int axis) {
+  const double kr = double(std::max(extent.x, std::max(extent.y, extent.z))) / extent[axis];
+  return double(b.phi) * orientation_measure(b) * kr * surface_area(b);
+}
+
+}  // namespace
+
+LightBounds LightBounds::merge(const LightBounds& a, const LightBounds& b) {
+  if (!(a.phi > 0.0f)) return b;
+  if (!(b.phi > 0.0f)) return a;
+  LightBounds r;
+  r.lo = glm::min(a.lo, b.lo);
+  r.hi = glm::max(a.hi, b.hi);
+  r.phi = a.phi + b.phi;
+  r.cos_theta_e = std::min(a.cos_theta_e, b.cos_theta_e);
+  r.two_sided = a.two_sided || b.two_sided;
+  // The smallest cone holding both normal cones (pbrt-v4 Union(DirectionCone, ...)).
+  const float theta_a = safe_acos(a.cos_theta_o), theta_b = safe_acos(b.cos_theta_o);
+  const float theta_d = angle_between(a.w, b.w);
+  if (std::min(theta_d + theta_b, kPi) <= theta_a) {
+    r.w = a.w;
+    r.cos_theta_o = a.cos_theta_o;
+    return r;
+  }
+  if (std::min(theta_d + theta_a, kPi) <= theta_b) {
+    r.w = b.w;
+    r.cos_theta_o = b.cos_theta_o;
+    return r;
+  }
+  // Widened by a little, so that float rounding of the rotated axis cannot leave a normal
+  // just outside (the importance would then be 0 where a light contributes).
+  const float theta_o = 0.5f * (theta_a + theta_d + theta_b) + 1e-4f;
+  const glm::vec3 axis = glm::cross(a.w, b.w);
+  const float axis_len = glm::length(axis);
+  if (theta_o >= kPi || !(axis_len > 0.0f)) {
+    r.w = a.w;
+    r.cos_theta_o = -1.0f;
+    return r;
+  }
+  // a.w turned by theta_o - theta_a towards b.w about their common normal (Rodrigues;
+  // the axis is perpendicular to a.w).
+  const glm::vec3 k = axis / axis_len;
+  const float theta_r = theta_o - theta_a;
+  r.w = glm::normalize(a.w * std::cos(theta_r) + glm::cross(k, a.w) * std::sin(theta_r));
+  r.cos_theta_o = std::cos(theta_o);
+  return r;
+}
+
+float light_importance(const LightBounds& b, glm::vec3 p, glm::vec3 n) {
+  const glm::vec3 pc = 0.5f * (b.lo + b.hi);
+  const glm::vec3 diag = b.hi - b.lo;
+  const float r2 = 0.25f * glm::dot(diag, diag);  // bounding sphere radius^2
+  const glm::vec3 d = p - pc;
+  const float d2 = glm::dot(d, d);
+  // Inside the bounding sphere every direction is possible: the angular factors are 1, and
+  // the distance is clamped to the sphere's radius.
+  if (d2 <= r2) return std::min(b.phi / std::max(r2, kMinDistance2), kMaxImportance);
+  const glm::vec3 wi = d / std::sqrt(d2);  // from the lights towards p
+  // theta_b: half the angle the bounding sphere subtends at p.
+  const float sin2_b = r2 / d2;
+  const float sin_b = std::sqrt(sin2_b), cos_b = safe_sqrt(1.0f - sin2_b);
+  // theta_w: between the cone axis and wi; theta' = max(0, theta_w - theta_o - theta_b),
+  // the smallest angle between a normal in the cone and a direction towards p.
+  float cos_w = glm::dot(b.w, wi);
+  if (b.two_sided) cos_w = std::fabs(cos_w);
+  const float sin_w = safe_sqrt(1.0f - cos_w * cos_w);
+  const float sin_o = safe_sqrt(1.0f - b.cos_theta_o * b.cos_theta_o);
+  const float cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, b.cos_theta_o);
+  const float sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, b.cos_theta_o);
+  const float cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+  // Beyond the emission spread nothing reaches p. (Strictly beyond: a spot light, whose
+  // spread is 0, reaches the points inside its cone, where theta' = 0.)
+  if (cos_p < b.cos_theta_e) return 0.0f;
+  float importance = b.phi * cos_p / std::max(d2, kMinDistance2);
+  if (n != glm::vec3(0.0f)) {
+    // The receiver's cosine at the smallest angle theta_i - theta_b.
+    const float cos_i = std::fabs(glm::dot(wi, n));
+    const float sin_i = safe_sqrt(1.0f - cos_i * cos_i);
+    importance *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+  }
+  return std::min(std::max(importance, 0.0f), kMaxImportance);
+}
+
+LightBvh::LightBvh(const std::vector<LightBounds>& lights) {
+  trails_.assign(lights.size(), kNotInTree);
+  std::vector<Item> items;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const LightBounds& b = lights[i];
+    if (!(b.phi > 0.0f) || !std::isfinite(b.phi)) continue;
+    items.push_back({b, 0.5f * (b.lo + b.hi), std::uint32_t(i)});
+    total_power_ += double(b.phi);
+  }
+  if (items.empty()) return;
+  nodes_.reserve(2 * items.size() - 1);
+  build(items, 0, items.size(), 0, 0);
+}
+
+void LightBvh::build(std::vector<Item>& items, std::size_t begin, std::size_t end, int depth,
+                     std::uint64_t trail) {
+  const std::size_t node_index = nodes_.size();
+  nodes_.emplace_back();
+  depth_ = std::max(depth_, depth);
+  if (end - begin == 1) {
+    Node& leaf = nodes_[node_index];
+    leaf.bounds = items[begin].bounds;
+    leaf.leaf = true;
+    leaf.index = items[begin].light;
+    trails_[items[begin].light] = trail;
+    return;
+  }
+  LightBounds all;
+  glm::vec3 cmin(std::numeric_limits<float>::max()), cmax(-std::numeric_limits<float>::max());
+  for (std::size_t i = begin; i < end; ++i) {
+    all = LightBounds::merge(all, items[i].bounds);
+    cmin = glm::min(cmin, items[i].centroid);
+    cmax = glm::max(cmax, items[i].centroid);
+  }
+  nodes_[node_index].bounds = all;
+
+  // The split of least cost over 12 buckets of the centroids along each axis (pbrt-v4's
+  // BVHLightSampler::buildBVH). The trail has 63 usable bits: past the depth at which
+  // halving would still fit, nodes are split at the median instead.
+  const std::size_t count = end - begin;
+  int levels_left = 0;
+  while ((std::size_t(1) << levels_left) < count) ++levels_left;
+  std::size_t mid = begin;
+  if (depth + levels_left < 56) {
+    constexpr int kBuckets = 12;
+    const glm::vec3 extent = all.hi - all.lo;
+    const glm::vec3 cextent = cmax - cmin;
+    auto bucket_of = [&](const Item& item, int axis) {
+      const int b = int(float(kBuckets) * ((item.centroid[axis] - cmin[axis]) / cextent[axis]));
+      return std::clamp(b, 0, kBuckets - 1);
+    };
+    double best_cost = std::numeric_limits<double>::infinity();
+    int best_axis = -1, best_bucket = -1;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(cextent[axis] > 0.0f) || !(extent[axis] > 0.0f)) continue;
+      LightBounds buckets[kBuckets];
+      for (std::size_t i = begin; i < end; ++i) {
+        LightBounds& bucket = buckets[bucket_of(items[i], axis)];
+        bucket = LightBounds::merge(bucket, items[i].bounds);
+      }
+      // Costs of every split: the buckets below it against those above.
+      LightBounds below[kBuckets - 1], above[kBuckets - 1];
+      LightBounds acc;
+      for (int b = 0; b < kBuckets - 1; ++b) below[b] = acc = LightBounds::merge(acc, buckets[b]);
+      acc = LightBounds{};
+      for (int b = kBuckets - 1; b > 0; --b)
+        above[b - 1] = acc = LightBounds::merge(acc, buckets[b]);
+      for (int b = 0; b < kBuckets - 1; ++b) {
+        if (!(below[b].phi > 0.0f) || !(above[b].phi > 0.0f)) continue;
+        const double cost = split_cost(below[b], extent, axis) + split_cost(above[b], extent, axis);
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_axis = axis;
+          best_bucket = b;
+        }
+      }
+    }
+    if (best_axis >= 0) {
+      const auto it = std::partition(
+          items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(end),
+          [&](const Item& item) { return bucket_of(item, best_axis) <= best_bucket; });
+      mid = std::size_t(it - items.begin());
+    }
+  }
+  if (mid == begin || mid == end) {
+    // No split separates the centroids (or the depth is running out): halves by the
+    // median along the centroids' longest extent.
+    const glm::vec3 cextent = cmax - cmin;
+    const int axis = cextent.x >= cextent.y && cextent.x >= cextent.z ? 0
+                     : cextent.y >= cextent.z                         ? 1
+                                                                      : 2;
+    mid = begin + count / 2;
+    std::nth_element(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(mid),
+                     items.begin() + std::ptrdiff_t(end), [axis](const Item& a, const Item& b) {
+                       return a.centroid[axis] < b.centroid[axis];
+                     });
+  }
+  build(items, begin, mid, depth + 1, trail);
+  const std::size_t second = nodes_.size();
+  nodes_[node_index].index = std::uint32_t(second);
+  build(items, mid, end, depth + 1, trail | (std::uint64_t(1) << depth));
+}
+
+bool LightBvh::child_probabilities(const Node& node, std::size_t node_index, glm::vec3 p,
+                                   glm::vec3 n, float& p1, float& p2) const {
+  const float i1 = light_importance(nodes_[node_index + 1].bounds, p, n);
+  const float i2 = light_importance(nodes_[node.index].bounds, p, n);
+  const float sum = i1 + i2;
+  if (!(sum > 0.0f)) return false;  // no light below reaches p
+  // Each from its own importance: 1 - p1 would round a child far less important than its
+  // sibling (a relative 1e-8) to probability 0, and a light that reaches p to never.
+  p1 = i1 / sum;
+  p2 = i2 / sum;
+  return true;
+}
+
+std::int64_t LightBvh::sample(glm::vec3 p, glm::vec3 n, float u, float& pmf) const {
+  pmf = 0.0f;
+  if (nodes_.empty()) return -1;
+  std::size_t i = 0;
+  float prob = 1.0f;
+  while (!nodes_[i].leaf) {
+    const Node& node = nodes_[i];
+    float p1 = 0.0f, p2 = 0.0f;
+    if (!child_probabilities(node, i, p, n, p1, p2)) return -1;
+    // The random number, rescaled to [0, 1) within the branch taken, decides the next step.
+    if (u < p1) {
+      u = std::min(u / p1, kOneMinusEpsilon);
+      prob *= p1;
+      i = i + 1;
+    } else {
+      u = std::min((u - p1) / p2, kOneMinusEpsilon);
+      prob *= p2;
+      i = node.index;
+    }
+  }
+  if (!(prob > 0.0f)) return -1;
+  pmf = prob;
+  return std::int64_t(nodes_[i].index);
+}
+
+float LightBvh::pmf(glm::vec3 p, glm::vec3 n, std::uint32_t light) const {
+  if (light >= trails_.size() || trails_[light] == kNotInTree) return 0.0f;
+  std::uint64_t trail = trails_[light];
+  std::size_t i = 0;
+  float prob = 1.0f;
+  // The same decisions as sample(), in the same order, so the product is the same float.
+  while (!nodes_[i].leaf) {
+    const Node& node = nodes_[i];
+    float p1 = 0.0f, p2 = 0.0f;
+    if (!child_probabilities(node, i, p, n, p1, p2)) return 0.0f;
+    if ((trail & 1u) == 0) {
+      prob *= p1;
+      i = i + 1;
+    } else {
+      prob *= p2;
+      i = node.index;
+    }
+    trail >>= 1;
+  }
+  return prob;
+}
+
+}  // namespace pbrkit
