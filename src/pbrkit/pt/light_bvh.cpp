@@ -17,17 +17,6 @@ constexpr float kMaxImportance = 1e30f;
 // The squared distance is at least this (a point light at the shading point).
 constexpr float kMinDistance2 = 1e-12f;
 
-// cos(max(0, a - b)) and sin(max(0, a - b)) from the sines and cosines of angles a and b
-// in [0, pi] (pbrt-v4's cosSubClamped / sinSubClamped).
-float cos_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
-  if (cos_a > cos_b) return 1.0f;
-  return cos_a * cos_b + sin_a * sin_b;
-}
-float sin_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
-  if (cos_a > cos_b) return 0.0f;
-  return sin_a * cos_b - cos_a * sin_b;
-}
-
 // The angle between unit vectors, accurate near 0 and pi (pbrt-v4 AngleBetween).
 float angle_between(glm::vec3 a, glm::vec3 b) {
   if (glm::dot(a, b) < 0.0f) return kPi - 2.0f * std::asin(std::min(glm::length(a + b) / 2, 1.0f));
@@ -108,39 +97,60 @@ LightBounds LightBounds::merge(const LightBounds& a, const LightBounds& b) {
   return r;
 }
 
-float light_importance(const LightBounds& b, glm::vec3 p, glm::vec3 n) {
-  const glm::vec3 pc = 0.5f * (b.lo + b.hi);
+LightBvh::Node LightBvh::Node::of(const LightBounds& b) {
+  Node node;
+  node.center = 0.5f * (b.lo + b.hi);
   const glm::vec3 diag = b.hi - b.lo;
-  const float r2 = 0.25f * glm::dot(diag, diag);  // bounding sphere radius^2
-  const glm::vec3 d = p - pc;
+  node.radius = 0.5f * std::sqrt(glm::dot(diag, diag));
+  node.w = b.w;
+  node.phi = b.phi;
+  node.cos_theta_o = b.cos_theta_o;
+  node.sin_theta_o = safe_sqrt(1.0f - b.cos_theta_o * b.cos_theta_o);
+  node.cos_theta_e = b.cos_theta_e;
+  node.two_sided = b.two_sided;
+  return node;
+}
+
+// Every sine and cosine is a square root of a difference of squares times 1 / |d|, so the
+// square roots do not wait on one another (the traversal is bound by this function's
+// latency, one node after the other); the clamps of pbrt-v4's cosSubClamped are selects.
+float LightBvh::importance(const Node& b, glm::vec3 p, glm::vec3 n) {
+  const glm::vec3 d = p - b.center;  // from the lights towards p
   const float d2 = glm::dot(d, d);
+  const float r2 = b.radius * b.radius;  // bounding sphere
   // Inside the bounding sphere every direction is possible: the angular factors are 1, and
   // the distance is clamped to the sphere's radius.
   if (d2 <= r2) return std::min(b.phi / std::max(r2, kMinDistance2), kMaxImportance);
-  const glm::vec3 wi = d / std::sqrt(d2);  // from the lights towards p
+  const float inv_d = 1.0f / std::sqrt(std::max(d2, kMinDistance2));
   // theta_b: half the angle the bounding sphere subtends at p.
-  const float sin2_b = r2 / d2;
-  const float sin_b = std::sqrt(sin2_b), cos_b = safe_sqrt(1.0f - sin2_b);
-  // theta_w: between the cone axis and wi; theta' = max(0, theta_w - theta_o - theta_b),
-  // the smallest angle between a normal in the cone and a direction towards p.
-  float cos_w = glm::dot(b.w, wi);
-  if (b.two_sided) cos_w = std::fabs(cos_w);
-  const float sin_w = safe_sqrt(1.0f - cos_w * cos_w);
-  const float sin_o = safe_sqrt(1.0f - b.cos_theta_o * b.cos_theta_o);
-  const float cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, b.cos_theta_o);
-  const float sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, b.cos_theta_o);
-  const float cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
+  const float sin_b = std::min(b.radius * inv_d, 1.0f);
+  const float cos_b = std::sqrt(d2 - r2) * inv_d;
+  // theta_w: between the cone axis and wi = d / |d|; theta' = max(0, theta_w - theta_o -
+  // theta_b), the smallest angle between a normal in the cone and a direction towards p.
+  float dw = glm::dot(b.w, d);
+  if (b.two_sided) dw = std::fabs(dw);
+  const float cos_w = dw * inv_d;
+  const float sin_w = std::sqrt(std::max(d2 - dw * dw, 0.0f)) * inv_d;
+  const bool in_cone = cos_w > b.cos_theta_o;
+  const float cos_x = in_cone ? 1.0f : cos_w * b.cos_theta_o + sin_w * b.sin_theta_o;
+  const float sin_x = in_cone ? 0.0f : sin_w * b.cos_theta_o - cos_w * b.sin_theta_o;
+  const float cos_p = cos_x > cos_b ? 1.0f : cos_x * cos_b + sin_x * sin_b;
   // Beyond the emission spread nothing reaches p. (Strictly beyond: a spot light, whose
   // spread is 0, reaches the points inside its cone, where theta' = 0.)
   if (cos_p < b.cos_theta_e) return 0.0f;
-  float importance = b.phi * cos_p / std::max(d2, kMinDistance2);
+  float result = b.phi * cos_p * (inv_d * inv_d);
   if (n != glm::vec3(0.0f)) {
     // The receiver's cosine at the smallest angle theta_i - theta_b.
-    const float cos_i = std::fabs(glm::dot(wi, n));
-    const float sin_i = safe_sqrt(1.0f - cos_i * cos_i);
-    importance *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
+    const float dn = std::fabs(glm::dot(d, n));
+    const float cos_i = dn * inv_d;
+    const float sin_i = std::sqrt(std::max(d2 - dn * dn, 0.0f)) * inv_d;
+    result *= cos_i > cos_b ? 1.0f : cos_i * cos_b + sin_i * sin_b;
   }
-  return std::min(std::max(importance, 0.0f), kMaxImportance);
+  return std::min(std::max(result, 0.0f), kMaxImportance);
+}
+
+float light_importance(const LightBounds& b, glm::vec3 p, glm::vec3 n) {
+  return LightBvh::importance(LightBvh::Node::of(b), p, n);
 }
 
 LightBvh::LightBvh(const std::vector<LightBounds>& lights) {
@@ -164,7 +174,7 @@ void LightBvh::build(std::vector<Item>& items, std::size_t begin, std::size_t en
   depth_ = std::max(depth_, depth);
   if (end - begin == 1) {
     Node& leaf = nodes_[node_index];
-    leaf.bounds = items[begin].bounds;
+    leaf = Node::of(items[begin].bounds);
     leaf.leaf = true;
     leaf.index = items[begin].light;
     trails_[items[begin].light] = trail;
@@ -177,7 +187,7 @@ void LightBvh::build(std::vector<Item>& items, std::size_t begin, std::size_t en
     cmin = glm::min(cmin, items[i].centroid);
     cmax = glm::max(cmax, items[i].centroid);
   }
-  nodes_[node_index].bounds = all;
+  nodes_[node_index] = Node::of(all);
 
   // The split of least cost over 12 buckets of the centroids along each axis (pbrt-v4's
   // BVHLightSampler::buildBVH). The trail has 63 usable bits: past the depth at which
@@ -248,14 +258,15 @@ void LightBvh::build(std::vector<Item>& items, std::size_t begin, std::size_t en
 
 bool LightBvh::child_probabilities(const Node& node, std::size_t node_index, glm::vec3 p,
                                    glm::vec3 n, float& p1, float& p2) const {
-  const float i1 = light_importance(nodes_[node_index + 1].bounds, p, n);
-  const float i2 = light_importance(nodes_[node.index].bounds, p, n);
+  const float i1 = importance(nodes_[node_index + 1], p, n);
+  const float i2 = importance(nodes_[node.index], p, n);
   const float sum = i1 + i2;
   if (!(sum > 0.0f)) return false;  // no light below reaches p
   // Each from its own importance: 1 - p1 would round a child far less important than its
   // sibling (a relative 1e-8) to probability 0, and a light that reaches p to never.
-  p1 = i1 / sum;
-  p2 = i2 / sum;
+  const float inv_sum = 1.0f / sum;
+  p1 = i1 * inv_sum;
+  p2 = i2 * inv_sum;
   return true;
 }
 
@@ -269,15 +280,12 @@ std::int64_t LightBvh::sample(glm::vec3 p, glm::vec3 n, float u, float& pmf) con
     float p1 = 0.0f, p2 = 0.0f;
     if (!child_probabilities(node, i, p, n, p1, p2)) return -1;
     // The random number, rescaled to [0, 1) within the branch taken, decides the next step.
-    if (u < p1) {
-      u = std::min(u / p1, kOneMinusEpsilon);
-      prob *= p1;
-      i = i + 1;
-    } else {
-      u = std::min((u - p1) / p2, kOneMinusEpsilon);
-      prob *= p2;
-      i = node.index;
-    }
+    // (Selects rather than branches: the choice is a coin flip no predictor can guess.)
+    const bool first = u < p1;
+    const float q = first ? p1 : p2;
+    u = std::min((first ? u : u - p1) / q, kOneMinusEpsilon);
+    prob *= q;
+    i = first ? i + 1 : node.index;
   }
   if (!(prob > 0.0f)) return -1;
   pmf = prob;

@@ -62,14 +62,24 @@ class LightBvh {
   std::size_t node_count() const { return nodes_.size(); }
   int depth() const { return depth_; }
 
- private:
-  // Interior nodes have their first child right after them and the second at `index`;
-  // leaves hold their light's index.
-  struct Node {
-    LightBounds bounds;
+  /// A node as traversal reads it (one cache line): the bounding sphere of the box, the
+  /// cone with its sine, the power. Interior nodes have their first child right after them
+  /// and the second at `index`; leaves hold their light's index.
+  struct alignas(64) Node {
+    glm::vec3 center{0.0f};
+    float radius = 0.0f;
+    glm::vec3 w{0.0f, 0.0f, 1.0f};
+    float phi = 0.0f;
+    float cos_theta_o = 1.0f, sin_theta_o = 0.0f, cos_theta_e = 0.0f;
     std::uint32_t index = 0;
+    bool two_sided = false;
     bool leaf = false;
+    static Node of(const LightBounds& b);
   };
+  /// light_importance() of a node.
+  static float importance(const Node& node, glm::vec3 p, glm::vec3 n);
+
+ private:
   struct Item {
     LightBounds bounds;
     glm::vec3 centroid;
