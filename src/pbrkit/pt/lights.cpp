@@ -175,6 +175,10 @@ std::int64_t LightSet::select(glm::vec3 p, glm::vec3 n, float u_select, float& p
     p_select = single_p_select_;
     return entries_.size() == 1 ? 0 : std::int64_t(select_.sample_discrete(u_select, p_select));
   }
+  return select_bvh(p, n, u_select, p_select);
+}
+
+std::int64_t LightSet::select_bvh(glm::vec3 p, glm::vec3 n, float u_select, float& p_select) const {
   if (u_select < p_infinite_) {
     const float u = std::min(u_select / p_infinite_, kOneMinusEpsilon);
     float unused = 0.0f;
@@ -202,14 +206,20 @@ float LightSet::pmf(glm::vec3 p, glm::vec3 n, std::size_t light) const {
 
 bool LightSet::sample(glm::vec3 p, glm::vec3 n, float u_select, glm::vec2 u,
                       LightSample& out) const {
-  float p_select = 0.0f;
-  const std::int64_t i = select(p, n, u_select, p_select);
-  if (i < 0 || !(p_select > 0.0f)) return false;
-  return sample_entry(entries_[std::size_t(i)], p_select, p, u, out);
-}
-
-bool LightSet::sample_entry(const Entry& e, float p_select, glm::vec3 p, glm::vec2 u,
-                            LightSample& out) const {
+  if (entries_.empty()) return false;
+  // (The power sampler's choice inline, as it was before the BVH existed: the integrator's
+  // opaque path is sensitive to what gets inlined into it.)
+  float p_select = single_p_select_;
+  std::size_t i = 0;
+  if (kind_ == LightSamplerKind::kPower) {
+    i = entries_.size() == 1 ? 0 : select_.sample_discrete(u_select, p_select);
+  } else {
+    const std::int64_t k = select_bvh(p, n, u_select, p_select);
+    if (k < 0) return false;
+    i = std::size_t(k);
+  }
+  if (!(p_select > 0.0f)) return false;
+  const Entry& e = entries_[i];
   out = LightSample{};
   switch (e.kind) {
     case Kind::kEnvironment: {

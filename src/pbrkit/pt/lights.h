@@ -83,8 +83,8 @@ class LightSet {
   const SceneGeometry& geometry_;
   const Environment* env_;
   std::unique_ptr<EnvironmentSampler> env_sampler_;
-  bool sample_entry(const Entry& e, float p_select, glm::vec3 p, glm::vec2 u,
-                    LightSample& out) const;
+  /// select() for the BVH sampler.
+  std::int64_t select_bvh(glm::vec3 p, glm::vec3 n, float u_select, float& p_select) const;
 
   std::vector<Entry> entries_;
   LightSamplerKind kind_;
