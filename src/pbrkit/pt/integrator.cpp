@@ -271,12 +271,12 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   return out;
 }
 
-// Next-event estimation (pbrt-v4's SampleLd): a light picked by the light sampler (lights.h)
-// from the point and its normal, and a point or
-// direction on it, the BRDF for that direction and a shadow ray. Area lights and the
-// environment are weighted against the BSDF sampling that could have found them (power
-// heuristic); delta lights, which only this strategy reaches, have weight 1. Returns the
-// contribution to the path's radiance, beta f Li tr w / pdf.
+// Next-event estimation (pbrt-v4's SampleLd): a light picked by the light sampler from the
+// point and its normal (lights.h) and a point or direction on it, the BRDF for that
+// direction and a shadow ray. Area lights and the environment are weighted against the
+// BSDF sampling that could have found them (power heuristic); delta lights, which only this
+// strategy reaches, have weight 1. Returns the contribution to the path's radiance,
+// beta f Li tr w / pdf.
 [[gnu::noinline]] glm::vec3 Integrator::sample_ld_transmissive(
     const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf, glm::vec4 u_nee,
     glm::vec3 beta, std::uint64_t& rays, glm::vec3 sigma_near, glm::vec3 sigma_far) const {
