@@ -315,6 +315,33 @@ TEST(LightSampler, PmfOfTheSampledLightIsTheOneSampleUsed) {
   EXPECT_GT(hits, 200);
 }
 
+// Lights that share one position and cone cannot be told apart by where they are: every
+// node's importance is then its power times one common factor, so the BVH must choose in
+// proportion to power (the closed form), and the tree over them, split by the median for
+// want of a better split, stays shallow.
+TEST(LightSampler, CoincidentLightsAreChosenByPower) {
+  Pcg32 rng(31);
+  std::vector<LightBounds> lights(3000);
+  double total = 0.0;
+  for (LightBounds& b : lights) {
+    b.lo = b.hi = glm::vec3(1.0f, 2.0f, 3.0f);
+    b.cos_theta_o = -1.0f;
+    b.phi = log_uniform(rng, 0.01f, 100.0f);
+    total += double(b.phi);
+  }
+  const LightBvh bvh(lights);
+  EXPECT_LE(bvh.depth(), 13);  // ceil(log2(3000)) = 12 levels below the root, and slack
+  for (const Query& q : queries(10, 37)) {
+    double sum = 0.0;
+    for (std::uint32_t i = 0; i < lights.size(); ++i) {
+      const float p = bvh.pmf(q.p, q.n, i);
+      EXPECT_NEAR(p, double(lights[i].phi) / total, 1e-4 * double(lights[i].phi) / total);
+      sum += double(p);
+    }
+    EXPECT_NEAR(sum, 1.0, 1e-4);
+  }
+}
+
 TEST(LightSampler, ParsesItsNames) {
   EXPECT_EQ(parse_light_sampler("bvh"), LightSamplerKind::kBvh);
   EXPECT_EQ(parse_light_sampler("power"), LightSamplerKind::kPower);
