@@ -82,6 +82,7 @@ struct PathOptions {
   std::vector<std::string> aovs;
   bool denoise = false;
   std::string filter{pixel_filter_name(PathTracerSettings{}.filter)};
+  std::string light_sampler{light_sampler_name(PathTracerSettings{}.light_sampler)};
 };
 
 std::pair<std::uint32_t, std::uint32_t> parse_sample_range(const std::string& text) {
@@ -181,6 +182,13 @@ RenderRunner add_path_render_options(CLI::App& render) {
       ->check(CLI::IsMember({"tent", "box"}))
       ->capture_default_str()
       ->group(group);
+  render
+      .add_option("--light-sampler", p->light_sampler,
+                  "how each shading point picks the light it samples: bvh (a light tree: "
+                  "near lights facing the point more often) or power (by emitted power alone)")
+      ->check(CLI::IsMember({"bvh", "power"}))
+      ->capture_default_str()
+      ->group(group);
 
   return [p](const RenderCommandOptions& o) {
     const PathOptions& po = *p;
@@ -201,6 +209,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.seed = po.seed;
     s.threads = po.threads;
     s.filter = parse_pixel_filter(po.filter);
+    s.light_sampler = parse_light_sampler(po.light_sampler);
     s.brdf.model = parse_brdf_model(o.model);
     s.brdf.multiscatter = o.multiscatter.value_or(default_multiscatter(s.brdf.model));
     const bool partial = !po.sample_range.empty();

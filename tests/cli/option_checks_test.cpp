@@ -106,6 +106,7 @@ const std::map<std::string, std::string> kValidValues = {
     {"--aov", "albedo"},
     {"--denoise", ""},
     {"--filter", "box"},
+    {"--light-sampler", "power"},
     {"--irradiance", "cube"},
     {"--msaa", "2"},
     {"--background", "color:1,0,0"},

@@ -31,6 +31,18 @@ class RayObserver;  // pt/geometry.h
 /// to the same image (and that MIS has the lowest variance).
 enum class LightStrategy { kMis, kLightOnly, kBsdfOnly };
 
+/// How next-event estimation chooses the one light it samples at a shading point.
+enum class LightSamplerKind {
+  /// A light BVH (Conty Estevez & Kulla 2018; pbrt-v4's BVHLightSampler): lights near the
+  /// point and facing it are chosen more often. The default.
+  kBvh,
+  /// In proportion to each light's emitted power, wherever the point is (pbrt-v4's
+  /// PowerLightSampler): kept for comparison.
+  kPower,
+};
+LightSamplerKind parse_light_sampler(std::string_view name);  ///< "bvh" | "power"
+std::string_view light_sampler_name(LightSamplerKind kind);
+
 /// The reconstruction filter, importance-sampled: every sample has weight 1 and lands at
 /// an offset drawn from the filter, so pixels are independent (no splatting) and sample
 /// ranges merge exactly.
@@ -74,6 +86,9 @@ struct PathTracerSettings {
   /// Russian roulette starts after this many bounces.
   int rr_start = 3;
   LightStrategy strategy = LightStrategy::kMis;
+  /// How a light is chosen for next-event estimation (both are unbiased; with a single
+  /// light they give bit-identical images).
+  LightSamplerKind light_sampler = LightSamplerKind::kBvh;
   BrdfOptions brdf;
   PixelFilter filter = PixelFilter::kTent;
   /// Show the environment to camera rays (false: black background, light still counts).

@@ -112,6 +112,7 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   glm::vec3 beta(1.0f);
   float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
   glm::vec3 prev_p(0.0f);
+  glm::vec3 prev_n(0.0f);  // its geometric normal (the light sampler's choice depends on it)
   const EnvironmentSampler* env = lights_.environment_sampler();
   EnvironmentSampler::Location env_at;  // where `direction` meets the map (depth > 0)
   const LightStrategy strategy = settings_.strategy;
@@ -171,7 +172,7 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
       if (depth > 0) {
         if (strategy == LightStrategy::kLightOnly) w = 0.0f;
         if (strategy == LightStrategy::kMis)
-          w = power_heuristic(prev_pdf, lights_.triangle_pdf(hit, prev_p));
+          w = power_heuristic(prev_pdf, lights_.triangle_pdf(hit, prev_p, prev_n));
       }
       out.L += beta * Le * w;
     }
@@ -255,6 +256,7 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     const float spread = pixel_cone_.spread;
     if (!(std::isinf(bs.pdf) || kPi * spread * spread * bs.pdf >= 1.0f)) cone = -1.0f;
     prev_p = hit.p;
+    prev_n = hit.ng;
     origin = offset_ray_origin(hit.p, transmitted ? -hit.ng : hit.ng);
     direction = wi;
   }
@@ -269,11 +271,12 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   return out;
 }
 
-// Next-event estimation (pbrt-v4's SampleLd): a light picked by power and a point or
-// direction on it, the BRDF for that direction and a shadow ray. Area lights and the
-// environment are weighted against the BSDF sampling that could have found them (power
-// heuristic); delta lights, which only this strategy reaches, have weight 1. Returns the
-// contribution to the path's radiance, beta f Li tr w / pdf.
+// Next-event estimation (pbrt-v4's SampleLd): a light picked by the light sampler from the
+// point and its normal (lights.h) and a point or direction on it, the BRDF for that
+// direction and a shadow ray. Area lights and the environment are weighted against the
+// BSDF sampling that could have found them (power heuristic); delta lights, which only this
+// strategy reaches, have weight 1. Returns the contribution to the path's radiance,
+// beta f Li tr w / pdf.
 [[gnu::noinline]] glm::vec3 Integrator::sample_ld_transmissive(
     const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf, glm::vec4 u_nee,
     glm::vec3 beta, std::uint64_t& rays, glm::vec3 sigma_near, glm::vec3 sigma_far) const {
@@ -330,7 +333,8 @@ inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame
   LightSample ls;
   // (The light choice needs no random number when there is a single light.)
   const float u_light = lights_.size() > 1 ? u_nee.x : 0.5f;
-  if (!lights_.sample(hit.p, u_light, glm::vec2(u_nee.y, u_nee.z), ls)) return glm::vec3(0.0f);
+  if (!lights_.sample(hit.p, hit.ng, u_light, glm::vec2(u_nee.y, u_nee.z), ls))
+    return glm::vec3(0.0f);
   // Area lights and the environment are left to BSDF sampling when it is asked for alone.
   const LightStrategy strategy = settings_.strategy;
   if (!ls.delta && strategy == LightStrategy::kBsdfOnly) return glm::vec3(0.0f);

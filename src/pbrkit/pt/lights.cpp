@@ -1,11 +1,14 @@
 #include "pbrkit/pt/lights.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "pbrkit/core/color.h"
 #include "pbrkit/core/math.h"
+#include "pbrkit/core/sampling.h"
 #include "pbrkit/pt/shading.h"
+#include "pbrkit/util/error.h"
 
 namespace pbrkit {
 
@@ -33,10 +36,24 @@ float spot_factor(const Light& l, glm::vec3 to_point) {
 
 }  // namespace
 
-LightSet::LightSet(const Scene& scene, const SceneGeometry& geometry, const Environment* env)
-    : scene_(scene), geometry_(geometry), env_(env) {
-  // Power of each light (pbrt-v4 Light::Phi), used only to choose which light to sample.
+LightSamplerKind parse_light_sampler(std::string_view name) {
+  if (name == "bvh") return LightSamplerKind::kBvh;
+  if (name == "power") return LightSamplerKind::kPower;
+  fail("unknown light sampler '{}' (expected 'bvh' or 'power')", name);
+}
+
+std::string_view light_sampler_name(LightSamplerKind kind) {
+  return kind == LightSamplerKind::kPower ? "power" : "bvh";
+}
+
+LightSet::LightSet(const Scene& scene, const SceneGeometry& geometry, const Environment* env,
+                   LightSamplerKind kind)
+    : scene_(scene), geometry_(geometry), env_(env), kind_(kind) {
+  // Power of each light (pbrt-v4 Light::Phi), used only to choose which light to sample;
+  // for the BVH also where each light is and where it emits (LightBounds: zero power for
+  // the lights without a position, which are not in the tree).
   std::vector<float> power;
+  std::vector<LightBounds> bounds;
   const Bounds& b = geometry.bounds();
   const float radius = b.empty() ? 1.0f : std::max(0.5f * glm::length(b.extent()), 1e-3f);
   if (env) {
@@ -46,6 +63,7 @@ LightSet::LightSet(const Scene& scene, const SceneGeometry& geometry, const Envi
       env_entry_ = int(entries_.size());
       entries_.push_back({Kind::kEnvironment, 0});
       power.push_back(phi);
+      bounds.emplace_back();
     }
   }
   for (std::size_t i = 0; i < scene.lights.size(); ++i) {
@@ -53,13 +71,20 @@ LightSet::LightSet(const Scene& scene, const SceneGeometry& geometry, const Envi
     const float I = l.intensity * luminance(l.color);
     if (!(I > 0.0f) || !std::isfinite(I)) continue;
     float phi = 0.0f;
+    LightBounds lb;
+    lb.lo = lb.hi = l.position;
     switch (l.type) {
       case Light::Type::kPoint:
         phi = 4.0f * kPi * I;
+        lb.cos_theta_o = -1.0f;  // every direction
         break;
       case Light::Type::kSpot:
         phi = 2.0f * kPi * I *
               (1.0f - 0.5f * (std::cos(l.inner_cone_angle) + std::cos(l.outer_cone_angle)));
+        // Light leaves within the outer cone around the spot axis, nowhere beyond it.
+        lb.w = glm::normalize(l.direction);
+        lb.cos_theta_o = std::cos(std::max(l.outer_cone_angle, l.inner_cone_angle));
+        lb.cos_theta_e = 1.0f;
         break;
       case Light::Type::kDirectional:
         phi = kPi * radius * radius * I;
@@ -67,6 +92,8 @@ LightSet::LightSet(const Scene& scene, const SceneGeometry& geometry, const Envi
     }
     entries_.push_back({Kind::kPunctual, std::uint32_t(i)});
     power.push_back(phi);
+    if (l.type != Light::Type::kDirectional) lb.phi = phi;
+    bounds.push_back(lb);
   }
   // Emissive triangles, by power pi x area x luminance(emission factor); the emissive
   // texture's variation is not in the selection weights (it stays unbiased). Each instance
@@ -85,19 +112,112 @@ LightSet::LightSet(const Scene& scene, const SceneGeometry& geometry, const Envi
     for (std::size_t t = 0; t < n; ++t) {
       const float area = geometry.triangle_area(std::uint32_t(g), std::uint32_t(t));
       entries_.push_back({Kind::kTriangle, std::uint32_t(g), std::uint32_t(t)});
-      power.push_back(kPi * area * le * (m.double_sided ? 2.0f : 1.0f));
+      const float phi = kPi * area * le * (m.double_sided ? 2.0f : 1.0f);
+      power.push_back(phi);
+      if (kind == LightSamplerKind::kBvh) {
+        // A triangle emits from its front (both sides when double-sided) into the
+        // hemisphere around its geometric normal: theta_o = 0, theta_e = pi / 2.
+        LightBounds lb;
+        const auto corner = [&](float u, float v) {
+          return geometry.resolve(std::uint32_t(g), std::uint32_t(t), 0.0f, u, v);
+        };
+        const SurfaceHit h0 = corner(0.0f, 0.0f);
+        const glm::vec3 p1 = corner(1.0f, 0.0f).p, p2 = corner(0.0f, 1.0f).p;
+        lb.lo = glm::min(h0.p, glm::min(p1, p2));
+        lb.hi = glm::max(h0.p, glm::max(p1, p2));
+        lb.w = h0.ng;
+        lb.cos_theta_o = 1.0f;
+        lb.cos_theta_e = 0.0f;
+        lb.two_sided = m.double_sided;
+        lb.phi = phi;
+        bounds.push_back(lb);
+      }
     }
   }
-  if (!entries_.empty()) select_ = Distribution1D(std::move(power));
-  // With a single light the choice is always it, with the probability the distribution
-  // gives (computed once; a search per sample otherwise).
-  if (entries_.size() == 1) select_.sample_discrete(0.5f, single_p_select_);
+  // With at most one light there is no choice to make: the power sampler's code makes it,
+  // so that both samplers give the same image.
+  if (entries_.size() <= 1) kind_ = LightSamplerKind::kPower;
+  if (kind_ == LightSamplerKind::kPower) {
+    if (!entries_.empty()) select_ = Distribution1D(std::move(power));
+    // With a single light the choice is always it, with the probability the distribution
+    // gives (computed once; a search per sample otherwise).
+    if (entries_.size() == 1) select_.sample_discrete(0.5f, single_p_select_);
+    if (env_entry_ >= 0) env_probability_ = select_.probability(std::size_t(env_entry_));
+    return;
+  }
+  // The infinite lights as one group, chosen by its share of the power (the probability
+  // the power sampler gives it), then one of them by power.
+  std::vector<float> infinite_power;
+  double infinite_total = 0.0;
+  for (std::size_t i = 0; i < entries_.size(); ++i) {
+    const Entry& e = entries_[i];
+    const bool infinite =
+        e.kind == Kind::kEnvironment ||
+        (e.kind == Kind::kPunctual && scene.lights[e.index].type == Light::Type::kDirectional);
+    if (!infinite) continue;
+    infinite_entries_.push_back(std::uint32_t(i));
+    infinite_power.push_back(power[i]);
+    infinite_total += double(power[i]);
+  }
+  bvh_ = LightBvh(bounds);
+  const double total = infinite_total + bvh_.total_power();
+  if (!infinite_entries_.empty()) {
+    infinite_select_ = Distribution1D(std::move(infinite_power));
+    p_infinite_ = bvh_.empty() ? 1.0f : total > 0.0 ? float(infinite_total / total) : 0.0f;
+  }
+  if (env_entry_ >= 0) env_probability_ = p_infinite_ * infinite_select_.probability(0);
 }
 
-bool LightSet::sample(glm::vec3 p, float u_select, glm::vec2 u, LightSample& out) const {
+std::int64_t LightSet::select(glm::vec3 p, glm::vec3 n, float u_select, float& p_select) const {
+  p_select = 0.0f;
+  if (entries_.empty()) return -1;
+  if (kind_ == LightSamplerKind::kPower) {
+    p_select = single_p_select_;
+    return entries_.size() == 1 ? 0 : std::int64_t(select_.sample_discrete(u_select, p_select));
+  }
+  return select_bvh(p, n, u_select, p_select);
+}
+
+std::int64_t LightSet::select_bvh(glm::vec3 p, glm::vec3 n, float u_select, float& p_select) const {
+  if (u_select < p_infinite_) {
+    const float u = std::min(u_select / p_infinite_, kOneMinusEpsilon);
+    float unused = 0.0f;
+    const std::size_t k = infinite_select_.sample_discrete(u, unused);
+    // (The same expression as pmf() and environment_probability().)
+    p_select = p_infinite_ * infinite_select_.probability(k);
+    return infinite_entries_[k];
+  }
+  const float u = std::min((u_select - p_infinite_) / (1.0f - p_infinite_), kOneMinusEpsilon);
+  float q = 0.0f;
+  const std::int64_t i = bvh_.sample(p, n, u, q);
+  if (i < 0) return -1;
+  p_select = (1.0f - p_infinite_) * q;
+  return i;
+}
+
+float LightSet::pmf(glm::vec3 p, glm::vec3 n, std::size_t light) const {
+  if (light >= entries_.size()) return 0.0f;
+  if (kind_ == LightSamplerKind::kPower)
+    return entries_.size() == 1 ? single_p_select_ : select_.probability(light);
+  for (std::size_t k = 0; k < infinite_entries_.size(); ++k)
+    if (infinite_entries_[k] == light) return p_infinite_ * infinite_select_.probability(k);
+  return (1.0f - p_infinite_) * bvh_.pmf(p, n, std::uint32_t(light));
+}
+
+bool LightSet::sample(glm::vec3 p, glm::vec3 n, float u_select, glm::vec2 u,
+                      LightSample& out) const {
   if (entries_.empty()) return false;
+  // (The power sampler's choice inline, as it was before the BVH existed: the integrator's
+  // opaque path is sensitive to what gets inlined into it.)
   float p_select = single_p_select_;
-  const std::size_t i = entries_.size() == 1 ? 0 : select_.sample_discrete(u_select, p_select);
+  std::size_t i = 0;
+  if (kind_ == LightSamplerKind::kPower) {
+    i = entries_.size() == 1 ? 0 : select_.sample_discrete(u_select, p_select);
+  } else {
+    const std::int64_t k = select_bvh(p, n, u_select, p_select);
+    if (k < 0) return false;
+    i = std::size_t(k);
+  }
   if (!(p_select > 0.0f)) return false;
   const Entry& e = entries_[i];
   out = LightSample{};
@@ -164,17 +284,21 @@ bool LightSet::sample(glm::vec3 p, float u_select, glm::vec2 u, LightSample& out
 
 float LightSet::environment_pdf(glm::vec3 d) const {
   if (env_entry_ < 0) return 0.0f;
-  return select_.probability(std::size_t(env_entry_)) * env_sampler_->pdf(d);
+  return env_probability_ * env_sampler_->pdf(d);
 }
 
-float LightSet::triangle_pdf(const SurfaceHit& hit, glm::vec3 from) const {
+float LightSet::triangle_pdf(const SurfaceHit& hit, glm::vec3 from, glm::vec3 from_n) const {
   const int first = first_light_[hit.geom];
   if (first < 0) return 0.0f;
   const glm::vec3 to = hit.p - from;
   const float d2 = glm::dot(to, to);
   const float cos_l = std::fabs(glm::dot(hit.ng, to)) / std::sqrt(d2);
   if (!(cos_l > 0.0f) || !(hit.area > 0.0f)) return 0.0f;
-  return select_.probability(std::size_t(first) + hit.prim) * d2 / (cos_l * hit.area);
+  const std::size_t light = std::size_t(first) + hit.prim;
+  const float p_select = kind_ == LightSamplerKind::kPower
+                             ? select_.probability(light)
+                             : (1.0f - p_infinite_) * bvh_.pmf(from, from_n, std::uint32_t(light));
+  return p_select * d2 / (cos_l * hit.area);
 }
 
 }  // namespace pbrkit

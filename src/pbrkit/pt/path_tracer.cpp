@@ -80,7 +80,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
     geometry = std::make_unique<SceneGeometry>(scene);
     geometry->observe(settings.ray_observer);
     result.stats.bvh_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
-    lights = std::make_unique<LightSet>(scene, *geometry, env);
+    lights = std::make_unique<LightSet>(scene, *geometry, env, settings.light_sampler);
     // The BRDF's albedo tables are computed once per process on first use (about 0.15 s);
     // build them here, with the rest of the set-up, rather than inside the sampling loop,
     // where every render thread would wait for the first one to finish them.

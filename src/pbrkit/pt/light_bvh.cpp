@@ -1,0 +1,317 @@
+#include "pbrkit/pt/light_bvh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "pbrkit/core/math.h"
+#include "pbrkit/core/sampling.h"
+
+namespace pbrkit {
+
+namespace {
+
+// Importance is clamped to this, so that the sum of two children stays finite (a point
+// light at the shading point itself, a huge power).
+constexpr float kMaxImportance = 1e30f;
+// The squared distance is at least this (a point light at the shading point).
+constexpr float kMinDistance2 = 1e-12f;
+
+// The angle between unit vectors, accurate near 0 and pi (pbrt-v4 AngleBetween).
+float angle_between(glm::vec3 a, glm::vec3 b) {
+  if (glm::dot(a, b) < 0.0f) return kPi - 2.0f * std::asin(std::min(glm::length(a + b) / 2, 1.0f));
+  return 2.0f * std::asin(std::min(glm::length(b - a) / 2, 1.0f));
+}
+
+float safe_acos(float x) {
+  return std::acos(std::clamp(x, -1.0f, 1.0f));
+}
+
+// The orientation measure of a cone (Conty Estevez & Kulla 2018, eq. 1; pbrt-v4
+// BVHLightSampler::EvaluateCost): the solid angle of the normals' cone plus the cosine-
+// weighted spread of the emission beyond it.
+double orientation_measure(const LightBounds& b) {
+  const double theta_o = safe_acos(b.cos_theta_o), theta_e = safe_acos(b.cos_theta_e);
+  const double theta_w = std::min(theta_o + theta_e, double(kPi));
+  const double sin_o = std::sqrt(std::max(0.0, 1.0 - double(b.cos_theta_o) * b.cos_theta_o));
+  return 2.0 * kPi * (1.0 - b.cos_theta_o) +
+         kPi / 2.0 *
+             (2.0 * theta_w * sin_o - std::cos(theta_o - 2.0 * theta_w) - 2.0 * theta_o * sin_o +
+              b.cos_theta_o);
+}
+
+double surface_area(const LightBounds& b) {
+  const glm::dvec3 d = glm::dvec3(b.hi) - glm::dvec3(b.lo);
+  return 2.0 * (d.x * d.y + d.y * d.z + d.z * d.x);
+}
+
+// The cost of a node holding `b` split along `axis` of a parent box whose extent is
+// `extent` (Conty Estevez & Kulla 2018, eq. 2: power x orientation measure x surface
+// area, with the regularisation K_r = longest extent / extent along the axis, which keeps
+// thin boxes from being cut across).
+double split_cost(const LightBounds& b, glm::vec3 extent, int axis) {
+  const double kr = double(std::max(extent.x, std::max(extent.y, extent.z))) / extent[axis];
+  return double(b.phi) * orientation_measure(b) * kr * surface_area(b);
+}
+
+}  // namespace
+
+LightBounds LightBounds::merge(const LightBounds& a, const LightBounds& b) {
+  if (!(a.phi > 0.0f)) return b;
+  if (!(b.phi > 0.0f)) return a;
+  LightBounds r;
+  r.lo = glm::min(a.lo, b.lo);
+  r.hi = glm::max(a.hi, b.hi);
+  r.phi = a.phi + b.phi;
+  r.cos_theta_e = std::min(a.cos_theta_e, b.cos_theta_e);
+  r.two_sided = a.two_sided || b.two_sided;
+  // The smallest cone holding both normal cones (pbrt-v4 Union(DirectionCone, ...)).
+  const float theta_a = safe_acos(a.cos_theta_o), theta_b = safe_acos(b.cos_theta_o);
+  const float theta_d = angle_between(a.w, b.w);
+  if (std::min(theta_d + theta_b, kPi) <= theta_a) {
+    r.w = a.w;
+    r.cos_theta_o = a.cos_theta_o;
+    return r;
+  }
+  if (std::min(theta_d + theta_a, kPi) <= theta_b) {
+    r.w = b.w;
+    r.cos_theta_o = b.cos_theta_o;
+    return r;
+  }
+  // Widened by a little, so that float rounding of the rotated axis cannot leave a normal
+  // just outside (the importance would then be 0 where a light contributes).
+  const float theta_o = 0.5f * (theta_a + theta_d + theta_b) + 1e-4f;
+  const glm::vec3 axis = glm::cross(a.w, b.w);
+  const float axis_len = glm::length(axis);
+  if (theta_o >= kPi || !(axis_len > 0.0f)) {
+    r.w = a.w;
+    r.cos_theta_o = -1.0f;
+    return r;
+  }
+  // a.w turned by theta_o - theta_a towards b.w about their common normal (Rodrigues;
+  // the axis is perpendicular to a.w).
+  const glm::vec3 k = axis / axis_len;
+  const float theta_r = theta_o - theta_a;
+  r.w = glm::normalize(a.w * std::cos(theta_r) + glm::cross(k, a.w) * std::sin(theta_r));
+  r.cos_theta_o = std::cos(theta_o);
+  return r;
+}
+
+LightBvh::Node LightBvh::Node::of(const LightBounds& b) {
+  Node node;
+  node.center = 0.5f * (b.lo + b.hi);
+  const glm::vec3 diag = b.hi - b.lo;
+  node.radius = 0.5f * std::sqrt(glm::dot(diag, diag));
+  node.w = b.w;
+  node.phi = b.phi;
+  node.cos_theta_o = b.cos_theta_o;
+  node.sin_theta_o = safe_sqrt(1.0f - b.cos_theta_o * b.cos_theta_o);
+  node.cos_theta_e = b.cos_theta_e;
+  node.two_sided = b.two_sided;
+  return node;
+}
+
+// Every sine and cosine is a square root of a difference of squares times 1 / |d|, so the
+// square roots do not wait on one another (the traversal is bound by this function's
+// latency, one node after the other); the clamps of pbrt-v4's cosSubClamped are selects.
+float LightBvh::importance(const Node& b, glm::vec3 p, glm::vec3 n) {
+  const glm::vec3 d = p - b.center;  // from the lights towards p
+  const float d2 = glm::dot(d, d);
+  const float r2 = b.radius * b.radius;  // bounding sphere
+  // Inside the bounding sphere every direction is possible: the angular factors are 1, and
+  // the distance is clamped to the sphere's radius.
+  if (d2 <= r2) return std::min(b.phi / std::max(r2, kMinDistance2), kMaxImportance);
+  const float inv_d = 1.0f / std::sqrt(std::max(d2, kMinDistance2));
+  // theta_b: half the angle the bounding sphere subtends at p.
+  const float sin_b = std::min(b.radius * inv_d, 1.0f);
+  const float cos_b = std::sqrt(d2 - r2) * inv_d;
+  // theta_w: between the cone axis and wi = d / |d|; theta' = max(0, theta_w - theta_o -
+  // theta_b), the smallest angle between a normal in the cone and a direction towards p.
+  float dw = glm::dot(b.w, d);
+  if (b.two_sided) dw = std::fabs(dw);
+  const float cos_w = dw * inv_d;
+  const float sin_w = std::sqrt(std::max(d2 - dw * dw, 0.0f)) * inv_d;
+  const bool in_cone = cos_w > b.cos_theta_o;
+  const float cos_x = in_cone ? 1.0f : cos_w * b.cos_theta_o + sin_w * b.sin_theta_o;
+  const float sin_x = in_cone ? 0.0f : sin_w * b.cos_theta_o - cos_w * b.sin_theta_o;
+  const float cos_p = cos_x > cos_b ? 1.0f : cos_x * cos_b + sin_x * sin_b;
+  // Beyond the emission spread nothing reaches p. (Strictly beyond: a spot light, whose
+  // spread is 0, reaches the points inside its cone, where theta' = 0.)
+  if (cos_p < b.cos_theta_e) return 0.0f;
+  float result = b.phi * cos_p * (inv_d * inv_d);
+  if (n != glm::vec3(0.0f)) {
+    // The receiver's cosine at the smallest angle theta_i - theta_b.
+    const float dn = std::fabs(glm::dot(d, n));
+    const float cos_i = dn * inv_d;
+    const float sin_i = std::sqrt(std::max(d2 - dn * dn, 0.0f)) * inv_d;
+    result *= cos_i > cos_b ? 1.0f : cos_i * cos_b + sin_i * sin_b;
+  }
+  return std::min(std::max(result, 0.0f), kMaxImportance);
+}
+
+float light_importance(const LightBounds& b, glm::vec3 p, glm::vec3 n) {
+  return LightBvh::importance(LightBvh::Node::of(b), p, n);
+}
+
+LightBvh::LightBvh(const std::vector<LightBounds>& lights) {
+  trails_.assign(lights.size(), kNotInTree);
+  std::vector<Item> items;
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const LightBounds& b = lights[i];
+    if (!(b.phi > 0.0f) || !std::isfinite(b.phi)) continue;
+    items.push_back({b, 0.5f * (b.lo + b.hi), std::uint32_t(i)});
+    total_power_ += double(b.phi);
+  }
+  if (items.empty()) return;
+  nodes_.reserve(2 * items.size() - 1);
+  build(items, 0, items.size(), 0, 0);
+}
+
+void LightBvh::build(std::vector<Item>& items, std::size_t begin, std::size_t end, int depth,
+                     std::uint64_t trail) {
+  const std::size_t node_index = nodes_.size();
+  nodes_.emplace_back();
+  depth_ = std::max(depth_, depth);
+  if (end - begin == 1) {
+    Node& leaf = nodes_[node_index];
+    leaf = Node::of(items[begin].bounds);
+    leaf.leaf = true;
+    leaf.index = items[begin].light;
+    trails_[items[begin].light] = trail;
+    return;
+  }
+  LightBounds all;
+  glm::vec3 cmin(std::numeric_limits<float>::max()), cmax(-std::numeric_limits<float>::max());
+  for (std::size_t i = begin; i < end; ++i) {
+    all = LightBounds::merge(all, items[i].bounds);
+    cmin = glm::min(cmin, items[i].centroid);
+    cmax = glm::max(cmax, items[i].centroid);
+  }
+  nodes_[node_index] = Node::of(all);
+
+  // The split of least cost over 12 buckets of the centroids along each axis (pbrt-v4's
+  // BVHLightSampler::buildBVH). The trail has 63 usable bits: past the depth at which
+  // halving would still fit, nodes are split at the median instead.
+  const std::size_t count = end - begin;
+  int levels_left = 0;
+  while ((std::size_t(1) << levels_left) < count) ++levels_left;
+  std::size_t mid = begin;
+  if (depth + levels_left < 56) {
+    constexpr int kBuckets = 12;
+    const glm::vec3 extent = all.hi - all.lo;
+    const glm::vec3 cextent = cmax - cmin;
+    auto bucket_of = [&](const Item& item, int axis) {
+      const int b = int(float(kBuckets) * ((item.centroid[axis] - cmin[axis]) / cextent[axis]));
+      return std::clamp(b, 0, kBuckets - 1);
+    };
+    double best_cost = std::numeric_limits<double>::infinity();
+    int best_axis = -1, best_bucket = -1;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(cextent[axis] > 0.0f) || !(extent[axis] > 0.0f)) continue;
+      LightBounds buckets[kBuckets];
+      for (std::size_t i = begin; i < end; ++i) {
+        LightBounds& bucket = buckets[bucket_of(items[i], axis)];
+        bucket = LightBounds::merge(bucket, items[i].bounds);
+      }
+      // Costs of every split: the buckets below it against those above.
+      LightBounds below[kBuckets - 1], above[kBuckets - 1];
+      LightBounds acc;
+      for (int b = 0; b < kBuckets - 1; ++b) below[b] = acc = LightBounds::merge(acc, buckets[b]);
+      acc = LightBounds{};
+      for (int b = kBuckets - 1; b > 0; --b)
+        above[b - 1] = acc = LightBounds::merge(acc, buckets[b]);
+      for (int b = 0; b < kBuckets - 1; ++b) {
+        if (!(below[b].phi > 0.0f) || !(above[b].phi > 0.0f)) continue;
+        const double cost = split_cost(below[b], extent, axis) + split_cost(above[b], extent, axis);
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_axis = axis;
+          best_bucket = b;
+        }
+      }
+    }
+    if (best_axis >= 0) {
+      const auto it = std::partition(
+          items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(end),
+          [&](const Item& item) { return bucket_of(item, best_axis) <= best_bucket; });
+      mid = std::size_t(it - items.begin());
+    }
+  }
+  if (mid == begin || mid == end) {
+    // No split separates the centroids (or the depth is running out): halves by the
+    // median along the centroids' longest extent.
+    const glm::vec3 cextent = cmax - cmin;
+    const int axis = cextent.x >= cextent.y && cextent.x >= cextent.z ? 0
+                     : cextent.y >= cextent.z                         ? 1
+                                                                      : 2;
+    mid = begin + count / 2;
+    std::nth_element(items.begin() + std::ptrdiff_t(begin), items.begin() + std::ptrdiff_t(mid),
+                     items.begin() + std::ptrdiff_t(end), [axis](const Item& a, const Item& b) {
+                       return a.centroid[axis] < b.centroid[axis];
+                     });
+  }
+  build(items, begin, mid, depth + 1, trail);
+  const std::size_t second = nodes_.size();
+  nodes_[node_index].index = std::uint32_t(second);
+  build(items, mid, end, depth + 1, trail | (std::uint64_t(1) << depth));
+}
+
+bool LightBvh::child_probabilities(const Node& node, std::size_t node_index, glm::vec3 p,
+                                   glm::vec3 n, float& p1, float& p2) const {
+  const float i1 = importance(nodes_[node_index + 1], p, n);
+  const float i2 = importance(nodes_[node.index], p, n);
+  const float sum = i1 + i2;
+  if (!(sum > 0.0f)) return false;  // no light below reaches p
+  // Each from its own importance: 1 - p1 would round a child far less important than its
+  // sibling (a relative 1e-8) to probability 0, and a light that reaches p to never.
+  const float inv_sum = 1.0f / sum;
+  p1 = i1 * inv_sum;
+  p2 = i2 * inv_sum;
+  return true;
+}
+
+std::int64_t LightBvh::sample(glm::vec3 p, glm::vec3 n, float u, float& pmf) const {
+  pmf = 0.0f;
+  if (nodes_.empty()) return -1;
+  std::size_t i = 0;
+  float prob = 1.0f;
+  while (!nodes_[i].leaf) {
+    const Node& node = nodes_[i];
+    float p1 = 0.0f, p2 = 0.0f;
+    if (!child_probabilities(node, i, p, n, p1, p2)) return -1;
+    // The random number, rescaled to [0, 1) within the branch taken, decides the next step.
+    // (Selects rather than branches: the choice is a coin flip no predictor can guess.)
+    const bool first = u < p1;
+    const float q = first ? p1 : p2;
+    u = std::min((first ? u : u - p1) / q, kOneMinusEpsilon);
+    prob *= q;
+    i = first ? i + 1 : node.index;
+  }
+  if (!(prob > 0.0f)) return -1;
+  pmf = prob;
+  return std::int64_t(nodes_[i].index);
+}
+
+float LightBvh::pmf(glm::vec3 p, glm::vec3 n, std::uint32_t light) const {
+  if (light >= trails_.size() || trails_[light] == kNotInTree) return 0.0f;
+  std::uint64_t trail = trails_[light];
+  std::size_t i = 0;
+  float prob = 1.0f;
+  // The same decisions as sample(), in the same order, so the product is the same float.
+  while (!nodes_[i].leaf) {
+    const Node& node = nodes_[i];
+    float p1 = 0.0f, p2 = 0.0f;
+    if (!child_probabilities(node, i, p, n, p1, p2)) return 0.0f;
+    if ((trail & 1u) == 0) {
+      prob *= p1;
+      i = i + 1;
+    } else {
+      prob *= p2;
+      i = node.index;
+    }
+    trail >>= 1;
+  }
+  return prob;
+}
+
+}  // namespace pbrkit
