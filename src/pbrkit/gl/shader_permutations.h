@@ -25,7 +25,7 @@ struct SurfaceFeatures {
   bool multiscatter = false;
   int geometry = 0;  ///< GeometryModel for punctual lights
   int fresnel = 0;   ///< 0 Schlick, 1 spherical Gaussian
-  int light_count = 0;
+  int lights = 0;    ///< punctual lights: 0 none, 1 every light, 2 clustered (LIGHTS)
   // The KHR_materials_* extensions the material uses (pbr_fragment.glsl's MATERIAL_*).
   bool specular = false;  ///< KHR_materials_ior / _specular (ior != 1.5 or the extension)
   bool anisotropy = false;
@@ -45,7 +45,7 @@ struct SurfaceFeatures {
     return std::uint64_t(textures) | std::uint64_t(alpha_mode) << 19 | std::uint64_t(ibl) << 21 |
            std::uint64_t(irradiance_sh) << 22 | std::uint64_t(multiscatter) << 23 |
            std::uint64_t(geometry) << 24 | std::uint64_t(fresnel) << 26 |
-           std::uint64_t(light_count) << 27 | std::uint64_t(colors) << 32 |
+           std::uint64_t(lights) << 27 | std::uint64_t(colors) << 32 |
            std::uint64_t(specular) << 33 | std::uint64_t(anisotropy) << 34 |
            std::uint64_t(iridescence) << 35 | std::uint64_t(clearcoat) << 36 |
            std::uint64_t(sheen) << 37 | std::uint64_t(unlit) << 38 |
@@ -68,9 +68,8 @@ struct SurfaceFeatures {
     d += fmt::format(
         "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
         "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
-        "#define LIGHT_COUNT {}\n",
-        alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel,
-        light_count);
+        "#define LIGHTS {}\n",
+        alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel, lights);
     return d;
   }
 };
