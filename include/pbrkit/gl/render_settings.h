@@ -25,10 +25,12 @@ enum class IrradianceMode { kSH, kCube };
 enum class FresnelMode { kSchlick, kSphericalGaussian };
 
 /// The grid of clustered shading (gl/light_clusters.h): square tiles of `tile_pixels` over
-/// the viewport, `slices` depth slices exponential in view depth.
+/// the viewport, `slices` depth slices exponential in view depth. Smaller clusters hold
+/// fewer lights that miss their fragments, at more binning work per frame on the CPU
+/// (BENCHMARKS.md, "Many punctual lights", measures both on llvmpipe).
 struct LightClusterGrid {
-  int tile_pixels = 32;
-  int slices = 16;
+  int tile_pixels = 16;
+  int slices = 32;
 };
 
 struct RenderSettings {

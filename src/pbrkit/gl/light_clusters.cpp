@@ -26,30 +26,34 @@ float LightClusters::slice_depth(int z) const {
   return z_lo * std::pow(z_hi / z_lo, float(z) / float(grid.z));
 }
 
+namespace {
+
+// Tile edge i of `pixels` pixels in tiles of `tile`, in view space at unit depth (the
+// perspective projection of scene/camera.h: x = ndc * d / P00, symmetric, no off-centre
+// terms) or at any depth (orthographic: x = ndc / P00); `p` is P00 or P11.
+float tile_edge(int i, int tile, int pixels, float p) {
+  return (2.0f * std::min(float(i) * float(tile), float(pixels)) / float(pixels) - 1.0f) / p;
+}
+
+// The view-space box between tile edges (x0, x1) x (y0, y1) (tile_edge) and view depths d0
+// and d1.
+void tile_box(bool perspective, float x0, float x1, float y0, float y1, float d0, float d1,
+              glm::vec3& lo, glm::vec3& hi) {
+  const float s0 = perspective ? d0 : 1.0f, s1 = perspective ? d1 : 1.0f;
+  lo = glm::vec3(std::min(x0 * s0, x0 * s1), std::min(y0 * s0, y0 * s1), -d1);
+  hi = glm::vec3(std::max(x1 * s0, x1 * s1), std::max(y1 * s0, y1 * s1), -d0);
+}
+
+}  // namespace
+
 void cluster_bounds(const LightClusters& clusters, const ClusterView& view, int x, int y, int z,
                     glm::vec3& lo, glm::vec3& hi) {
-  // The tile's edges in NDC, and view space at depth d: x = ndc * d / P00 for the
-  // perspective projection of scene/camera.h (symmetric: no off-centre terms), x = ndc /
-  // P00 for the orthographic one.
-  const float t = float(clusters.tile_pixels);
-  const float x0 = 2.0f * std::min(float(x) * t, float(view.width)) / float(view.width) - 1.0f;
-  const float x1 = 2.0f * std::min(float(x + 1) * t, float(view.width)) / float(view.width) - 1.0f;
-  const float y0 = 2.0f * std::min(float(y) * t, float(view.height)) / float(view.height) - 1.0f;
-  const float y1 =
-      2.0f * std::min(float(y + 1) * t, float(view.height)) / float(view.height) - 1.0f;
-  const float d0 = clusters.slice_depth(z), d1 = clusters.slice_depth(z + 1);
+  const int t = clusters.tile_pixels;
   const float px = view.projection[0][0], py = view.projection[1][1];
-  lo = glm::vec3(std::numeric_limits<float>::max());
-  hi = -lo;
-  for (const float d : {d0, d1}) {
-    const float s = clusters.perspective ? d : 1.0f;
-    for (const float nx : {x0, x1})
-      for (const float ny : {y0, y1}) {
-        const glm::vec3 p(nx * s / px, ny * s / py, -d);
-        lo = glm::min(lo, p);
-        hi = glm::max(hi, p);
-      }
-  }
+  tile_box(clusters.perspective, tile_edge(x, t, view.width, px),
+           tile_edge(x + 1, t, view.width, px), tile_edge(y, t, view.height, py),
+           tile_edge(y + 1, t, view.height, py), clusters.slice_depth(z),
+           clusters.slice_depth(z + 1), lo, hi);
 }
 
 namespace {
@@ -116,54 +120,56 @@ LightClusters bin_lights(std::span<const Light* const> lights, const ClusterView
   if (spheres.empty()) out.z_lo = view.znear, out.z_hi = 2.0f * view.znear;
 
   const int count = out.cluster_count();
-  const auto boxes = static_cast<std::size_t>(count);
-  std::vector<glm::vec3> box_lo(boxes), box_hi(boxes);
-  for (int z = 0; z < out.grid.z; ++z)
-    for (int y = 0; y < out.grid.y; ++y)
-      for (int x = 0; x < out.grid.x; ++x) {
-        const auto c = std::size_t(out.cluster_index(x, y, z));
-        cluster_bounds(out, view, x, y, z, box_lo[c], box_hi[c]);
-      }
+  std::vector<float> slice_depths(std::size_t(out.grid.z) + 1);
+  for (int z = 0; z <= out.grid.z; ++z) slice_depths[std::size_t(z)] = out.slice_depth(z);
+  const float px = view.projection[0][0], py = view.projection[1][1];
+  std::vector<float> edge_x(std::size_t(out.grid.x) + 1), edge_y(std::size_t(out.grid.y) + 1);
+  for (int x = 0; x <= out.grid.x; ++x)
+    edge_x[std::size_t(x)] = tile_edge(x, out.tile_pixels, view.width, px);
+  for (int y = 0; y <= out.grid.y; ++y)
+    edge_y[std::size_t(y)] = tile_edge(y, out.tile_pixels, view.height, py);
 
   // (cluster, light) pairs in light order, then a counting sort by cluster (stable: each
   // cluster's lights stay ascending, the order the unclustered loop adds them in).
   std::vector<std::uint32_t> pair_cluster, pair_light;
   std::vector<std::uint32_t> global_too;
-  const float px = view.projection[0][0], py = view.projection[1][1];
   for (const ViewSphere& s : spheres) {
     const float depth = -s.c.z;
     const int z0 = out.slice_of(std::max(depth - s.r, out.z_lo));
     const int z1 = out.slice_of(depth + s.r);
-    // The sphere's screen bounds: the projections of its view-space box's corners (x / d
-    // over a box in front of the eye is extreme at a corner); the whole screen when the box
-    // reaches the eye's plane.
-    glm::vec2 nlo(-1.0f), nhi(1.0f);
-    if (!out.perspective) {
-      nlo = glm::vec2((s.c.x - s.r) * px, (s.c.y - s.r) * py);
-      nhi = glm::vec2((s.c.x + s.r) * px, (s.c.y + s.r) * py);
-    } else if (depth - s.r > 0.0f) {
-      nlo = glm::vec2(std::numeric_limits<float>::max());
-      nhi = -nlo;
-      for (const float d : {depth - s.r, depth + s.r})
-        for (const float sx : {-s.r, s.r})
-          for (const float sy : {-s.r, s.r}) {
-            const glm::vec2 n((s.c.x + sx) * px / d, (s.c.y + sy) * py / d);
+    const std::size_t first = pair_cluster.size();
+    for (int z = z0; z <= z1; ++z) {
+      // The sphere's part in the slice's depths [za, zb] lies in the box of half width rr
+      // about its centre (rr: the radius of its section nearest the centre); its screen
+      // bounds are the projections of that box's corners (x / d over a box in front of the
+      // eye is extreme at a corner; the slices begin at z_lo >= znear > 0).
+      const float za = std::max(slice_depths[std::size_t(z)], depth - s.r);
+      const float zb = std::min(slice_depths[std::size_t(z) + 1], depth + s.r);
+      const float dz = std::max({za - depth, depth - zb, 0.0f});
+      const float rr = std::sqrt(std::max(s.r * s.r - dz * dz, 0.0f));
+      glm::vec2 nlo(std::numeric_limits<float>::max()), nhi(-std::numeric_limits<float>::max());
+      for (const float d : {za, zb})
+        for (const float sx : {-rr, rr})
+          for (const float sy : {-rr, rr}) {
+            const float w = out.perspective ? std::max(d, 1e-30f) : 1.0f;
+            const glm::vec2 n((s.c.x + sx) * px / w, (s.c.y + sy) * py / w);
             nlo = glm::min(nlo, n);
             nhi = glm::max(nhi, n);
           }
-    }
-    const glm::ivec2 tx = tile_range(nlo.x, nhi.x, view.width, out.tile_pixels, out.grid.x);
-    const glm::ivec2 ty = tile_range(nlo.y, nhi.y, view.height, out.tile_pixels, out.grid.y);
-    const std::size_t first = pair_cluster.size();
-    for (int z = z0; z <= z1; ++z)
+      const glm::ivec2 tx = tile_range(nlo.x, nhi.x, view.width, out.tile_pixels, out.grid.x);
+      const glm::ivec2 ty = tile_range(nlo.y, nhi.y, view.height, out.tile_pixels, out.grid.y);
       for (int y = ty.x; y <= ty.y; ++y)
         for (int x = tx.x; x <= tx.y; ++x) {
+          glm::vec3 lo, hi;
+          tile_box(out.perspective, edge_x[std::size_t(x)], edge_x[std::size_t(x) + 1],
+                   edge_y[std::size_t(y)], edge_y[std::size_t(y) + 1], slice_depths[std::size_t(z)],
+                   slice_depths[std::size_t(z) + 1], lo, hi);
+          if (!sphere_overlaps_box(s.c, s.r, lo, hi)) continue;
           const int c = out.cluster_index(x, y, z);
-          if (!sphere_overlaps_box(s.c, s.r, box_lo[std::size_t(c)], box_hi[std::size_t(c)]))
-            continue;
           pair_cluster.push_back(std::uint32_t(c));
           pair_light.push_back(s.index);
         }
+    }
     if (pair_cluster.size() - first > std::size_t(count / 2)) {
       pair_cluster.resize(first);
       pair_light.resize(first);
