@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -16,6 +17,7 @@
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/primitives.h"
+#include "pbrkit/util/error.h"
 
 namespace pbrkit::gl {
 namespace {
@@ -337,6 +339,27 @@ TEST(GlClusteredLights, ALightStaysInTheClustersItReaches) {
   const float ratio = clusters.slice_depth(1) / clusters.slice_depth(0);
   for (int z = 1; z < clusters.grid.z; ++z)
     EXPECT_NEAR(clusters.slice_depth(z + 1) / clusters.slice_depth(z), ratio, 1e-4f * ratio);
+}
+
+TEST(GlClusteredLights, HugeRangesAreGlobalAndBadGridsAreErrors) {
+  // A range too large to cut anything (and to bound in float depths) is shaded everywhere;
+  // a grid of no pixels, no slices, or more clusters than a frame can hold is an error that
+  // says what it got.
+  Light huge;
+  huge.range = 1e30f;
+  const std::vector<const Light*> pointers{&huge};
+  const ClusterView view = room_view();
+  EXPECT_EQ(bin_lights(pointers, view).global, std::vector<std::uint32_t>{0u});
+  EXPECT_THROW(bin_lights(pointers, view, {0, 16}), Error);
+  EXPECT_THROW(bin_lights(pointers, view, {16, 0}), Error);
+  ClusterView large = view;
+  large.width = 65536, large.height = 65536;
+  try {
+    bin_lights(pointers, large, {1, 16});
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("65536x65536"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -4,10 +4,15 @@
 #include <cmath>
 #include <limits>
 
+#include "pbrkit/util/error.h"
+
 namespace pbrkit::gl {
 
 std::optional<InfluenceSphere> influence_sphere(const Light& light) {
-  if (light.type == Light::Type::kDirectional || !light.range || !(*light.range > 0.0f))
+  // A range beyond 1e18 m windows nothing a float can tell apart from no range (and would
+  // overflow the depth bounds): global too, which is exact either way.
+  if (light.type == Light::Type::kDirectional || !light.range || !(*light.range > 0.0f) ||
+      !(*light.range < 1e18f))
     return std::nullopt;
   return InfluenceSphere{light.position, *light.range};
 }
@@ -79,11 +84,23 @@ glm::ivec2 tile_range(float a, float b, int pixels, int tile, int tiles) {
 
 LightClusters bin_lights(std::span<const Light* const> lights, const ClusterView& view,
                          const LightClusterGrid& options) {
+  if (options.tile_pixels < 1 || options.slices < 1 || options.slices > 1024)
+    fail(
+        "OpenGL: a light cluster grid of {}-pixel tiles and {} slices (tiles of at least 1 "
+        "pixel, 1 to 1024 slices)",
+        options.tile_pixels, options.slices);
+  const std::int64_t cells =
+      std::int64_t((view.width + options.tile_pixels - 1) / options.tile_pixels) *
+      ((view.height + options.tile_pixels - 1) / options.tile_pixels) * options.slices;
+  if (cells > (std::int64_t(1) << 24))
+    fail(
+        "OpenGL: a light cluster grid of {} clusters for {}x{} pixels ({}-pixel tiles, {} "
+        "slices); at most 2^24",
+        cells, view.width, view.height, options.tile_pixels, options.slices);
   LightClusters out;
-  out.tile_pixels = std::max(1, options.tile_pixels);
+  out.tile_pixels = options.tile_pixels;
   out.grid = glm::ivec3((view.width + out.tile_pixels - 1) / out.tile_pixels,
-                        (view.height + out.tile_pixels - 1) / out.tile_pixels,
-                        std::max(1, options.slices));
+                        (view.height + out.tile_pixels - 1) / out.tile_pixels, options.slices);
   out.perspective = view.projection[3][3] == 0.0f;
   const float zfar = view.zfar.value_or(std::numeric_limits<float>::infinity());
 
