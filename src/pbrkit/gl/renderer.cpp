@@ -255,7 +255,10 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
                                           ? camera.zfar.value_or(camera.znear + 1e6f)
                                           : camera.zfar},
                           settings.light_clusters);
-  s.light_buffers.upload(lights, clustered ? &clusters : nullptr);
+  // No light binned (every light global, or none reaching the view): the plain loop, without
+  // the cluster lookup.
+  const bool clustered_frame = clustered && !clusters.indices.empty();
+  s.light_buffers.upload(lights, clustered_frame ? &clusters : nullptr);
   // The view depth of a world point, dot(uViewDepth.xyz, p) + uViewDepth.w: minus the view
   // matrix's third row (view space looks down -Z).
   const glm::vec4 view_depth = -glm::vec4(view[0][2], view[1][2], view[2][2], view[3][2]);
@@ -267,7 +270,9 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   frame.multiscatter = settings.brdf.multiscatter;
   frame.geometry = int(direct);
   frame.fresnel = settings.fresnel == FresnelMode::kSchlick ? 0 : 1;
-  frame.lights = lights.empty() ? 0 : clustered ? 2 : 1;
+  frame.lights = lights.empty() ? 0 : clustered_frame ? 2 : 1;
+  if (frame.lights == 1 && int(lights.size()) <= kCompiledLightCount)
+    frame.light_count = int(lights.size());
   glBindTextureUnit(5, s.energy[std::size_t(direct)]);
   glBindTextureUnit(6, s.energy[std::size_t(ibl)]);
   glBindTextureUnit(7, s.environment.specular_cube);
@@ -292,7 +297,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uIblScale", ibl_scale);
     p.set("uTransmissionFrameSize", glm::vec2(float(width), float(height)));
     p.set("uLightCount", GLint(lights.size()));
-    if (clustered) {
+    if (clustered_frame) {
       p.set("uViewDepth", view_depth);
       p.set("uGlobalLightCount", GLint(clusters.global.size()));
       p.set("uClusterGrid", clusters.grid);

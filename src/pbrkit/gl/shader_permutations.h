@@ -14,6 +14,10 @@
 
 namespace pbrkit::gl {
 
+// The most lights LIGHTS 1 compiles in as a constant (llvmpipe runs the unrolled loop
+// over constant buffer offsets faster than one over a uniform count).
+inline constexpr int kCompiledLightCount = 16;
+
 // Compile-time features of the surface program (pbr_fragment.glsl says why they are not
 // uniforms: on llvmpipe an unused branch still costs its texture fetches).
 struct SurfaceFeatures {
@@ -26,6 +30,9 @@ struct SurfaceFeatures {
   int geometry = 0;  ///< GeometryModel for punctual lights
   int fresnel = 0;   ///< 0 Schlick, 1 spherical Gaussian
   int lights = 0;    ///< punctual lights: 0 none, 1 every light, 2 clustered (LIGHTS)
+  /// LIGHTS 1: the number of lights when it is compiled in (up to kCompiledLightCount; the
+  /// loop unrolls over constant indices), -1 when the shader reads it (uLightCount).
+  int light_count = -1;
   // The KHR_materials_* extensions the material uses (pbr_fragment.glsl's MATERIAL_*).
   bool specular = false;  ///< KHR_materials_ior / _specular (ior != 1.5 or the extension)
   bool anisotropy = false;
@@ -50,7 +57,8 @@ struct SurfaceFeatures {
            std::uint64_t(iridescence) << 35 | std::uint64_t(clearcoat) << 36 |
            std::uint64_t(sheen) << 37 | std::uint64_t(unlit) << 38 |
            std::uint64_t(transmission) << 39 | std::uint64_t(volume) << 40 |
-           std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42;
+           std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42 |
+           std::uint64_t(light_count + 1) << 43;
   }
   std::string defines() const {
     std::string d;
@@ -68,8 +76,9 @@ struct SurfaceFeatures {
     d += fmt::format(
         "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
         "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
-        "#define LIGHTS {}\n",
-        alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel, lights);
+        "#define LIGHTS {}\n#define LIGHT_COUNT {}\n",
+        alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel, lights,
+        light_count);
     return d;
   }
 };

@@ -12,7 +12,8 @@
 // and interpolates every varying of every small triangle); ALPHA_MODE 0 opaque, 1 mask,
 // 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1; GEOMETRY (G for lights) and FRESNEL as
 // in brdf.glsl; LIGHTS: the punctual lights, 0 none, 1 every light for every fragment, 2
-// the fragment's cluster's (light_clusters.h).
+// the fragment's cluster's (light_clusters.h); LIGHT_COUNT: with LIGHTS 1, the number of
+// lights when compiled in (-1: uLightCount).
 // The KHR_materials_* extensions (issue 11), each its own permutation feature with its
 // texture slots (Material::textures(): HAS_TEXTURE_5..14): MATERIAL_SPECULAR (ior and
 // specular), MATERIAL_ANISOTROPY, MATERIAL_IRIDESCENCE, MATERIAL_CLEARCOAT, MATERIAL_SHEEN,
@@ -64,6 +65,7 @@
 #define GEOMETRY 0
 #define FRESNEL 0
 #define LIGHTS 0
+#define LIGHT_COUNT -1
 #endif
 #if MATERIAL_IRIDESCENCE
 #define BRDF_IRIDESCENCE 1
@@ -427,6 +429,8 @@ void main() {
   cell = clamp(cell, ivec3(0), uClusterGrid - 1);
   uvec2 cluster = uClusterRange[cell.x + uClusterGrid.x * (cell.y + uClusterGrid.y * cell.z)];
   int light_count = uGlobalLightCount + int(cluster.y);
+#elif LIGHTS == 1 && LIGHT_COUNT >= 0
+  const int light_count = LIGHT_COUNT;
 #elif LIGHTS == 1
   int light_count = uLightCount;
 #else
