@@ -73,6 +73,7 @@ struct LightClusters {
   /// The lights of cluster `c` (indices into the frame's lights).
   std::span<const std::uint32_t> lights_of(int c) const {
     const glm::uvec2 r = ranges[std::size_t(c)];
+    if (r.y == 0) return {};
     return {indices.data() + r.x, r.y};
   }
 };

@@ -452,9 +452,10 @@ void main() {
     } else {
       vec3 to_light = light.position - vPosition;
       float d = length(to_light);
-      // Beyond its range a light adds exactly 0 (the window below): skip its BRDF. Most of
-      // a cluster's lights miss most of its fragments (its box is larger than the spheres'
-      // overlap with it), and the unclustered loop skips the same lights.
+      // Beyond its range a light adds exactly 0 (the window below): move on. A GPU skips the
+      // BRDF where a whole warp is beyond (most of a cluster's lights miss most of its
+      // fragments: its box is larger than the spheres' overlap with it); llvmpipe masks the
+      // lanes and evaluates it all the same. The unclustered loop skips the same lights.
       if (light.range > 0.0 && d >= light.range) continue;
       l = to_light / d;
       radiance *= range_attenuation(d, light.range);
