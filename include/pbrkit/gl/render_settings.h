@@ -24,6 +24,15 @@ enum class IrradianceMode { kSH, kCube };
 /// The specular Fresnel term: Schlick's approximation, or UE4's spherical-Gaussian form.
 enum class FresnelMode { kSchlick, kSphericalGaussian };
 
+/// The grid of clustered shading (gl/light_clusters.h): square tiles of `tile_pixels` over
+/// the viewport, `slices` depth slices exponential in view depth. Smaller clusters hold
+/// fewer lights that miss their fragments, at more binning work per frame on the CPU
+/// (BENCHMARKS.md, "Many punctual lights", measures both on llvmpipe).
+struct LightClusterGrid {
+  int tile_pixels = 16;
+  int slices = 32;
+};
+
 struct RenderSettings {
   BrdfOptions brdf;  ///< model (reference | classic) and multiscatter
   FresnelMode fresnel = FresnelMode::kSchlick;
@@ -31,7 +40,12 @@ struct RenderSettings {
   IrradianceMode irradiance = IrradianceMode::kSH;
   bool lights = true;               ///< punctual lights on
   std::vector<bool> light_enabled;  ///< per light; missing entries are on
-  int msaa = 4;                     ///< samples per pixel (1 = off)
+  /// Clustered shading of the punctual lights (gl/light_clusters.h): each fragment shades
+  /// the lights whose range reaches its cluster, and every light without a range. Off:
+  /// every fragment loops over every light (the same image up to the order of the sum).
+  bool clustered_lights = true;
+  LightClusterGrid light_clusters;
+  int msaa = 4;  ///< samples per pixel (1 = off)
   Background background;
   float env_rotation_deg = 0.0f;
   float env_intensity = 1.0f;

@@ -98,6 +98,9 @@ void Program::set(const char* name, int v) const {
 void Program::set(const char* name, float v) const {
   glProgramUniform1f(id_, location(name), v);
 }
+void Program::set(const char* name, glm::ivec3 v) const {
+  glProgramUniform3iv(id_, location(name), 1, glm::value_ptr(v));
+}
 void Program::set(const char* name, glm::vec2 v) const {
   glProgramUniform2fv(id_, location(name), 1, glm::value_ptr(v));
 }

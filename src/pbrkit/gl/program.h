@@ -30,6 +30,7 @@ class Program {
   int location(const char* name) const;
   void set(const char* name, int v) const;
   void set(const char* name, float v) const;
+  void set(const char* name, glm::ivec3 v) const;
   void set(const char* name, glm::vec2 v) const;
   void set(const char* name, glm::vec3 v) const;
   void set(const char* name, glm::vec4 v) const;

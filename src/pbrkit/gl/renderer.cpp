@@ -14,6 +14,7 @@
 #include "pbrkit/gl/energy_texture.h"
 #include "pbrkit/gl/gpu_scene.h"
 #include "pbrkit/gl/gpu_timer.h"
+#include "pbrkit/gl/light_clusters.h"
 #include "pbrkit/gl/render_targets.h"
 #include "pbrkit/gl/shader_permutations.h"
 #include "pbrkit/scene/camera.h"
@@ -162,6 +163,7 @@ struct Renderer::State {
   GLuint empty_vao = 0;  // the background's full-screen triangle has no attributes
   RenderTargets targets;
   GpuTimer timer;
+  GpuLightBuffers light_buffers;
   // Whether a frame has needed more than kMaxTransmissionCaptures captures (warned once per
   // renderer: the viewer draws the same scene every frame).
   bool capture_limit_warned = false;
@@ -238,13 +240,28 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   const float ibl_scale =
       settings.env_intensity / std::max(s.environment.ibl_params.intensity, 1e-30f);
 
-  // The punctual lights of this frame (their number is compiled into the program).
-  constexpr int kMaxLights = 16;
+  // The punctual lights of this frame, uploaded with their clusters (light_clusters.h).
   std::vector<const Light*> lights;
   for (std::size_t i = 0; i < s.scene.lights.size() && settings.lights; ++i) {
     if (i < settings.light_enabled.size() && !settings.light_enabled[i]) continue;
-    if (int(lights.size()) < kMaxLights) lights.push_back(&s.scene.lights[i]);
+    lights.push_back(&s.scene.lights[i]);
   }
+  const bool clustered = settings.clustered_lights && !lights.empty();
+  LightClusters clusters;
+  if (clustered)
+    clusters = bin_lights(lights,
+                          ClusterView{view, projection, width, height, camera.znear,
+                                      camera.type == Camera::Type::kOrthographic
+                                          ? camera.zfar.value_or(camera.znear + 1e6f)
+                                          : camera.zfar},
+                          settings.light_clusters);
+  // No light binned (every light global, or none reaching the view): the plain loop, without
+  // the cluster lookup.
+  const bool clustered_frame = clustered && !clusters.indices.empty();
+  s.light_buffers.upload(lights, clustered_frame ? &clusters : nullptr);
+  // The view depth of a world point, dot(uViewDepth.xyz, p) + uViewDepth.w: minus the view
+  // matrix's third row (view space looks down -Z).
+  const glm::vec4 view_depth = -glm::vec4(view[0][2], view[1][2], view[2][2], view[3][2]);
   SurfaceFeatures frame;
   const GeometryModel direct = direct_geometry(settings.brdf.model);
   const GeometryModel ibl = ibl_geometry(settings.brdf.model);
@@ -253,7 +270,9 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   frame.multiscatter = settings.brdf.multiscatter;
   frame.geometry = int(direct);
   frame.fresnel = settings.fresnel == FresnelMode::kSchlick ? 0 : 1;
-  frame.light_count = int(lights.size());
+  frame.lights = lights.empty() ? 0 : clustered_frame ? 2 : 1;
+  if (frame.lights == 1 && int(lights.size()) <= kCompiledLightCount)
+    frame.light_count = int(lights.size());
   glBindTextureUnit(5, s.energy[std::size_t(direct)]);
   glBindTextureUnit(6, s.energy[std::size_t(ibl)]);
   glBindTextureUnit(7, s.environment.specular_cube);
@@ -277,20 +296,15 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uIblRotation", env_rotation_cs(rotation_delta));
     p.set("uIblScale", ibl_scale);
     p.set("uTransmissionFrameSize", glm::vec2(float(width), float(height)));
-    for (int k = 0; k < int(lights.size()); ++k) {
-      const Light& l = *lights[std::size_t(k)];
-      p.set(indexed("uLightType", k).c_str(), l.type == Light::Type::kPoint  ? 0
-                                              : l.type == Light::Type::kSpot ? 1
-                                                                             : 2);
-      p.set(indexed("uLightPosition", k).c_str(), l.position);
-      p.set(indexed("uLightDirection", k).c_str(), glm::normalize(l.direction));
-      p.set(indexed("uLightRadiance", k).c_str(), l.color * l.intensity);
-      p.set(indexed("uLightRange", k).c_str(), l.range.value_or(0.0f));
-      // KHR_lights_punctual's spot falloff: scale = 1 / max(0.001, cos(inner) - cos(outer)).
-      const float scale =
-          1.0f / std::max(0.001f, std::cos(l.inner_cone_angle) - std::cos(l.outer_cone_angle));
-      p.set(indexed("uLightCone", k).c_str(),
-            glm::vec2(scale, -std::cos(l.outer_cone_angle) * scale));
+    p.set("uLightCount", GLint(lights.size()));
+    if (clustered_frame) {
+      p.set("uViewDepth", view_depth);
+      p.set("uGlobalLightCount", GLint(clusters.global.size()));
+      p.set("uClusterGrid", clusters.grid);
+      p.set("uClusterTile", float(clusters.tile_pixels));
+      // slice = floor(log(depth / z_lo) * slices / log(z_hi / z_lo)) (light_clusters.h).
+      p.set("uClusterDepth", glm::vec2(clusters.z_lo, float(clusters.grid.z) /
+                                                          std::log(clusters.z_hi / clusters.z_lo)));
     }
   };
 

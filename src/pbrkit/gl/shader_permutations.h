@@ -14,6 +14,10 @@
 
 namespace pbrkit::gl {
 
+// The most lights LIGHTS 1 compiles in as a constant (llvmpipe runs the unrolled loop
+// over constant buffer offsets faster than one over a uniform count).
+inline constexpr int kCompiledLightCount = 16;
+
 // Compile-time features of the surface program (pbr_fragment.glsl says why they are not
 // uniforms: on llvmpipe an unused branch still costs its texture fetches).
 struct SurfaceFeatures {
@@ -25,7 +29,10 @@ struct SurfaceFeatures {
   bool multiscatter = false;
   int geometry = 0;  ///< GeometryModel for punctual lights
   int fresnel = 0;   ///< 0 Schlick, 1 spherical Gaussian
-  int light_count = 0;
+  int lights = 0;    ///< punctual lights: 0 none, 1 every light, 2 clustered (LIGHTS)
+  /// LIGHTS 1: the number of lights when it is compiled in (up to kCompiledLightCount; the
+  /// loop unrolls over constant indices), -1 when the shader reads it (uLightCount).
+  int light_count = -1;
   // The KHR_materials_* extensions the material uses (pbr_fragment.glsl's MATERIAL_*).
   bool specular = false;  ///< KHR_materials_ior / _specular (ior != 1.5 or the extension)
   bool anisotropy = false;
@@ -45,12 +52,13 @@ struct SurfaceFeatures {
     return std::uint64_t(textures) | std::uint64_t(alpha_mode) << 19 | std::uint64_t(ibl) << 21 |
            std::uint64_t(irradiance_sh) << 22 | std::uint64_t(multiscatter) << 23 |
            std::uint64_t(geometry) << 24 | std::uint64_t(fresnel) << 26 |
-           std::uint64_t(light_count) << 27 | std::uint64_t(colors) << 32 |
+           std::uint64_t(lights) << 27 | std::uint64_t(colors) << 32 |
            std::uint64_t(specular) << 33 | std::uint64_t(anisotropy) << 34 |
            std::uint64_t(iridescence) << 35 | std::uint64_t(clearcoat) << 36 |
            std::uint64_t(sheen) << 37 | std::uint64_t(unlit) << 38 |
            std::uint64_t(transmission) << 39 | std::uint64_t(volume) << 40 |
-           std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42;
+           std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42 |
+           std::uint64_t(light_count + 1) << 43;
   }
   std::string defines() const {
     std::string d;
@@ -68,8 +76,8 @@ struct SurfaceFeatures {
     d += fmt::format(
         "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
         "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
-        "#define LIGHT_COUNT {}\n",
-        alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel,
+        "#define LIGHTS {}\n#define LIGHT_COUNT {}\n",
+        alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel, lights,
         light_count);
     return d;
   }

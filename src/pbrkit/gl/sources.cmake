@@ -25,6 +25,7 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/energy_texture.cpp
   ${_pbrkit_gl_dir}/ibl_maps.cpp
   ${_pbrkit_gl_dir}/gpu_scene.cpp
+  ${_pbrkit_gl_dir}/light_clusters.cpp
   ${_pbrkit_gl_dir}/shader_permutations.cpp
   ${_pbrkit_gl_dir}/render_targets.cpp
   ${_pbrkit_gl_dir}/gpu_timer.cpp

@@ -11,7 +11,9 @@
 // bound; HAS_COLOR_0: the mesh has COLOR_0 (a varying fewer without: llvmpipe sets up
 // and interpolates every varying of every small triangle); ALPHA_MODE 0 opaque, 1 mask,
 // 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1; GEOMETRY (G for lights) and FRESNEL as
-// in brdf.glsl; LIGHT_COUNT punctual lights.
+// in brdf.glsl; LIGHTS: the punctual lights, 0 none, 1 every light for every fragment, 2
+// the fragment's cluster's (light_clusters.h); LIGHT_COUNT: with LIGHTS 1, the number of
+// lights when compiled in (-1: uLightCount).
 // The KHR_materials_* extensions (issue 11), each its own permutation feature with its
 // texture slots (Material::textures(): HAS_TEXTURE_5..14): MATERIAL_SPECULAR (ior and
 // specular), MATERIAL_ANISOTROPY, MATERIAL_IRIDESCENCE, MATERIAL_CLEARCOAT, MATERIAL_SHEEN,
@@ -62,7 +64,8 @@
 #define MULTISCATTER 0
 #define GEOMETRY 0
 #define FRESNEL 0
-#define LIGHT_COUNT 0
+#define LIGHTS 0
+#define LIGHT_COUNT -1
 #endif
 #if MATERIAL_IRIDESCENCE
 #define BRDF_IRIDESCENCE 1
@@ -158,14 +161,32 @@ layout(binding = 20) uniform samplerCube uSheenCube;
 layout(binding = 21) uniform sampler2D uSheenLut;
 uniform int uSheenLevels;
 
-// Lights (KHR_lights_punctual), world space.
-const int kMaxLights = 16;
-uniform int uLightType[kMaxLights];  // 0 point, 1 spot, 2 directional
-uniform vec3 uLightPosition[kMaxLights];
-uniform vec3 uLightDirection[kMaxLights];  // where the light points
-uniform vec3 uLightRadiance[kMaxLights];   // colour x intensity
-uniform float uLightRange[kMaxLights];     // <= 0: infinite
-uniform vec2 uLightCone[kMaxLights];       // spot: (scale, offset) of the glTF cone falloff
+// Lights (KHR_lights_punctual), world space, in light_clusters.h's GpuLight layout.
+struct PunctualLight {
+  vec3 position;
+  float range;  // <= 0: infinite
+  vec3 direction;  // where the light points
+  int type;  // 0 point, 1 spot, 2 directional
+  vec3 radiance;  // colour x intensity
+  float unused0;
+  vec2 cone;  // spot: (scale, offset) of the glTF cone falloff
+  vec2 unused1;
+};
+layout(std430, binding = 4) readonly buffer PunctualLights { PunctualLight uLights[]; };
+uniform int uLightCount;
+// Clustered shading (Olsson et al. 2012; light_clusters.h): the lights of cluster c are
+// uLightIndex[uClusterRange[c].x ...][count uClusterRange[c].y]; the first
+// uGlobalLightCount entries of uLightIndex are the lights every fragment shades (no range,
+// or directional). Cluster (x, y, z): pixel tile gl_FragCoord.xy / uClusterTile, slice
+// floor(log(depth / uClusterDepth.x) * uClusterDepth.y) of the view depth
+// dot(uViewDepth.xyz, p) + uViewDepth.w.
+layout(std430, binding = 5) readonly buffer LightClusterRanges { uvec2 uClusterRange[]; };
+layout(std430, binding = 6) readonly buffer LightClusterIndices { uint uLightIndex[]; };
+uniform int uGlobalLightCount;
+uniform ivec3 uClusterGrid;
+uniform float uClusterTile;
+uniform vec2 uClusterDepth;
+uniform vec4 uViewDepth;
 
 // Image-based lighting.
 uniform vec3 uSH[9];
@@ -400,20 +421,48 @@ void main() {
                       uSheenLut, wo);
 #endif
   vec3 color = vec3(0.0);
-  for (int i = 0; i < LIGHT_COUNT && i < kMaxLights; ++i) {
+#if LIGHTS == 2
+  // The fragment's cluster: a slice of its own view depth, the tile of its pixel centre.
+  float depth = max(dot(uViewDepth.xyz, vPosition) + uViewDepth.w, uClusterDepth.x);
+  ivec3 cell = ivec3(ivec2(gl_FragCoord.xy / uClusterTile),
+                     int(floor(log(depth / uClusterDepth.x) * uClusterDepth.y)));
+  cell = clamp(cell, ivec3(0), uClusterGrid - 1);
+  uvec2 cluster = uClusterRange[cell.x + uClusterGrid.x * (cell.y + uClusterGrid.y * cell.z)];
+  int light_count = uGlobalLightCount + int(cluster.y);
+#elif LIGHTS == 1 && LIGHT_COUNT >= 0
+  const int light_count = LIGHT_COUNT;
+#elif LIGHTS == 1
+  int light_count = uLightCount;
+#else
+  int light_count = 0;
+#endif
+  for (int k = 0; k < light_count; ++k) {
+#if LIGHTS == 2
+    // The global lights, then the cluster's (both ascending: the unclustered loop's order).
+    PunctualLight light = uLights[uLightIndex[k < uGlobalLightCount
+                                                  ? uint(k)
+                                                  : cluster.x + uint(k - uGlobalLightCount)]];
+#else
+    PunctualLight light = uLights[k];
+#endif
     vec3 l;
-    vec3 radiance = uLightRadiance[i];
-    if (uLightType[i] == 2) {
-      l = -uLightDirection[i];
+    vec3 radiance = light.radiance;
+    if (light.type == 2) {
+      l = -light.direction;
     } else {
-      vec3 to_light = uLightPosition[i] - vPosition;
+      vec3 to_light = light.position - vPosition;
       float d = length(to_light);
+      // Beyond its range a light adds exactly 0 (the window below): move on. A GPU skips the
+      // BRDF where a whole warp is beyond (most of a cluster's lights miss most of its
+      // fragments: its box is larger than the spheres' overlap with it); llvmpipe masks the
+      // lanes and evaluates it all the same. The unclustered loop skips the same lights.
+      if (light.range > 0.0 && d >= light.range) continue;
       l = to_light / d;
-      radiance *= range_attenuation(d, uLightRange[i]);
-      if (uLightType[i] == 1) {
+      radiance *= range_attenuation(d, light.range);
+      if (light.type == 1) {
         // Spot cone: smooth falloff between the cone angles (KHR_lights_punctual).
-        float cd = dot(uLightDirection[i], -l);
-        float a = clamp(cd * uLightCone[i].x + uLightCone[i].y, 0.0, 1.0);
+        float cd = dot(light.direction, -l);
+        float a = clamp(cd * light.cone.x + light.cone.y, 0.0, 1.0);
         radiance *= a * a;
       }
     }
