@@ -86,6 +86,14 @@ struct DenoiseOptions {
   /// first zero-order candidate (docs/DENOISER.md; 0: off): the mean of a region larger
   /// than the box is kept
   int first_order_energy_radius = 7;
+  /// Box radius over which the other zero-order candidates get the energy of the first one
+  /// too (docs/DENOISER.md, "Energy"; 0: off): a weighted mean whose weights differ from
+  /// pixel to pixel (the colour distance is normalised by each pixel's own variance) does
+  /// not keep a region's mean, and over the full window it moves most; the 7x7 candidate
+  /// moves far less. Off: a box small enough not to cross silhouettes into noise-free
+  /// regions gives the candidate the reference's noise, which its SURE estimate (taken
+  /// before) does not see, and the selection then prefers it (BENCHMARKS.md)
+  int zero_order_energy_radius = 0;
   /// Firefly treatment (docs/DENOISER.md): a half's pixel more than outlier_k robust
   /// standard deviations above the second largest value of both halves in its
   /// (2 outlier_radius + 1)^2 window (and above the other half) is scaled down and its
@@ -101,6 +109,10 @@ struct DenoiseOptions {
   int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
   int error_radius = 2;      ///< box radius smoothing the per-candidate error estimates
   int selection_radius = 1;  ///< box radius smoothing the per-pixel choice of candidate
+  /// Choose each half's candidates from the other half's error estimates rather than one
+  /// choice from both (docs/DENOISER.md, "Selection": it moved more energy in the
+  /// heavy-tailed benchmark scenes, so it is off)
+  bool cross_selection = false;
   /// Also offer the unfiltered image as a candidate (last in DenoiseStats::candidate_share);
   /// off: it changed no scene of denoise_bench measurably (BENCHMARKS.md, issue 13)
   bool raw_candidate = false;

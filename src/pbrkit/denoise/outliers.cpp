@@ -61,27 +61,27 @@ int spread_outliers(Channels color[2], const std::vector<const Feature*>& featur
         const float v = level[half][std::size_t(y) * w + x];
         const float other = level[1 - half][std::size_t(y) * w + x];
         if (!(v > other)) continue;
-        // The two largest of the window (both halves, without the pixel itself).
+        // The window's values (both halves, without the pixel itself).
         values.clear();
-        float first = -INFINITY, second = -INFINITY;
         for (int qy = std::max(0, y - r); qy <= std::min(h - 1, y + r); ++qy)
           for (int qx = std::max(0, x - r); qx <= std::min(w - 1, x + r); ++qx)
             for (int g = 0; g < 2; ++g) {
               if (qx == x && qy == y && g == half) continue;
-              const float q = level[g][std::size_t(qy) * w + qx];
-              values.push_back(q);
-              if (q > first) {
-                second = first;
-                first = q;
-              } else if (q > second) {
-                second = q;
-              }
+              values.push_back(level[g][std::size_t(qy) * w + qx]);
             }
-        const float base = std::max(other, second);
-        if (!(v > base) || values.size() < 3) continue;
-        // Robust spread: 1.4826 times the median absolute deviation (a Gaussian's sigma).
+        if (values.size() < 3) continue;
+        // The base: the window's 90th percentile (and the other half). The second largest
+        // value, the usual "k-th largest" rule, lets rare bright samples that fall close
+        // together (two in one window, likely under a small bright light) hide each
+        // other; the 90th percentile ignores up to a tenth of the window being outliers
+        // and still covers an edge of real signal (a light seen directly, a highlight)
+        // that fills more than a tenth of it. The spread: 1.4826 times the median
+        // absolute deviation (a Gaussian's sigma).
+        const auto upper = values.begin() + std::ptrdiff_t((values.size() * 9) / 10);
+        std::nth_element(values.begin(), upper, values.end());
+        const float base = std::max(other, *upper);
         const auto mid = values.begin() + std::ptrdiff_t(values.size() / 2);
-        std::nth_element(values.begin(), mid, values.end());
+        std::nth_element(values.begin(), mid, upper);
         const float median = *mid;
         deviation.clear();
         for (float q : values) deviation.push_back(std::abs(q - median));
