@@ -12,10 +12,11 @@
 //                      [DenoiseOptions: --radius --variance-radius --error-radius
 //                       --selection-radius --prefilter-radius --patch-radius --feature-k
 //                       --feature-gradient --candidates k1[:r1],k2,... --outlier-k
-//                       --outlier-radius --outlier-spread-radius
+//                       --outlier-radius --outlier-quantile --outlier-spread-radius
 //                       --feature-tau --normal-tau --first-order k1,k2,...
 //                       --first-order-ridge --first-order-energy-radius
-//                       --cross-selection 0|1 --zero-order-energy-radius]
+//                       --cross-selection 0|1 --zero-order-energy-radius
+//                       --symmetric-colour-distance 0|1]
 //                      [--ablate 1 (the energy of each stage: the 16-spp image denoised
 //                       with one stage or candidate at a time, in raw standard errors)]
 //                      [--energy-block N (block size of the energy columns, default 32)]
@@ -214,6 +215,17 @@ void ablate_energy(const std::string& name, std::uint32_t spp, const DenoiseInpu
                           : "zero-order candidates' energy restored (box 7x7)",
                       o});
   o = options;
+  o.symmetric_colour_distance = !options.symmetric_colour_distance;
+  variants.push_back({options.symmetric_colour_distance ? "colour distance as Rousselle 2012"
+                                                        : "symmetric colour distance",
+                      o});
+  o.candidates = {options.candidates.back()};
+  o.first_order_k.clear();
+  variants.push_back({options.symmetric_colour_distance
+                          ? "zero-order 1 alone, colour distance as Rousselle 2012"
+                          : "zero-order 1 alone, symmetric colour distance",
+                      o});
+  o = options;
   o.cross_selection = !options.cross_selection;
   variants.push_back({options.cross_selection ? "one selection from both halves"
                                               : "cross selection (each half by the other's)",
@@ -294,6 +306,10 @@ int main(int argc, char** argv) {
       options.feature_tau = std::stof(v);
     else if (a == "--outlier-k")
       options.outlier_k = std::stof(v);
+    else if (a == "--symmetric-colour-distance")
+      options.symmetric_colour_distance = v == "1";
+    else if (a == "--outlier-quantile")
+      options.outlier_quantile = std::stof(v);
     else if (a == "--outlier-radius")
       options.outlier_radius = std::stoi(v);
     else if (a == "--outlier-spread-radius")

@@ -60,8 +60,12 @@ struct DenoiseCandidate {
 std::vector<DenoiseCandidate> default_denoise_candidates();
 
 struct DenoiseOptions {
-  int radius = 7;             ///< filter window radius in pixels ((2r+1)^2 neighbours)
-  int patch_radius = 1;       ///< NL-means colour patch radius
+  int radius = 7;        ///< filter window radius in pixels ((2r+1)^2 neighbours)
+  int patch_radius = 1;  ///< NL-means colour patch radius
+  /// The colour distance's variance cancellation: Var_p + Var_q (symmetric: the weight of
+  /// q in p's mean is the weight of p in q's) instead of Rousselle et al. 2012's Var_p +
+  /// min(Var_p, Var_q) (docs/DENOISER.md, "Energy")
+  bool symmetric_colour_distance = false;
   float feature_k = 1.0f;     ///< feature sensitivity (Rousselle et al. 2013's k_f; they use 0.6)
   float feature_tau = 1e-3f;  ///< floor of the feature normalisation (their tau)
   /// The normal's own floor (0: feature_tau): shading changes slowly with the normal on
@@ -100,6 +104,10 @@ struct DenoiseOptions {
   /// excess spread over the feature-alike pixels within outlier_spread_radius (energy is
   /// kept). outlier_k <= 0 turns it off.
   float outlier_k = 3.0f;
+  /// The quantile of the window's values (both halves) that a pixel must exceed by
+  /// outlier_k robust sigmas (docs/DENOISER.md): 0.9 ignores up to a tenth of the window
+  /// being rare bright samples; 1 - 1 / (window size - 1) is the second largest value
+  float outlier_quantile = 0.9f;
   int outlier_radius = 2;
   int outlier_spread_radius = 7;
   int variance_radius = 2;  ///< box radius smoothing the half-buffer variance estimates

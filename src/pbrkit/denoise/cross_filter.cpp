@@ -165,7 +165,7 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
       for (int dx = -r; dx <= r; ++dx) {
         for (int g = 0; g < 2; ++g)
           patch_distance(guide[g], guide_variance[g], dx, dy, options.patch_radius, y0, y1,
-                         dist[g].data(), scratch);
+                         dist[g].data(), scratch, options.symmetric_colour_distance);
         const int x0 = std::max(0, -dx), x1 = std::min(w, w - dx);
         for (int y = y0; y < y1; ++y) {
           if (y + dy < 0 || y + dy >= h) continue;

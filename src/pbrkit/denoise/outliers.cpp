@@ -5,9 +5,10 @@
 // that a few samples describe) is wrong, so the filter turns the firefly into a blotch.
 //
 // Detection, per half and pixel, on the channel mean: the pixel is an outlier when it is
-// above T = max(the other half at the same pixel, the second largest value of both halves
-// in the (2r+1)^2 window around it) + k * 1.4826 MAD of those values, a robust version of
-// the usual "k-th largest of the neighbourhood plus several standard deviations" rule
+// above T = max(the other half at the same pixel, the 90th percentile of both halves'
+// values in the (2r+1)^2 window around it) + k * 1.4826 MAD of those values, a robust
+// version of the usual "k-th largest of the neighbourhood plus several standard
+// deviations" rule
 // (DeCoro et al. 2010, "Density-based Outlier Rejection in Monte Carlo Rendering", reject
 // samples by their neighbourhood; the other half is the same pixel's independent
 // estimate, so a value both halves share is signal, not a firefly).
@@ -54,6 +55,7 @@ int spread_outliers(Channels color[2], const std::vector<const Feature*>& featur
   }
   std::vector<std::vector<Outlier>> rows(static_cast<std::size_t>(h));
   const float k = options.outlier_k;
+  const float quantile = std::clamp(options.outlier_quantile, 0.5f, 1.0f);
   pbrkit::parallel_for(0, h, [&](int y) {
     std::vector<float> values, deviation;
     for (int x = 0; x < w; ++x)
@@ -77,11 +79,11 @@ int spread_outliers(Channels color[2], const std::vector<const Feature*>& featur
         // and still covers an edge of real signal (a light seen directly, a highlight)
         // that fills more than a tenth of it. The spread: 1.4826 times the median
         // absolute deviation (a Gaussian's sigma).
-        const auto upper = values.begin() + std::ptrdiff_t((values.size() * 9) / 10);
+        const auto upper = values.begin() + std::ptrdiff_t(quantile * float(values.size() - 1));
         std::nth_element(values.begin(), upper, values.end());
         const float base = std::max(other, *upper);
         const auto mid = values.begin() + std::ptrdiff_t(values.size() / 2);
-        std::nth_element(values.begin(), mid, upper);
+        std::nth_element(values.begin(), mid, values.end());
         const float median = *mid;
         deviation.clear();
         for (float q : values) deviation.push_back(std::abs(q - median));
