@@ -132,7 +132,7 @@ Image select_candidates(const Candidates& candidates, const DenoiseOptions& opti
       mean_error_ptr.push_back(&mean_error[k]);
     }
     const std::vector<Plane> choice = choose(mean_color_ptr, mean_error_ptr, options, wins);
-    for (int half = 0; half < 2; ++half) blend(choice, color[half], 0.5f, out);
+    blend(choice, mean_color_ptr, 1.0f, out);
     choices = 1;
   }
   if (share) {
