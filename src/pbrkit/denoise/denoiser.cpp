@@ -143,13 +143,14 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   Candidates candidates = cross_filter(
       cf, options,
       [&] { return report(0.1 + 0.85 * double(++done) / double(std::max(1, strips))); }, &strips);
-  // The fits and the other zero-order candidates keep the energy of the first zero-order
-  // candidate (the 7x7 weighted mean), each half against its own (first_order.cpp,
-  // docs/DENOISER.md "Energy").
+  // The fits (and, with zero_order_energy_radius > 0, the other zero-order candidates)
+  // keep the energy of the first zero-order candidate (the 7x7 weighted mean), each half
+  // against its own (first_order.cpp, docs/DENOISER.md "Energy"); the raw half when there
+  // is no zero-order candidate.
   for (int half = 0; half < 2; ++half) {
     const bool reference_is_candidate = !options.candidates.empty();
-    const Channels reference =
-        reference_is_candidate ? candidates.color[half][0] : channels_unpadded(color[half], w, h);
+    const Channels raw = reference_is_candidate ? Channels{} : channels_unpadded(color[half], w, h);
+    const Channels& reference = reference_is_candidate ? candidates.color[half][0] : raw;
     for (std::size_t k = 1; k < candidates.size(); ++k) {
       const bool fit = k >= options.candidates.size();
       first_order::restore_energy(

@@ -3,16 +3,13 @@
 // metric the benchmark reports) before the per-pixel best candidate is chosen, and the
 // binary choice is smoothed before blending so that no seam shows where it changes.
 //
-// Each half is blended with a choice made from the OTHER half's estimates (cross
-// selection), as its weights come from the other half's colour (cross filtering). SURE
-// at p contains |F(p) - c_p|^2 with c_p the data being filtered: next to a bright outlier
-// of half a, the candidates that spread part of it into p have a large estimate for half
-// a, and a choice made from it picks, around every bright sample, the candidates that did
-// not receive its energy, while at the sample itself it picks the one that spread it
-// least: the selection is correlated with the noise and removes the bright tail's
-// energy (measured in BENCHMARKS.md, "The denoiser under heavy-tailed noise"). Half b's
-// estimates are independent of half a's samples, so the choice applied to half a is too,
-// and the blend of half a's candidates keeps their energy in expectation.
+// By default one choice, from the mean of both halves' estimates, blends both halves.
+// With options.cross_selection each half is blended with a choice made from the OTHER
+// half's estimates, as its weights come from the other half's colour: SURE at p contains
+// |F(p) - c_p|^2 with c_p the data being filtered, so a choice made from half a's own
+// estimate avoids, around a bright sample of half a, the candidates that received its
+// energy. Measured on the heavy-tailed benchmark scenes it moved more energy, not less
+// (docs/DENOISER.md, "Energy under heavy-tailed noise"), so it is off.
 // Every step is a convex combination of the candidates: the result stays a weighted mean
 // of input pixels.
 #include <algorithm>
