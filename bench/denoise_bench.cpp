@@ -12,9 +12,14 @@
 //                      [DenoiseOptions: --radius --variance-radius --error-radius
 //                       --selection-radius --prefilter-radius --patch-radius --feature-k
 //                       --feature-gradient --candidates k1[:r1],k2,... --outlier-k
-//                       --outlier-radius --outlier-spread-radius
+//                       --outlier-radius --outlier-quantile --outlier-spread-radius
 //                       --feature-tau --normal-tau --first-order k1,k2,...
-//                       --first-order-ridge --first-order-energy-radius]
+//                       --first-order-ridge --first-order-energy-radius
+//                       --cross-selection 0|1 --zero-order-energy-radius
+//                       --symmetric-colour-distance 0|1]
+//                      [--ablate 1 (the energy of each stage: the 16-spp image denoised
+//                       with one stage or candidate at a time, in raw standard errors)]
+//                      [--energy-block N (block size of the energy columns, default 32)]
 // --debug 1 prints the pixels with the largest errors and each object's signed mean
 // deviation, and writes heat maps (red: the denoised image's relative squared error,
 // green: the raw one's) into the cache folder.
@@ -34,6 +39,7 @@
 #include <tbb/global_control.h>
 
 #include "pbrkit/denoise/denoiser.h"
+#include "pbrkit/denoise/energy.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
@@ -174,11 +180,75 @@ void paste(Image& dst, const Image& src, int x0, int y0, int scale) {
       dst.set_rgb(x0 + x, y0 + y, src.rgb(x / scale, y / scale));
 }
 
+// The same input through one stage or candidate at a time: which one moves energy
+// (denoised region means against the raw ones, in raw standard errors).
+void ablate_energy(const std::string& name, std::uint32_t spp, const DenoiseInput& input,
+                   const DenoiseOptions& options, int energy_block, const std::vector<int>& ids) {
+  struct Variant {
+    const char* name;
+    DenoiseOptions o;
+  };
+  std::vector<Variant> variants;
+  variants.push_back({"all stages", options});
+  DenoiseOptions o = options;
+  o.outlier_k = 0.0f;
+  variants.push_back({"no firefly pass", o});
+  for (std::size_t c = 0; c < options.candidates.size(); ++c) {
+    o = options;
+    o.candidates = {options.candidates[c]};
+    o.first_order_k.clear();
+    variants.push_back({c == 0 ? "zero-order 0 alone" : "zero-order 1 alone", o});
+  }
+  DenoiseOptions fo = options;
+  fo.candidates.clear();
+  variants.push_back({"first-order alone, restored vs raw", fo});
+  fo.first_order_energy_radius = 0;
+  variants.push_back({"first-order alone, unrestored", fo});
+  o = options;
+  o.error_radius = 0;
+  o.selection_radius = 0;
+  variants.push_back({"selection unsmoothed", o});
+  o = options;
+  o.zero_order_energy_radius = options.zero_order_energy_radius > 0 ? 0 : 3;
+  variants.push_back({options.zero_order_energy_radius > 0
+                          ? "zero-order candidates' energy not restored"
+                          : "zero-order candidates' energy restored (box 7x7)",
+                      o});
+  o = options;
+  o.symmetric_colour_distance = !options.symmetric_colour_distance;
+  variants.push_back({options.symmetric_colour_distance ? "colour distance as Rousselle 2012"
+                                                        : "symmetric colour distance",
+                      o});
+  o.candidates = {options.candidates.back()};
+  o.first_order_k.clear();
+  variants.push_back({options.symmetric_colour_distance
+                          ? "zero-order 1 alone, colour distance as Rousselle 2012"
+                          : "zero-order 1 alone, symmetric colour distance",
+                      o});
+  o = options;
+  o.cross_selection = !options.cross_selection;
+  variants.push_back({options.cross_selection ? "one selection from both halves"
+                                              : "cross selection (each half by the other's)",
+                      o});
+  std::printf(
+      "\n%s, %u spp, %dx%d blocks: | stage | frame mean vs raw | frame (SE) | "
+      "worst block (SE) | worst object (SE) |\n",
+      name.c_str(), spp, energy_block, energy_block);
+  for (const Variant& v : variants) {
+    const EnergyReport e = measure_energy(input, denoise(input, v.o), energy_block, &ids);
+    std::printf("| %s | %+.3f%% | %+.2f | %+.2f (block %d) | %+.2f (object %d) |\n", v.name,
+                100.0 * (e.frame.denoised / e.frame.raw - 1.0), e.frame.z, e.worst_block.z,
+                e.worst_block.id, e.worst_object.z, e.worst_object.id);
+  }
+  std::printf("\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int size = 128, threads = 2;
-  bool skip_timing = false, debug = false;
+  bool skip_timing = false, debug = false, ablate = false;
+  int energy_block = 32;
   float noise_threshold = 0.0f;
   DenoiseOptions options;
   int spp_count = 2;
@@ -213,6 +283,10 @@ int main(int argc, char** argv) {
       options.raw_candidate = v == "1";
     else if (a == "--feature-gradient")
       options.feature_gradient = std::stof(v);
+    else if (a == "--zero-order-energy-radius")
+      options.zero_order_energy_radius = std::stoi(v);
+    else if (a == "--cross-selection")
+      options.cross_selection = v == "1";
     else if (a == "--relative-variance")
       options.relative_variance = v == "1";
     else if (a == "--first-order") {
@@ -232,6 +306,10 @@ int main(int argc, char** argv) {
       options.feature_tau = std::stof(v);
     else if (a == "--outlier-k")
       options.outlier_k = std::stof(v);
+    else if (a == "--symmetric-colour-distance")
+      options.symmetric_colour_distance = v == "1";
+    else if (a == "--outlier-quantile")
+      options.outlier_quantile = std::stof(v);
     else if (a == "--outlier-radius")
       options.outlier_radius = std::stoi(v);
     else if (a == "--outlier-spread-radius")
@@ -252,6 +330,10 @@ int main(int argc, char** argv) {
       }
     } else if (a == "--spp-count")
       spp_count = std::stoi(v);
+    else if (a == "--ablate")
+      ablate = v == "1";
+    else if (a == "--energy-block")
+      energy_block = std::stoi(v);
     else if (a == "--debug")
       debug = v == "1";
     else if (a == "--only")
@@ -274,6 +356,9 @@ int main(int argc, char** argv) {
       {"suzi / sunset", assets + "/models/suzi.glb", assets + "/hdri/sunset.exr"},
       {"bunny / studio", assets + "/models/bunny.glb", assets + "/hdri/studio.exr"},
       {"bunny / sunset", assets + "/models/bunny.glb", assets + "/hdri/sunset.exr"},
+      // Heavy-tailed: rough metal reflecting the warehouse's small, very bright ceiling
+      // lights (the brightest 1% of its pixels hold 64% of the energy).
+      {"spheres / warehouse", "spheres", assets + "/hdri/warehouse.exr"},
   };
   fs::create_directories(cache);
   std::printf("%dx%d, references %u spp, %d threads, raw renders' noise threshold %g%s\n\n", size,
@@ -282,8 +367,9 @@ int main(int argc, char** argv) {
   std::printf(
       "| scene | spp | raw relMSE | denoised relMSE | ratio | raw at equal time (spp) | "
       "its relMSE | ratio | worst block mean, raw | denoised | worst object mean, raw | "
-      "denoised | objects within 1%%, raw | denoised | denoise s |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+      "denoised | objects within 1%%, raw | denoised | frame mean vs raw (SE) | worst block "
+      "(SE) | worst object (SE) | denoise s |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<Image> crop_rows;
   double log_ratio[2] = {0.0, 0.0};
   int scenes_run = 0;
@@ -297,6 +383,10 @@ int main(int argc, char** argv) {
     r.threads = threads;
     r.noise_threshold = noise_threshold;
     const std::vector<int> ids = object_ids(r.scene, r.view);
+    if (ablate) {  // no reference needed
+      ablate_energy(bs.name, 16, denoise_input(r.render(16, 1).film), options, energy_block, ids);
+      continue;
+    }
     std::string key = bs.name;
     for (char& c : key)
       if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
@@ -315,7 +405,9 @@ int main(int argc, char** argv) {
       const PathTracerResult noisy = r.render(spp, 1);
       const Image raw = noisy.film.color();
       DenoiseStats stats;
-      const Image denoised = denoise(denoise_input(noisy.film), options, {}, &stats);
+      const DenoiseInput input = denoise_input(noisy.film);
+      const Image denoised = denoise(input, options, {}, &stats);
+      const EnergyReport energy = measure_energy(input, denoised, energy_block, &ids);
       const double e_raw = rel_mse(raw, reference), e_dn = rel_mse(denoised, reference);
       // Equal time: the raw render given the render and the denoising time.
       const double t = noisy.stats.render_seconds;
@@ -398,12 +490,12 @@ int main(int argc, char** argv) {
       }
       std::printf(
           "| %s | %u | %.4g | %.4g | %.1fx | %u | %.4g | %.1fx | %.2f%% | %.2f%% | %.2f%% | "
-          "%.2f%% | %d/%d | %d/%d | %.3f |\n",
+          "%.2f%% | %d/%d | %d/%d | %+.2f | %+.2f | %+.2f | %.3f |\n",
           bs.name.c_str(), spp, e_raw, e_dn, e_raw / e_dn, equal_spp, e_equal, e_equal / e_dn,
           100.0 * worst_block_mean_error(raw, reference),
           100.0 * worst_block_mean_error(denoised, reference), 100.0 * om_raw.worst,
           100.0 * om_dn.worst, om_raw.within, om_raw.objects, om_dn.within, om_dn.objects,
-          stats.seconds);
+          energy.frame.z, energy.worst_block.z, energy.worst_object.z, stats.seconds);
       std::fflush(stdout);
       if (k == 0 && !crops_path.empty()) {
         const int cs = std::min(64, size), x0 = (size - cs) / 2, y0 = (size - cs) / 2;

@@ -60,8 +60,12 @@ struct DenoiseCandidate {
 std::vector<DenoiseCandidate> default_denoise_candidates();
 
 struct DenoiseOptions {
-  int radius = 7;             ///< filter window radius in pixels ((2r+1)^2 neighbours)
-  int patch_radius = 1;       ///< NL-means colour patch radius
+  int radius = 7;        ///< filter window radius in pixels ((2r+1)^2 neighbours)
+  int patch_radius = 1;  ///< NL-means colour patch radius
+  /// The colour distance's variance cancellation: Var_p + Var_q (symmetric: the weight of
+  /// q in p's mean is the weight of p in q's) instead of Rousselle et al. 2012's Var_p +
+  /// min(Var_p, Var_q) (docs/DENOISER.md, "Energy")
+  bool symmetric_colour_distance = false;
   float feature_k = 1.0f;     ///< feature sensitivity (Rousselle et al. 2013's k_f; they use 0.6)
   float feature_tau = 1e-3f;  ///< floor of the feature normalisation (their tau)
   /// The normal's own floor (0: feature_tau): shading changes slowly with the normal on
@@ -86,12 +90,24 @@ struct DenoiseOptions {
   /// first zero-order candidate (docs/DENOISER.md; 0: off): the mean of a region larger
   /// than the box is kept
   int first_order_energy_radius = 7;
+  /// Box radius over which the other zero-order candidates get the energy of the first one
+  /// too (docs/DENOISER.md, "Energy"; 0: off): a weighted mean whose weights differ from
+  /// pixel to pixel (the colour distance is normalised by each pixel's own variance) does
+  /// not keep a region's mean, and over the full window it moves most; the 7x7 candidate
+  /// moves far less. Off: a box small enough not to cross silhouettes into noise-free
+  /// regions gives the candidate the reference's noise, which its SURE estimate (taken
+  /// before) does not see, and the selection then prefers it (BENCHMARKS.md)
+  int zero_order_energy_radius = 0;
   /// Firefly treatment (docs/DENOISER.md): a half's pixel more than outlier_k robust
   /// standard deviations above the second largest value of both halves in its
   /// (2 outlier_radius + 1)^2 window (and above the other half) is scaled down and its
   /// excess spread over the feature-alike pixels within outlier_spread_radius (energy is
   /// kept). outlier_k <= 0 turns it off.
   float outlier_k = 3.0f;
+  /// The quantile of the window's values (both halves) that a pixel must exceed by
+  /// outlier_k robust sigmas (docs/DENOISER.md): 0.9 ignores up to a tenth of the window
+  /// being rare bright samples; 1 - 1 / (window size - 1) is the second largest value
+  float outlier_quantile = 0.9f;
   int outlier_radius = 2;
   int outlier_spread_radius = 7;
   int variance_radius = 2;  ///< box radius smoothing the half-buffer variance estimates
@@ -101,6 +117,10 @@ struct DenoiseOptions {
   int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
   int error_radius = 2;      ///< box radius smoothing the per-candidate error estimates
   int selection_radius = 1;  ///< box radius smoothing the per-pixel choice of candidate
+  /// Choose each half's candidates from the other half's error estimates rather than one
+  /// choice from both (docs/DENOISER.md, "Selection": it moved more energy in the
+  /// heavy-tailed benchmark scenes, so it is off)
+  bool cross_selection = false;
   /// Also offer the unfiltered image as a candidate (last in DenoiseStats::candidate_share);
   /// off: it changed no scene of denoise_bench measurably (BENCHMARKS.md, issue 13)
   bool raw_candidate = false;

@@ -21,13 +21,13 @@ struct HalfEstimate {
   float dfdc, variance;
 };
 
-// Stores a candidate's output at (x, y), the mean of its two filtered halves, and its SURE
-// estimate (Stein 1981; Li et al. 2012): for a filter F linear in data of variance s^2,
-// E[|F - mu|^2] = E[|F - c_p|^2] - s_p^2 + 2 s_p^2 dF/dc_p. The error of the average of
-// the two filtered halves: its bias is theirs, its variance a quarter of their sum.
+// Stores a candidate's two filtered halves at (x, y) and, per half, its SURE estimate
+// (Stein 1981; Li et al. 2012): for a filter F linear in data of variance s^2,
+// E[|F - mu|^2] = E[|F - c_p|^2] - s_p^2 + 2 s_p^2 dF/dc_p. The average of the two
+// filtered halves has their bias and a quarter of their summed variance, so from one half
+// alone its error is that half's SURE less half the half's variance.
 void store_candidate(const CrossFilterInput& input, const Plane mean_variance[2], int x, int y,
                      const HalfEstimate halves[2], Candidates& out, std::size_t k) {
-  float err = 0.0f;
   for (int half = 0; half < 2; ++half) {
     const HalfEstimate& e = halves[half];
     const float s2 = mean_variance[half].at(x, y);
@@ -35,12 +35,10 @@ void store_candidate(const CrossFilterInput& input, const Plane mean_variance[2]
     for (int c = 0; c < 3; ++c) {
       const float d = e.rgb[c] - (*input.color[half])[std::size_t(c)].at(x, y);
       sq += d * d;
+      out.color[half][k][std::size_t(c)].at(x, y) = e.rgb[c];
     }
-    err += 0.5f * (sq / 3.0f - s2 + 2.0f * s2 * e.dfdc) - 0.25f * e.variance;
+    out.error[half][k].at(x, y) = sq / 3.0f - s2 + 2.0f * s2 * e.dfdc - 0.5f * e.variance;
   }
-  for (int c = 0; c < 3; ++c)
-    out.color[k][std::size_t(c)].at(x, y) = 0.5f * (halves[0].rgb[c] + halves[1].rgb[c]);
-  out.error[k].at(x, y) = err;
 }
 }  // namespace
 
@@ -76,11 +74,12 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
   const Feature* depth = first_order ? input.features[std::size_t(input.depth)] : nullptr;
 
   Candidates out;
-  for (int k = 0; k < k_count + (first_order ? fo_count : 0); ++k) {
-    out.color.emplace_back();
-    for (int c = 0; c < 3; ++c) out.color.back().emplace_back(w, h, 0);
-    out.error.emplace_back(w, h, 0);
-  }
+  for (int k = 0; k < k_count + (first_order ? fo_count : 0); ++k)
+    for (int half = 0; half < 2; ++half) {
+      out.color[half].emplace_back();
+      for (int c = 0; c < 3; ++c) out.color[half].back().emplace_back(w, h, 0);
+      out.error[half].emplace_back(w, h, 0);
+    }
   const int strips = (h + kStrip - 1) / kStrip;
   if (strip_count) *strip_count = strips;
   std::atomic<bool> stopped{false};
@@ -166,7 +165,7 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
       for (int dx = -r; dx <= r; ++dx) {
         for (int g = 0; g < 2; ++g)
           patch_distance(guide[g], guide_variance[g], dx, dy, options.patch_radius, y0, y1,
-                         dist[g].data(), scratch);
+                         dist[g].data(), scratch, options.symmetric_colour_distance);
         const int x0 = std::max(0, -dx), x1 = std::min(w, w - dx);
         for (int y = y0; y < y1; ++y) {
           if (y + dy < 0 || y + dy >= h) continue;

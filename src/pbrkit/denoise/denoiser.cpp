@@ -57,13 +57,13 @@ void validate_denoise_input(const DenoiseInput& in) {
 }
 
 namespace {
-// The unfiltered estimate: the mean of the two halves, unpadded.
-denoising::Channels mean_of_halves(const denoising::Channels color[2], int w, int h) {
+// One half's colour, unpadded.
+denoising::Channels channels_unpadded(const denoising::Channels& color, int w, int h) {
   denoising::Channels out;
   for (std::size_t c = 0; c < 3; ++c) {
     denoising::Plane m(w, h, 0);
     for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) m.at(x, y) = 0.5f * (color[0][c].at(x, y) + color[1][c].at(x, y));
+      for (int x = 0; x < w; ++x) m.at(x, y) = color[c].at(x, y);
     out.push_back(std::move(m));
   }
   return out;
@@ -78,8 +78,8 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   if (options.radius < 0 || options.patch_radius < 0 || options.variance_radius < 0 ||
       options.prefilter_radius < 0 || (options.candidates.empty() && options.first_order_k.empty()))
     fail("denoise: radii must be >= 0 and there must be at least one candidate");
-  if (options.first_order_energy_radius < 0)
-    fail("denoise: first_order_energy_radius must be >= 0");
+  if (options.first_order_energy_radius < 0 || options.zero_order_energy_radius < 0)
+    fail("denoise: first_order_energy_radius and zero_order_energy_radius must be >= 0");
   if (!(options.first_order_ridge >= 0.0f))
     fail("denoise: first_order_ridge must be >= 0 (it is {})", options.first_order_ridge);
   const int w = input.color[0].width, h = input.color[0].height;
@@ -143,25 +143,37 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   Candidates candidates = cross_filter(
       cf, options,
       [&] { return report(0.1 + 0.85 * double(++done) / double(std::max(1, strips))); }, &strips);
-  // The fits keep energy against a weighted mean (first_order.cpp).
-  if (candidates.color.size() > options.candidates.size()) {
-    const Channels reference =
-        options.candidates.empty() ? mean_of_halves(color, w, h) : candidates.color[0];
-    for (std::size_t k = options.candidates.size(); k < candidates.color.size(); ++k)
-      first_order::restore_energy(candidates.color[k], reference, options.first_order_energy_radius,
-                                  cf.lowest, cf.highest);
+  // The fits (and, with zero_order_energy_radius > 0, the other zero-order candidates)
+  // keep the energy of the first zero-order candidate (the 7x7 weighted mean), each half
+  // against its own (first_order.cpp, docs/DENOISER.md "Energy"); the raw half when there
+  // is no zero-order candidate.
+  for (int half = 0; half < 2; ++half) {
+    const bool reference_is_candidate = !options.candidates.empty();
+    const Channels raw = reference_is_candidate ? Channels{} : channels_unpadded(color[half], w, h);
+    const Channels& reference = reference_is_candidate ? candidates.color[half][0] : raw;
+    for (std::size_t k = 1; k < candidates.size(); ++k) {
+      const bool fit = k >= options.candidates.size();
+      first_order::restore_energy(
+          candidates.color[half][k], reference,
+          fit ? options.first_order_energy_radius : options.zero_order_energy_radius, cf.lowest,
+          cf.highest);
+    }
+    if (!reference_is_candidate && !candidates.color[half].empty())
+      first_order::restore_energy(candidates.color[half][0], reference,
+                                  options.first_order_energy_radius, cf.lowest, cf.highest);
   }
   if (options.raw_candidate) {
-    // The unfiltered mean of the halves: its error is its variance, exactly (half a half's),
-    // so where every filter would blur more than it removes (converged or noise-free
-    // pixels: a sharp environment seen directly) the selection keeps the input.
-    Channels raw = mean_of_halves(color, w, h);
-    Plane error(w, h, 0);
+    // The unfiltered halves: the error of their mean is its variance, exactly (half a
+    // half's), so where every filter would blur more than it removes (converged or
+    // noise-free pixels: a sharp environment seen directly) the selection keeps the input.
     const Plane half_variance_mean = channel_mean(variance);
-    for (int y = 0; y < h; ++y)
-      for (int x = 0; x < w; ++x) error.at(x, y) = 0.5f * half_variance_mean.at(x, y);
-    candidates.color.push_back(std::move(raw));
-    candidates.error.push_back(std::move(error));
+    for (int half = 0; half < 2; ++half) {
+      Plane error(w, h, 0);
+      for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) error.at(x, y) = 0.5f * half_variance_mean.at(x, y);
+      candidates.color[half].push_back(channels_unpadded(color[half], w, h));
+      candidates.error[half].push_back(std::move(error));
+    }
   }
   std::vector<double> share;
   Image out = select_candidates(candidates, options, &share);

@@ -5,9 +5,10 @@
 // that a few samples describe) is wrong, so the filter turns the firefly into a blotch.
 //
 // Detection, per half and pixel, on the channel mean: the pixel is an outlier when it is
-// above T = max(the other half at the same pixel, the second largest value of both halves
-// in the (2r+1)^2 window around it) + k * 1.4826 MAD of those values, a robust version of
-// the usual "k-th largest of the neighbourhood plus several standard deviations" rule
+// above T = max(the other half at the same pixel, the 90th percentile of both halves'
+// values in the (2r+1)^2 window around it) + k * 1.4826 MAD of those values, a robust
+// version of the usual "k-th largest of the neighbourhood plus several standard
+// deviations" rule
 // (DeCoro et al. 2010, "Density-based Outlier Rejection in Monte Carlo Rendering", reject
 // samples by their neighbourhood; the other half is the same pixel's independent
 // estimate, so a value both halves share is signal, not a firefly).
@@ -54,6 +55,7 @@ int spread_outliers(Channels color[2], const std::vector<const Feature*>& featur
   }
   std::vector<std::vector<Outlier>> rows(static_cast<std::size_t>(h));
   const float k = options.outlier_k;
+  const float quantile = std::clamp(options.outlier_quantile, 0.5f, 1.0f);
   pbrkit::parallel_for(0, h, [&](int y) {
     std::vector<float> values, deviation;
     for (int x = 0; x < w; ++x)
@@ -61,25 +63,25 @@ int spread_outliers(Channels color[2], const std::vector<const Feature*>& featur
         const float v = level[half][std::size_t(y) * w + x];
         const float other = level[1 - half][std::size_t(y) * w + x];
         if (!(v > other)) continue;
-        // The two largest of the window (both halves, without the pixel itself).
+        // The window's values (both halves, without the pixel itself).
         values.clear();
-        float first = -INFINITY, second = -INFINITY;
         for (int qy = std::max(0, y - r); qy <= std::min(h - 1, y + r); ++qy)
           for (int qx = std::max(0, x - r); qx <= std::min(w - 1, x + r); ++qx)
             for (int g = 0; g < 2; ++g) {
               if (qx == x && qy == y && g == half) continue;
-              const float q = level[g][std::size_t(qy) * w + qx];
-              values.push_back(q);
-              if (q > first) {
-                second = first;
-                first = q;
-              } else if (q > second) {
-                second = q;
-              }
+              values.push_back(level[g][std::size_t(qy) * w + qx]);
             }
-        const float base = std::max(other, second);
-        if (!(v > base) || values.size() < 3) continue;
-        // Robust spread: 1.4826 times the median absolute deviation (a Gaussian's sigma).
+        if (values.size() < 3) continue;
+        // The base: the window's 90th percentile (and the other half). The second largest
+        // value, the usual "k-th largest" rule, lets rare bright samples that fall close
+        // together (two in one window, likely under a small bright light) hide each
+        // other; the 90th percentile ignores up to a tenth of the window being outliers
+        // and still covers an edge of real signal (a light seen directly, a highlight)
+        // that fills more than a tenth of it. The spread: 1.4826 times the median
+        // absolute deviation (a Gaussian's sigma).
+        const auto upper = values.begin() + std::ptrdiff_t(quantile * float(values.size() - 1));
+        std::nth_element(values.begin(), upper, values.end());
+        const float base = std::max(other, *upper);
         const auto mid = values.begin() + std::ptrdiff_t(values.size() / 2);
         std::nth_element(values.begin(), mid, values.end());
         const float median = *mid;

@@ -56,7 +56,7 @@ Plane box_filter(const Plane& in, int r) {
 
 void patch_distance(const std::vector<const Plane*>& guide,
                     const std::vector<const Plane*>& variance, int dx, int dy, int patch_radius,
-                    int y0, int y1, float* out, std::vector<float>& scratch) {
+                    int y0, int y1, float* out, std::vector<float>& scratch, bool symmetric) {
   const int f = patch_radius;
   const int w = guide.front()->width;
   const int tw = w + 2 * f;        // term row width: x in [-f, w + f)
@@ -81,7 +81,7 @@ void patch_distance(const std::vector<const Plane*>& guide,
       for (int x = -f; x < w + f; ++x) {
         const float d = up[x] - uq[x];
         const float a = vp[x], b = vq[x];
-        const float v = (d * d - (a + std::min(a, b))) / (kEps + a + b);
+        const float v = (d * d - (a + (symmetric ? b : std::min(a, b)))) / (kEps + a + b);
         t[x] += v * inv_channels;
       }
     }

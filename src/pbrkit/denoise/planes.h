@@ -64,8 +64,11 @@ inline float exp_neg(float x) {
 /// when `variance` has one entry). Sensitivity k is applied by the caller (d / k^2).
 /// Writes (y1 - y0) * width floats to `out`; `scratch` is resized as needed. The planes'
 /// padding must be at least max(|dx|, |dy|) + patch_radius.
+/// With `symmetric`, the cancellation subtracts v_p + v_q (the unbiased estimate of the
+/// squared difference of the means) and d(p, q) = d(q, p) (docs/DENOISER.md, "Energy").
 void patch_distance(const std::vector<const Plane*>& guide,
                     const std::vector<const Plane*>& variance, int dx, int dy, int patch_radius,
-                    int y0, int y1, float* out, std::vector<float>& scratch);
+                    int y0, int y1, float* out, std::vector<float>& scratch,
+                    bool symmetric = false);
 
 }  // namespace pbrkit::denoising

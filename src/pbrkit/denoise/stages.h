@@ -53,11 +53,15 @@ Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOpt
 int spread_outliers(Channels color[2], const std::vector<const Feature*>& features,
                     const DenoiseOptions& options);
 
-/// The candidates' outputs: per candidate the RGB mean of the two filtered halves and the
-/// estimated squared error (SURE, channel mean) per pixel.
+/// The candidates' outputs, per half: each filtered half (RGB) and the error of the
+/// average of the two filtered halves as estimated from that half alone (its SURE less
+/// half its variance, channel mean): the halves are alike, so either estimates the
+/// error of their average, and the selection can take each half's choice from the
+/// other half's estimate (selection.cpp).
 struct Candidates {
-  std::vector<Channels> color;  ///< [candidate][channel]
-  std::vector<Plane> error;     ///< [candidate]
+  std::vector<Channels> color[2];  ///< [half][candidate][channel]
+  std::vector<Plane> error[2];     ///< [half][candidate]
+  std::size_t size() const { return color[0].size(); }
 };
 
 struct CrossFilterInput {
@@ -109,7 +113,9 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
                         const std::function<bool()>& tick, int* strips);
 
 /// Chooses per pixel among the candidates by their smoothed relative error, smooths the
-/// choice and blends. Returns the RGB image; `share` gets the fraction each candidate won.
+/// choice and blends, each half with a choice made from the other half's error estimate
+/// when options.cross_selection is on (from both halves' otherwise). Returns the RGB mean
+/// of the blended halves; `share` gets the fraction each candidate won.
 Image select_candidates(const Candidates& candidates, const DenoiseOptions& options,
                         std::vector<double>* share);
 
