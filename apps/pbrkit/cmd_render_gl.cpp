@@ -93,9 +93,6 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     const ToneMapper tone_mapper = parse_tone_mapper(o.tonemap);
 
     const Scene scene = load_scene_showing_progress(o.scene);
-    if (scene.lights.size() > 16)
-      warn("{}: the OpenGL renderer uses the first 16 of {} lights", scene.source,
-           scene.lights.size());
     std::optional<Environment> env;
     std::optional<gl::IblMaps> ibl;
     double bake_ms = 0.0;

@@ -70,7 +70,8 @@ def _env_arg(env):
 def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=None,
            env="builtin", env_rotation=0.0, env_intensity=1.0, camera=None,
            model="reference", multiscatter=None, max_bounces=None, time=None,
-           noise_threshold=None, threads=None, denoise=None, aovs=None, progress=None):
+           noise_threshold=None, threads=None, denoise=None, aovs=None, light_sampler=None,
+           progress=None):
     """Renders ``scene`` (a Scene, a file path or a built-in name) and returns the linear
     RGB image as a float32 (H, W, 3) array; with ``aovs`` (any of "albedo", "normal",
     "depth", "samples", "noise") returns ``(image, {name: array})``.
@@ -84,7 +85,8 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
     a ``pbrkit.Camera`` (``look_at``). Path tracer only (an error with "gl", as on the
     command line): ``spp`` (1024), ``seed`` (0), ``max_bounces`` (24), ``time`` (seconds,
     0: no limit), ``noise_threshold`` (adaptive sampling, 0.02; 0 turns it off),
-    ``threads`` (0: all cores), ``denoise`` and ``aovs`` (with ``denoise``, the raw image
+    ``threads`` (0: all cores), ``light_sampler`` ("bvh", the light BVH, or "power"),
+    ``denoise`` and ``aovs`` (with ``denoise``, the raw image
     is the AOV "raw").
     """
     if not isinstance(scene, Scene):
@@ -92,7 +94,8 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
     path = _pbrkit._PathArgs()
     for name, value in (("spp", spp), ("seed", seed), ("max_bounces", max_bounces),
                         ("time", time), ("noise_threshold", noise_threshold),
-                        ("threads", threads), ("denoise", denoise)):
+                        ("threads", threads), ("denoise", denoise),
+                        ("light_sampler", light_sampler)):
         if value is not None:
             setattr(path, name, value)
     if aovs is not None:

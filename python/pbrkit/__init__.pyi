@@ -61,6 +61,7 @@ def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path
            multiscatter: bool | None = None, max_bounces: int | None = None,
            time: float | None = None, noise_threshold: float | None = None,
            threads: int | None = None, denoise: bool | None = None, aovs: None = None,
+           light_sampler: Literal["bvh", "power"] | None = None,
            progress: Progress | None = None) -> FloatArray: ...
 @overload
 def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path", *,
@@ -72,6 +73,7 @@ def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path
            time: float | None = None, noise_threshold: float | None = None,
            threads: int | None = None, denoise: bool | None = None,
            aovs: Union[str, Sequence[str]] = ...,
+           light_sampler: Literal["bvh", "power"] | None = None,
            progress: Progress | None = None) -> Tuple[FloatArray, dict[str, FloatArray]]: ...
 
 def denoise(color: Tuple[FloatArray, FloatArray], albedo: Tuple[FloatArray, FloatArray],

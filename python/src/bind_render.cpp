@@ -96,6 +96,7 @@ struct PathArgs {
   std::optional<int> threads;
   std::optional<bool> denoise;
   std::optional<std::vector<std::string>> aovs;
+  std::optional<std::string> light_sampler;
   std::vector<std::string> given() const {
     std::vector<std::string> names;
     if (spp) names.push_back("spp");
@@ -106,6 +107,7 @@ struct PathArgs {
     if (threads) names.push_back("threads");
     if (denoise) names.push_back("denoise");
     if (aovs) names.push_back("aovs");
+    if (light_sampler) names.push_back("light_sampler");
     return names;
   }
 };
@@ -148,6 +150,12 @@ py::object render_path_tracer(const Scene& scene, const std::optional<Environmen
   }
   s.brdf = brdf;
   s.checkpoint_interval = 0.0;
+  if (a.light_sampler) {
+    if (*a.light_sampler != "bvh" && *a.light_sampler != "power")
+      throw py::value_error("light_sampler must be 'bvh' or 'power', got '" + *a.light_sampler +
+                            "'");
+    s.light_sampler = parse_light_sampler(*a.light_sampler);
+  }
   const std::vector<std::string> aovs = a.aovs.value_or(std::vector<std::string>{});
   for (const std::string& name : aovs)
     if (std::find(aov_names().begin(), aov_names().end(), name) == aov_names().end())
@@ -257,7 +265,8 @@ void bind_render(py::module_& m) {
       .def_readwrite("noise_threshold", &PathArgs::noise_threshold)
       .def_readwrite("threads", &PathArgs::threads)
       .def_readwrite("denoise", &PathArgs::denoise)
-      .def_readwrite("aovs", &PathArgs::aovs);
+      .def_readwrite("aovs", &PathArgs::aovs)
+      .def_readwrite("light_sampler", &PathArgs::light_sampler);
 }
 
 }  // namespace pbrkit::python

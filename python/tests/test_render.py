@@ -63,6 +63,15 @@ def test_environment_array_equals_the_same_environment_from_its_file():
     assert darker.mean() < 0.75 * from_array.mean()
 
 
+def test_light_sampler_matches_the_cli(cli, tmp_path):
+    cli("render", "lights", "--no-env", "--spp", 2, "--width", 32, "--height", 24, "--float",
+        "--light-sampler", "power", "-o", tmp_path / "l.png")
+    expected = pbrkit.read_image(tmp_path / "l.exr")
+    kwargs = dict(env=None, spp=2, width=32, height=24)
+    assert np.array_equal(pbrkit.render("lights", light_sampler="power", **kwargs), expected)
+    assert not np.array_equal(pbrkit.render("lights", **kwargs), expected)  # bvh by default
+
+
 def test_look_at_camera_and_camera_index():
     s = pbrkit.load("cornell")
     cam = s.cameras[0]
@@ -92,6 +101,8 @@ def test_look_at_camera_and_camera_index():
     (dict(env=np.full((8, 16, 3), -1.0, np.float32)), ValueError, ">= 0"),
     (dict(env="/no/such/env.exr"), FileNotFoundError, "no such file"),
     (dict(progress=42), TypeError, "progress"),
+    (dict(light_sampler="uniform"), ValueError, "light_sampler"),
+    (dict(renderer="gl", light_sampler="bvh"), ValueError, "light_sampler"),
 ])
 def test_bad_arguments_raise_clear_errors(kwargs, error, words):
     args = dict(width=8, height=8)

@@ -472,13 +472,18 @@ bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
   const char* irradiance_modes[] = {"SH9", "cube"};
   if (ImGui::Combo("irradiance", &irradiance, irradiance_modes, 2))
     s.settings.irradiance = gl::IrradianceMode(irradiance);
-  for (std::size_t i = 0; i < s.scene.lights.size() && i < 16; ++i) {
-    bool on = s.settings.light_enabled[i];
-    const std::string label = "light " + std::to_string(i) + " " + s.scene.lights[i].name;
-    if (ImGui::Checkbox(label.c_str(), &on)) {
-      s.settings.light_enabled[i] = on;
-      changed = true;
+  // Every punctual light (the renderer shades them all, clustered), folded away when many.
+  const std::size_t lights = s.scene.lights.size();
+  if (lights > 0 && (lights <= 8 || ImGui::TreeNode("lights", "lights (%zu)", lights))) {
+    for (std::size_t i = 0; i < lights; ++i) {
+      bool on = s.settings.light_enabled[i];
+      const std::string label = "light " + std::to_string(i) + " " + s.scene.lights[i].name;
+      if (ImGui::Checkbox(label.c_str(), &on)) {
+        s.settings.light_enabled[i] = on;
+        changed = true;
+      }
     }
+    if (lights > 8) ImGui::TreePop();
   }
   ImGui::Separator();
   changed |= ImGui::Checkbox("override metallic", &s.override_metallic);
