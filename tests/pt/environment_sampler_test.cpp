@@ -53,22 +53,11 @@ void chi2_test(float rotation) {
     }
   EXPECT_NEAR(total_p, 1.0, 1e-3);  // the pdf integrates to 1
   // Pool bins with expected counts below 5 (standard chi-square practice).
-  double stat = 0.0, pooled_o = 0.0, pooled_e = 0.0;
-  int dof = -1;
-  for (std::size_t b = 0; b < observed.size(); ++b) {
-    if (expected[b] < 5.0) {
-      pooled_o += observed[b];
-      pooled_e += expected[b];
-      continue;
-    }
-    stat += (observed[b] - expected[b]) * (observed[b] - expected[b]) / expected[b];
-    ++dof;
-  }
-  if (pooled_e >= 5.0) {
-    stat += (pooled_o - pooled_e) * (pooled_o - pooled_e) / pooled_e;
-    ++dof;
-  } else {
-    EXPECT_LT(pooled_o, 5.0 + 5.0 * std::sqrt(5.0));  // nothing where the pdf is ~0
+  const PooledChi2 c = pooled_chi2(observed, expected);
+  const double stat = c.statistic;
+  const int dof = c.degrees_of_freedom;
+  if (!c.pooled_counted) {
+    EXPECT_LT(c.pooled_observed, 5.0 + 5.0 * std::sqrt(5.0));  // nothing where the pdf is ~0
   }
   const double p_value = chi2_survival(stat, dof);
   // Two rotations are tested: Sidak-corrected 1% significance.

@@ -114,6 +114,26 @@ double gamma_q_fraction(double a, double x) {
 
 }  // namespace
 
+PooledChi2 pooled_chi2(const std::vector<double>& observed, const std::vector<double>& expected) {
+  PooledChi2 r;
+  for (std::size_t b = 0; b < observed.size(); ++b) {
+    if (expected[b] < 5.0) {
+      r.pooled_observed += observed[b];
+      r.pooled_expected += expected[b];
+      continue;
+    }
+    r.statistic += (observed[b] - expected[b]) * (observed[b] - expected[b]) / expected[b];
+    ++r.degrees_of_freedom;
+  }
+  if (r.pooled_expected >= 5.0) {
+    r.statistic += (r.pooled_observed - r.pooled_expected) *
+                   (r.pooled_observed - r.pooled_expected) / r.pooled_expected;
+    ++r.degrees_of_freedom;
+    r.pooled_counted = true;
+  }
+  return r;
+}
+
 double chi2_survival(double statistic, int dof) {
   if (dof <= 0) return 1.0;
   if (!(statistic > 0.0)) return 1.0;

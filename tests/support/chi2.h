@@ -57,6 +57,18 @@ Chi2Result chi2_sphere_test(const std::function<std::optional<glm::vec3>(float, 
 /// Q(dof/2, statistic/2) (regularised upper incomplete gamma function).
 double chi2_survival(double statistic, int dof);
 
+/// Pearson's chi-square statistic of histogram counts against expected counts, the cells
+/// expected below 5 pooled into one (standard practice). When the pooled cells expect fewer
+/// than 5 too they are left out, and `pooled_observed` says what they hold (the caller
+/// asserts it is small: nothing where the pdf is ~0).
+struct PooledChi2 {
+  double statistic = 0.0;
+  int degrees_of_freedom = -1;
+  double pooled_observed = 0.0, pooled_expected = 0.0;
+  bool pooled_counted = false;  ///< the pooled cell entered the statistic
+};
+PooledChi2 pooled_chi2(const std::vector<double>& observed, const std::vector<double>& expected);
+
 /// The pdf of `options`' (theta, phi) grid integrated over every bin (row-major,
 /// theta-major), exactly as chi2_sphere_test computes the expected frequencies.
 std::vector<double> integrate_pdf_over_bins(const std::function<double(glm::vec3)>& pdf,

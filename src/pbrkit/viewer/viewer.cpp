@@ -120,6 +120,10 @@ struct ViewerState {
   bool dragging_divider = false;
   ProgressiveRender path;
   bool path_dirty = true;  // a change the path-traced image must restart for
+  // The scene the path tracer renders, rebuilt only when what it holds changes (not when
+  // the camera moves: a copy of a large scene per drag event would stall the window).
+  std::shared_ptr<const Scene> path_scene;
+  bool path_scene_dirty = true;
   std::uint64_t path_job = 0, path_seen = 0;
   std::optional<ProgressiveSnapshot> snapshot;  // the newest of the current job
   int path_channel = 0;                         // 0 colour, 1 albedo, 2 normal, 3 depth
@@ -251,6 +255,7 @@ void load_scene_into(ViewerState& s, gl::Renderer& renderer) {
   renderer.set_scene(s.scene);
   renderer.set_materials(overridden_materials(s));  // the panel's overrides survive a reload
   s.settings.light_enabled.assign(s.scene.lights.size(), true);
+  s.path_scene_dirty = true;
 }
 
 // The window's framebuffer aspect, width / height: what the frames are rendered at, which
@@ -294,7 +299,7 @@ void save_screenshot(const std::string& png, const Image& linear, const ViewerSt
 // The scene the path tracer renders: the panel's material overrides applied to the
 // materials (metallic and roughness replace the factor and the texture's value, as the
 // raster shader's overrides do) and the lights the panel turned off left out.
-std::shared_ptr<const Scene> path_scene(const ViewerState& s) {
+std::shared_ptr<const Scene> make_path_scene(const ViewerState& s) {
   auto scene = std::make_shared<Scene>(s.scene);
   scene->materials = overridden_materials(s);
   for (Material& m : scene->materials) {
@@ -313,7 +318,11 @@ std::shared_ptr<const Scene> path_scene(const ViewerState& s) {
 // options.spp samples, on all cores but one (the window draws on it).
 void start_path(ViewerState& s, int width, int height) {
   ProgressiveJob job;
-  job.scene = path_scene(s);
+  if (!s.path_scene || s.path_scene_dirty) {
+    s.path_scene = make_path_scene(s);
+    s.path_scene_dirty = false;
+  }
+  job.scene = s.path_scene;
   if (s.env) {
     auto env = std::make_shared<Environment>(*s.env);
     env->rotation_deg = s.settings.env_rotation_deg;
@@ -665,7 +674,7 @@ void run_viewer(const ViewerOptions& options) {
           s.path_dirty = true;
         }
       }
-      s.path_dirty |= draw_panel(s, renderer, cpu_ms, gpu_ms);
+      if (draw_panel(s, renderer, cpu_ms, gpu_ms)) s.path_dirty = s.path_scene_dirty = true;
       s.settings.metallic_override = s.override_metallic ? s.metallic : -1.0f;
       s.settings.roughness_override = s.override_roughness ? s.roughness : -1.0f;
 
