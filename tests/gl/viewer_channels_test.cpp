@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -74,6 +76,21 @@ TEST(ViewerChannels, RasterDebugChannelsShowTheMaterialFactors) {
   for (int col = 0; col < 7; col += 3) {
     const auto [x, y] = sphere_pixel(col, 3);
     EXPECT_NEAR(roughness.rgb(x, y).g, 0.05f + 0.95f * float(col) / 6.0f, 1e-6f) << col;
+  }
+}
+
+TEST(ViewerChannels, AChannelTheViewDoesNotShowIsAnErrorNamingTheFlag) {
+  // Checked before any window opens: no X display needed.
+  const auto dir = pbrkit::test::scratch_dir();
+  for (const char* args : {"--mode path --channel metallic", "--mode split --channel normal",
+                           "--mode raster --channel depth"}) {
+    const std::filesystem::path log = dir / "log.txt";
+    const std::string command = pbrkit::test::cli_path().string() + " view furnace " + args +
+                                " > " + log.string() + " 2>&1";
+    EXPECT_NE(std::system(command.c_str()), 0) << args;
+    std::ifstream in(log);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_NE(text.find("--channel"), std::string::npos) << args << ": " << text;
   }
 }
 

@@ -5,6 +5,10 @@
 // n * 0.5 + 0.5, occlusion, emission), or one lobe's share of the shaded radiance (the
 // lobes of every pixel sum to its shaded colour less its emission). Values are raw: no
 // exposure and no tone mapping (shaders/debug_channels.glsl says how each is isolated).
+// Two limits: an unlit material's colour (KHR_materials_unlit) is in no lobe, and a
+// transmissive surface refracts the opaque frame as drawn in the same channel, so the
+// transmission lobe of glass in front of opaque surfaces shows their channel, not their
+// shaded colour (over the background it is exact).
 #include <string>
 #include <string_view>
 #include <vector>
