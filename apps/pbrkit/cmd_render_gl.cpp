@@ -1,6 +1,6 @@
 // pbrkit render --renderer gl: the OpenGL renderer's own options (IBL bake size, irradiance
-// form, MSAA, background, Fresnel form) and the runner: load the scene and environment,
-// bake the IBL maps through the library, render headless through EGL, write the linear
+// form, MSAA, background, Fresnel form, debug channel) and the runner: load the scene and
+// environment, bake the IBL maps through the library, render headless through EGL, write the linear
 // EXR and the tone-mapped PNG with the same display transform as the path tracer.
 #include <chrono>
 #include <memory>
@@ -35,6 +35,7 @@ struct GlOptions {
   int bake_samples = gl::realtime_bake_options().samples;
   bool no_ibl = false;
   bool no_lights = false;
+  std::string channel{gl::debug_channel_name(gl::DebugChannel::kNone)};
 };
 
 using Clock = std::chrono::steady_clock;
@@ -75,6 +76,15 @@ RenderRunner add_gl_render_options(CLI::App& render) {
   render.add_flag("--no-ibl", g->no_ibl, "no image-based lighting (background still shown)")
       ->group(group);
   render.add_flag("--no-lights", g->no_lights, "ignore the scene's punctual lights")->group(group);
+  render
+      .add_option("--channel", g->channel,
+                  "a debug channel instead of the shaded image, raw (no exposure, no tone map): "
+                  "a material input (base-color, metallic, roughness, normal as n*0.5+0.5, "
+                  "occlusion, emissive) or one lobe's share of the radiance (diffuse, specular, "
+                  "clearcoat, sheen, transmission)")
+      ->check(CLI::IsMember(gl::debug_channel_names()))
+      ->capture_default_str()
+      ->group(group);
 
   return [g](const RenderCommandOptions& o) {
     const auto t_start = Clock::now();
@@ -90,7 +100,10 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     settings.env_intensity = o.env_intensity;
     settings.ibl = !g->no_ibl;
     settings.lights = !g->no_lights;
-    const ToneMapper tone_mapper = parse_tone_mapper(o.tonemap);
+    settings.debug_channel = gl::parse_debug_channel(g->channel);
+    // A debug channel's values are shown as they are (the Sample Viewer's debug outputs).
+    const bool raw = settings.debug_channel != gl::DebugChannel::kNone;
+    const ToneMapper tone_mapper = raw ? ToneMapper::kNone : parse_tone_mapper(o.tonemap);
 
     const Scene scene = load_scene_showing_progress(o.scene);
     std::optional<Environment> env;
@@ -122,7 +135,7 @@ RenderRunner add_gl_render_options(CLI::App& render) {
 
     write_exr(o.outputs.exr, rgb_channels(frame),
               o.exr_float.value_or(true) ? ExrPixelType::kFloat : ExrPixelType::kHalf);
-    write_display_png(o.outputs.png, frame, {o.exposure, tone_mapper});
+    write_display_png(o.outputs.png, frame, {raw ? 0.0f : o.exposure, tone_mapper});
     note(
         "OpenGL ({}, {} context): {} at {}x{}: bake {:.0f} ms, GL {:.0f} ms (frame {:.1f} ms on "
         "the GPU), total {:.0f} ms; wrote {} and {}",

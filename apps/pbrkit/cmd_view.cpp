@@ -1,13 +1,17 @@
 // pbrkit view: the interactive OpenGL viewer (GLFW + Dear ImGui) over the library's
 // run_viewer. --frames/--screenshot automate it for CI (render N frames, save, quit).
+#include <algorithm>
 #include <memory>
 #include <optional>
 #include <string>
+
+#include <fmt/ranges.h>
 
 #include "commands.h"
 #include "gl_options.h"
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/util/error.h"
 #include "pbrkit/viewer/viewer.h"
 
 namespace pbrkit::cli {
@@ -22,7 +26,26 @@ struct ViewNames {
   std::optional<bool> multiscatter;
   std::string background = "env";
   std::string mode{view_mode_name(ViewerOptions{}.mode)};
+  std::optional<std::string> channel;
 };
+
+// --channel: a debug channel of the raster view, or a feature of the path view.
+void parse_channel(const std::string& name, ViewerOptions& o) {
+  if (o.mode == ViewMode::kPath) {
+    const auto names = path_channel_names();
+    if (std::find(names.begin(), names.end(), name) == names.end())
+      fail("--channel: the path view shows color, albedo, normal or depth, got '{}'", name);
+    o.path_channel = parse_path_channel(name);
+    return;
+  }
+  if (o.mode != ViewMode::kRaster)
+    fail("--channel: only the raster and path views show channels (--mode {})",
+         view_mode_name(o.mode));
+  const auto names = gl::debug_channel_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    fail("--channel: the raster view shows {}, got '{}'", fmt::join(names, ", "), name);
+  o.channel = gl::parse_debug_channel(name);
+}
 
 }  // namespace
 
@@ -78,6 +101,13 @@ void register_view_command(CLI::App& app) {
       ->check(CLI::Range(1u, 1u << 24))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "path views: the path tracer's seed")->capture_default_str();
+  cmd->add_option("--channel", names->channel,
+                  "raster view: a debug channel, raw (base-color, metallic, roughness, normal, "
+                  "occlusion, emissive; the lobes diffuse, specular, clearcoat, sheen, "
+                  "transmission); path view: color, albedo, normal or depth");
+  cmd->add_flag("--denoise", o->denoise,
+                "path view: denoise the image once the path tracer reaches --spp (the panel's "
+                "toggle, key D)");
   cmd->add_flag("--exit", o->exit_when_done,
                 "automation: once the view is final (the path tracer at --spp; raster: after "
                 "--frames, at least 2), save --screenshot and quit");
@@ -92,6 +122,7 @@ void register_view_command(CLI::App& app) {
     o->brdf.multiscatter = names->multiscatter.value_or(default_multiscatter(o->brdf.model));
     o->background = parse_background(names->background);
     o->mode = parse_view_mode(names->mode);
+    if (names->channel) parse_channel(*names->channel, *o);
     run_viewer(*o);
   });
 }

@@ -115,6 +115,7 @@ const std::map<std::string, std::string> kValidValues = {
     {"--bake-samples", "8"},
     {"--no-ibl", ""},
     {"--no-lights", ""},
+    {"--channel", "normal"},
 };
 
 TEST(OptionChecks, RenderRefusesTheOtherRenderersOptions) {

@@ -1,6 +1,6 @@
 // ProgressiveRender, the viewer's path view: snapshots arrive while the render runs, a new
 // job (the camera moved) restarts the accumulation, and a finished job's image is exactly
-// render_path's for its settings.
+// render_path's for its settings, its film with it.
 #include <chrono>
 #include <memory>
 #include <thread>
@@ -73,6 +73,11 @@ TEST(ProgressiveRender, RestartsOnANewViewAndEndsAtTheRenderOfThatView) {
   s.checkpoint_interval = 0.0;
   const PathTracerResult fresh = render_path(*scene, nullptr, moved, s);
   EXPECT_EQ(done.color.data, fresh.color.data);
+  // The final snapshot carries its film (what the viewer's denoise reads), the same one;
+  // the running ones do not (a copy per checkpoint would cost the window its frames).
+  EXPECT_FALSE(before.film);
+  ASSERT_TRUE(done.film);
+  EXPECT_EQ(done.film->color().data, fresh.color.data);
   // And not the first view's image: the restart used the new camera.
   s.spp = 16;
   EXPECT_NE(done.color.data, render_path(*scene, nullptr, front, s).color.data);

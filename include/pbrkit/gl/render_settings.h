@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "pbrkit/core/brdf.h"
+#include "pbrkit/gl/debug_channels.h"
 
 namespace pbrkit::gl {
 
@@ -51,6 +52,9 @@ struct RenderSettings {
   float env_intensity = 1.0f;
   float metallic_override = -1.0f;   ///< >= 0 replaces every material's metallic
   float roughness_override = -1.0f;  ///< >= 0 replaces every material's roughness
+  /// What the surfaces write: the shaded colour, or a material input or one lobe's share
+  /// of it, raw (debug_channels.h).
+  DebugChannel debug_channel = DebugChannel::kNone;
 };
 
 }  // namespace pbrkit::gl

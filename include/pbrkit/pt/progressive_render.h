@@ -38,7 +38,10 @@ struct ProgressiveSnapshot {
   double noise = 0.0;           ///< mean per-pixel relative error estimate (0: unknown)
   double seconds = 0.0;         ///< since the job started
   bool preview = false;
-  bool complete = false;     ///< the render reached its target: this image is final
+  bool complete = false;  ///< the render reached its target: this image is final
+  /// The final film (complete snapshots only): its half buffers are what the denoiser
+  /// reads (denoise/inputs.h), kept only once, when the image no longer changes.
+  std::shared_ptr<const Film> film;
   std::uint64_t job = 0;     ///< which start() it belongs to (1, 2, ...)
   std::uint64_t serial = 0;  ///< increases with every published snapshot
 };

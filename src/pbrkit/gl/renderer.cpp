@@ -148,6 +148,12 @@ void set_transmission_features(const Material& m, bool closed, SurfaceFeatures& 
       f.transmission && f.volume && m.dispersion.has_value() && m.dispersion->dispersion > 0.0f;
 }
 
+// What the surfaces write (debug_channels.h): a permutation of its own, so the shaded
+// frame compiles no debug code.
+void set_debug_features(const RenderSettings& settings, SurfaceFeatures& f) {
+  f.debug_channel = int(settings.debug_channel);
+}
+
 }  // namespace
 
 // The parts a frame is made of, each in its own file; the members are made in this order
@@ -273,6 +279,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   frame.lights = lights.empty() ? 0 : clustered_frame ? 2 : 1;
   if (frame.lights == 1 && int(lights.size()) <= kCompiledLightCount)
     frame.light_count = int(lights.size());
+  set_debug_features(settings, frame);
   glBindTextureUnit(5, s.energy[std::size_t(direct)]);
   glBindTextureUnit(6, s.energy[std::size_t(ibl)]);
   glBindTextureUnit(7, s.environment.specular_cube);

@@ -47,6 +47,8 @@ struct SurfaceFeatures {
   bool volume = false;
   bool dispersion = false;
   bool diffuse_transmission = false;
+  /// What the surfaces write (debug_channels.glsl's DEBUG_CHANNEL: DebugChannel's value).
+  int debug_channel = 0;
 
   std::uint64_t key() const {
     return std::uint64_t(textures) | std::uint64_t(alpha_mode) << 19 | std::uint64_t(ibl) << 21 |
@@ -58,7 +60,7 @@ struct SurfaceFeatures {
            std::uint64_t(sheen) << 37 | std::uint64_t(unlit) << 38 |
            std::uint64_t(transmission) << 39 | std::uint64_t(volume) << 40 |
            std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42 |
-           std::uint64_t(light_count + 1) << 43;
+           std::uint64_t(light_count + 1) << 43 | std::uint64_t(debug_channel) << 48;
   }
   std::string defines() const {
     std::string d;
@@ -76,9 +78,9 @@ struct SurfaceFeatures {
     d += fmt::format(
         "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
         "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
-        "#define LIGHTS {}\n#define LIGHT_COUNT {}\n",
+        "#define LIGHTS {}\n#define LIGHT_COUNT {}\n#define DEBUG_CHANNEL {}\n",
         alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel, lights,
-        light_count);
+        light_count, debug_channel);
     return d;
   }
 };

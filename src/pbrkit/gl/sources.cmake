@@ -16,6 +16,7 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/context.cpp
   ${_pbrkit_gl_dir}/program.cpp
   ${_pbrkit_gl_dir}/shaders.cpp
+  ${_pbrkit_gl_dir}/debug_channels.cpp
   ${_pbrkit_gl_dir}/brdf_eval.cpp
   ${_pbrkit_gl_dir}/bsdf_eval.cpp
   ${_pbrkit_gl_dir}/compute_eval.cpp

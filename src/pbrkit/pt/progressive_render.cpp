@@ -97,9 +97,11 @@ std::uint64_t ProgressiveRender::start(ProgressiveJob job) {
       s.checkpoint = [&](const Film& film) {
         if (!stop_.load()) publish(snapshot_of(film, false));
       };
-      const PathTracerResult r = render_path(*job.scene, job.env.get(), job.camera, s);
+      PathTracerResult r = render_path(*job.scene, job.env.get(), job.camera, s);
       if (stop_.load() && !r.stats.complete) return;
-      publish(snapshot_of(r.film, r.stats.complete));
+      ProgressiveSnapshot last = snapshot_of(r.film, r.stats.complete);
+      if (r.stats.complete) last.film = std::make_shared<const Film>(std::move(r.film));
+      publish(std::move(last));
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lock(mutex_);
       error_ = e.what();

@@ -17,6 +17,7 @@
 #include <imgui.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "path_view.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/renderer.h"
@@ -126,10 +127,14 @@ struct ViewerState {
   bool path_scene_dirty = true;
   std::uint64_t path_job = 0, path_seen = 0;
   std::optional<ProgressiveSnapshot> snapshot;  // the newest of the current job
-  int path_channel = 0;                         // 0 colour, 1 albedo, 2 normal, 3 depth
+  PathChannel path_channel = PathChannel::kColor;
+  gl::DebugChannel channel = gl::DebugChannel::kNone;  // the raster view's
+  bool denoise = false;  // the path view's colour denoised once complete
+  PathDenoiser denoiser;
   DisplayTexture path_texture, error_texture;
   bool path_display_dirty = false;
   DisplaySettings shown_display;  // what path_texture was made with
+  ViewMode shown_mode = ViewMode::kRaster;
   ErrorView error;
   Clock::time_point error_time{};
   std::vector<std::string> dropped;  // files dropped on the window, handled next frame
@@ -283,7 +288,7 @@ Camera current_camera(const ViewerState& s, int width, int height) {
 
 // Writes `linear` as a float EXR and, through the display transform, a PNG (or, for the
 // error view, `display` as is).
-void save_screenshot(const std::string& png, const Image& linear, const ViewerState& s,
+void save_screenshot(const std::string& png, const Image& linear, const DisplaySettings& settings,
                      const Image* display = nullptr) {
   const std::filesystem::path parent = std::filesystem::path(png).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
@@ -292,7 +297,7 @@ void save_screenshot(const std::string& png, const Image& linear, const ViewerSt
   if (display)
     write_png(png, *display);
   else
-    write_display_png(png, linear, s.display);
+    write_display_png(png, linear, settings);
   note("wrote {} and {}", png, exr);
 }
 
@@ -345,23 +350,47 @@ void start_path(ViewerState& s, int width, int height) {
   s.path_dirty = false;
 }
 
-// The snapshot's image of the chosen channel, display-referred.
-Image path_display(const ViewerState& s) {
+// The channel the path texture shows: the panel's in the path view; the split and the
+// error compare colours.
+PathChannel shown_path_channel(const ViewerState& s) {
+  if (s.mode != ViewMode::kPath || s.snapshot->preview) return PathChannel::kColor;
+  return s.path_channel;
+}
+
+// The path view's linear image: the chosen channel, or the denoised colour when the
+// toggle is on and the denoiser has finished this snapshot.
+Image path_linear(const ViewerState& s) {
   const ProgressiveSnapshot& snap = *s.snapshot;
-  if (s.path_channel == 0 || snap.preview) return display_image(snap.color, s.display);
-  if (s.path_channel == 1) return display_image(snap.albedo, {0.0f, ToneMapper::kNone});
-  Image out(snap.color.width, snap.color.height, 3);
-  if (s.path_channel == 2) {
-    for (int y = 0; y < out.height; ++y)
-      for (int x = 0; x < out.width; ++x) out.set_rgb(x, y, 0.5f * snap.normal.rgb(x, y) + 0.5f);
-    return display_image(out, {0.0f, ToneMapper::kNone});
-  }
-  float far = 0.0f;
-  for (float d : snap.depth.data) far = std::max(far, d);
-  for (int y = 0; y < out.height; ++y)
-    for (int x = 0; x < out.width; ++x)
-      out.set_rgb(x, y, glm::vec3(far > 0.0f ? snap.depth.pixel(x, y)[0] / far : 0.0f));
-  return display_image(out, {0.0f, ToneMapper::kNone});
+  if (s.denoise && s.mode == ViewMode::kPath && s.path_channel == PathChannel::kColor)
+    if (const Image* denoised = s.denoiser.result(snap.serial)) return *denoised;
+  return path_channel_image(snap, shown_path_channel(s));
+}
+
+// The path view's image, display-referred.
+Image path_display(const ViewerState& s) {
+  return path_channel_display(path_linear(s), shown_path_channel(s), s.display);
+}
+
+// The display transform of the raster view: the panel's, or none for a debug channel
+// (its values are shown raw).
+DisplaySettings raster_display(const ViewerState& s) {
+  if (s.channel != gl::DebugChannel::kNone) return {0.0f, ToneMapper::kNone};
+  return s.display;
+}
+
+// Whether the path view shows the denoised colour (once it exists).
+bool denoise_shown(const ViewerState& s) {
+  return s.denoise && s.path_channel == PathChannel::kColor;
+}
+
+// A combo over `names`; true when the choice changed.
+bool name_combo(const char* label, int& choice, const std::vector<std::string>& names) {
+  const auto getter = [](void* data, int i, const char** out) {
+    *out = static_cast<const std::vector<std::string>*>(data)->at(std::size_t(i)).c_str();
+    return true;
+  };
+  return ImGui::Combo(label, &choice, getter, const_cast<std::vector<std::string>*>(&names),
+                      int(names.size()));
 }
 
 // The error view's colour bar: the viridis ramp from 0 to `scale` (and above).
@@ -387,7 +416,14 @@ bool draw_truth_panel(ViewerState& s) {
   int mode = int(s.mode);
   const char* modes[] = {"1 raster", "2 path", "3 split", "4 difference"};
   if (ImGui::Combo("view", &mode, modes, 4)) s.mode = ViewMode(mode);
-  if (s.mode == ViewMode::kRaster) return false;
+  if (s.mode == ViewMode::kRaster) {
+    static const std::vector<std::string> names = gl::debug_channel_names();
+    int channel = int(s.channel);
+    if (name_combo("channel (C)", channel, names)) s.channel = gl::DebugChannel(channel);
+    if (s.channel != gl::DebugChannel::kNone)
+      ImGui::TextUnformatted("raw values: no exposure, no tone map");
+    return false;
+  }
   if (s.snapshot) {
     const ProgressiveSnapshot& p = *s.snapshot;
     ImGui::Text("path: %.1f / %u spp, %.1f s, noise %.4f%s", p.spp, s.options.spp, p.seconds,
@@ -400,8 +436,23 @@ bool draw_truth_panel(ViewerState& s) {
   }
   if (const auto error = s.path.error()) ImGui::TextWrapped("path tracer: %s", error->c_str());
   if (s.mode == ViewMode::kPath) {
-    const char* channels[] = {"colour", "albedo", "normal", "depth"};
-    if (ImGui::Combo("channel", &s.path_channel, channels, 4)) s.path_display_dirty = true;
+    static const std::vector<std::string> names = path_channel_names();
+    int channel = int(s.path_channel);
+    if (name_combo("channel (C)", channel, names)) {
+      s.path_channel = PathChannel(channel);
+      s.path_display_dirty = true;
+    }
+    if (s.path_channel == PathChannel::kColor) {
+      if (ImGui::Checkbox("denoise (D)", &s.denoise)) s.path_display_dirty = true;
+      if (s.denoise) {
+        const bool shown = s.snapshot && s.denoiser.result(s.snapshot->serial);
+        ImGui::TextUnformatted(shown                                ? "showing the denoised image"
+                               : s.denoiser.busy()                  ? "denoising..."
+                               : s.snapshot && s.snapshot->complete ? "denoise failed"
+                                                                    : "denoises at the target spp");
+        if (const auto& error = s.denoiser.error()) ImGui::TextWrapped("%s", error->c_str());
+      }
+    }
   }
   if (s.mode == ViewMode::kSplit) ImGui::SliderFloat("split", &s.split, 0.0f, 1.0f);
   if (s.mode == ViewMode::kDifference) {
@@ -505,6 +556,7 @@ bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
   }
   ImGui::TextUnformatted("drag: orbit, right drag: pan, wheel: zoom");
   ImGui::TextUnformatted("1-4: raster, path, split, difference");
+  ImGui::TextUnformatted("C: next channel, D: denoise (path)");
   ImGui::TextUnformatted("F12/P: screenshot, R: reload, Esc: quit");
   ImGui::TextUnformatted("drop a .gltf/.glb or an .hdr/.exr on the window");
   ImGui::End();
@@ -608,6 +660,9 @@ void run_viewer(const ViewerOptions& options) {
     load_environment(s, renderer);
 
     s.mode = options.mode;
+    s.channel = options.channel;
+    s.path_channel = options.path_channel;
+    s.denoise = options.denoise;
     s.split = std::clamp(options.split, 0.0f, 1.0f);
     glfwSetWindowUserPointer(window, &s);
     glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
@@ -663,6 +718,21 @@ void run_viewer(const ViewerOptions& options) {
         const int mode_keys[] = {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4};
         for (int m = 0; m < 4; ++m)
           if (ImGui::IsKeyPressed(mode_keys[m])) s.mode = ViewMode(m);
+        if (ImGui::IsKeyPressed(GLFW_KEY_C)) {
+          // The next channel of the view shown (the raster view's debug channels, the path
+          // view's features).
+          if (s.mode == ViewMode::kPath) {
+            s.path_channel = PathChannel((int(s.path_channel) + 1) % 4);
+            s.path_display_dirty = true;
+          } else if (s.mode == ViewMode::kRaster) {
+            const int count = int(gl::debug_channel_names().size());
+            s.channel = gl::DebugChannel((int(s.channel) + 1) % count);
+          }
+        }
+        if (ImGui::IsKeyPressed(GLFW_KEY_D) && s.mode == ViewMode::kPath) {
+          s.denoise = !s.denoise;
+          s.path_display_dirty = true;
+        }
         if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
           try {
             load_scene_into(s, renderer);
@@ -694,18 +764,25 @@ void run_viewer(const ViewerOptions& options) {
         }
       }
       if (s.shown_display.exposure_ev != s.display.exposure_ev ||
-          s.shown_display.tone_mapper != s.display.tone_mapper)
+          s.shown_display.tone_mapper != s.display.tone_mapper || s.shown_mode != s.mode)
         s.path_display_dirty = true;
+      // The denoised colour: asked for when the toggle is on and the render is final, taken
+      // when the denoiser's thread has it.
+      if (s.denoise && s.snapshot) s.denoiser.request(*s.snapshot);
+      if (s.denoiser.poll()) s.path_display_dirty = true;
       if (truth && s.snapshot && s.path_display_dirty) {
         s.path_texture.upload(path_display(s));
         s.shown_display = s.display;
+        s.shown_mode = s.mode;
         s.path_display_dirty = false;
       }
 
       const bool automation = options.frames > 0 || options.exit_when_done;
       bool done = false;
       if (options.exit_when_done)
-        done = truth ? (s.snapshot && s.snapshot->complete && frame_index + 1 >= options.frames)
+        done = truth ? (s.snapshot && s.snapshot->complete && frame_index + 1 >= options.frames &&
+                        (!denoise_shown(s) || s.denoiser.result(s.snapshot->serial) ||
+                         s.denoiser.error()))
                      : frame_index + 1 >= std::max(options.frames, 2);
       else if (options.frames > 0)
         done = frame_index + 1 >= options.frames;
@@ -719,13 +796,19 @@ void run_viewer(const ViewerOptions& options) {
         if (raster) {
           // At the framebuffer's size of this frame, so the projection has the window's
           // aspect, also right after a resize.
-          renderer.render(current_camera(s, fb_w, fb_h), fb_w, fb_h, s.settings);
+          // The debug channel in the raster view only: the split and the error compare the
+          // shaded image with the truth.
+          gl::RenderSettings settings = s.settings;
+          settings.debug_channel =
+              s.mode == ViewMode::kRaster ? s.channel : gl::DebugChannel::kNone;
+          renderer.render(current_camera(s, fb_w, fb_h), fb_w, fb_h, settings);
           gpu_ms = renderer.latest_gpu_time_ms();
           // The display transform on the GPU, straight into the window (display.glsl, the
           // PNG outputs' code, held to it by tests/gl/display_glsl_test.cpp); the float
           // frame is read back only for a screenshot or the error view.
           glBindFramebuffer(GL_FRAMEBUFFER, 0);
-          renderer.display(s.display.exposure_ev, s.display.tone_mapper);
+          const DisplaySettings shown = s.mode == ViewMode::kRaster ? raster_display(s) : s.display;
+          renderer.display(shown.exposure_ev, shown.tone_mapper);
           if (screenshot || done || error_due) frame = renderer.read_back();
         } else {
           glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -767,17 +850,20 @@ void run_viewer(const ViewerOptions& options) {
                                      ? options.screenshot
                                      : "out/view_" + std::to_string(frame_index) + ".png";
         if (s.mode == ViewMode::kRaster && !frame.empty()) {
-          save_screenshot(path, frame, s);
+          save_screenshot(path, frame, raster_display(s));
         } else if (s.mode == ViewMode::kPath && s.snapshot) {
-          save_screenshot(path, s.snapshot->color, s);
+          const Image linear = path_linear(s);
+          const Image shown = path_display(s);
+          save_screenshot(path, linear, s.display, &shown);
         } else if (s.mode == ViewMode::kSplit && s.snapshot && !frame.empty()) {
           save_screenshot(
               path,
-              split_image(rgb_channels(frame), s.snapshot->color, split_column(s.split, fb_w)), s);
+              split_image(rgb_channels(frame), s.snapshot->color, split_column(s.split, fb_w)),
+              s.display);
         } else if (s.mode == ViewMode::kDifference && s.snapshot && !frame.empty()) {
           const ErrorView e = luminance_error(frame, s.snapshot->color);
           const Image heat = error_heatmap(e.error, 0.5f);
-          save_screenshot(path, e.error, s, &heat);
+          save_screenshot(path, e.error, s.display, &heat);
           note("view: relative luminance error mean {:.4f}, 95th percentile {:.4f}", e.mean, e.p95);
         }
       }

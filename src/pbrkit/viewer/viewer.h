@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/gl/renderer.h"
@@ -24,6 +25,14 @@ namespace pbrkit {
 enum class ViewMode { kRaster, kPath, kSplit, kDifference };
 ViewMode parse_view_mode(std::string_view name);  ///< raster | path | split | difference
 std::string_view view_mode_name(ViewMode mode);
+
+/// What the path view shows: the path-traced colour, or one of the film's first-hit
+/// features the denoiser reads (pt/film.h): the albedo, the shading normal (as
+/// n * 0.5 + 0.5) or the distance along the camera ray (displayed over the farthest).
+enum class PathChannel { kColor, kAlbedo, kNormal, kDepth };
+PathChannel parse_path_channel(std::string_view name);  ///< color | albedo | normal | depth
+std::string_view path_channel_name(PathChannel channel);
+std::vector<std::string> path_channel_names();
 
 struct ViewerOptions {
   std::string scene = "spheres";  ///< .gltf/.glb or a built-in scene name
@@ -47,6 +56,14 @@ struct ViewerOptions {
   /// --noise-threshold 0 --seed S` of the same scene, camera and size.
   std::uint32_t spp = 1024;
   std::uint32_t seed = 0;
+  /// The raster view's debug channel (gl/debug_channels.h): a material input or one lobe's
+  /// share of the shaded colour, shown raw (no exposure, no tone mapping; the PNG is the
+  /// sRGB encoding of the values, the EXR the values).
+  gl::DebugChannel channel = gl::DebugChannel::kNone;
+  PathChannel path_channel = PathChannel::kColor;  ///< the path view's
+  /// The path view's colour denoised (denoise/denoiser.h) once the path tracer has reached
+  /// `spp` (the panel's toggle); the accumulated image until then.
+  bool denoise = false;
   /// Automation: once the mode's image is final (the path tracer at `spp`; the raster view
   /// after `frames` frames, at least 2), save `screenshot` and quit.
   bool exit_when_done = false;

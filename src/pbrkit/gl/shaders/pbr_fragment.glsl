@@ -72,6 +72,7 @@
 #endif
 #include "ibl.glsl"
 #include "bsdf.glsl"
+#include "debug_channels.glsl"
 #if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
 #include "transmission.glsl"
 #endif
@@ -256,6 +257,10 @@ void main() {
   // KHR_materials_unlit: the base colour as is, from every direction (the path tracer's
   // integrator adds it to the emission and reflects nothing).
   outColor = vec4(base_color.rgb + emissive, ALPHA_MODE == 2 ? base_color.a : 1.0);
+#if DEBUG_CHANNEL != DEBUG_NONE
+  outColor.rgb = debug_channel(lobe(DEBUG_EMISSIVE, outColor.rgb), base_color.rgb, 0.0, 0.0,
+                               normalize(vNormal), 1.0, emissive);
+#endif
 #else
   float metallic = uMetallicFactor, roughness = uRoughnessFactor;
 #if HAS_TEXTURE_1
@@ -474,23 +479,24 @@ void main() {
       vec3 wi_m = vec3(wi.xy, -wi.z);
       Brdf brdf_dt = brdf;
       brdf_dt.base_color = dt_color;
-      color += dt_weight * brdf_eval_diffuse(brdf_dt, uEnergyDirect, wo, wi_m) * radiance * wi_m.z;
+      color += lobe(DEBUG_DIFFUSE, dt_weight * brdf_eval_diffuse(brdf_dt, uEnergyDirect, wo, wi_m) * radiance * wi_m.z);
 #if MATERIAL_TRANSMISSION
       // The specular BTDF (transmission.glsl's punctual_transmission), attenuated through
       // the medium along the refracted ray (the Sample Viewer's applyVolumeAttenuation).
       vec3 ray = volume_transmission_ray(n, v, thickness, uIor, uModelScale);
-      color += transmission * punctual_transmission(brdf, wo, wi_m, uIor) * radiance * wi_m.z *
-               volume_attenuation(length(ray), uAttenuationColor, uAttenuationDistance);
+      color += lobe(DEBUG_TRANSMISSION,
+                    transmission * punctual_transmission(brdf, wo, wi_m, uIor) * radiance * wi_m.z *
+                        volume_attenuation(length(ray), uAttenuationColor, uAttenuationDistance));
 #endif
       continue;
     }
-    if (wi.z > 0.0) color -= through * brdf_eval_diffuse(brdf, uEnergyDirect, wo, wi) * radiance * wi.z;
+    if (wi.z > 0.0) color -= lobe(DEBUG_DIFFUSE, through * brdf_eval_diffuse(brdf, uEnergyDirect, wo, wi) * radiance * wi.z);
 #endif
     if (wi.z <= 0.0) continue;
 #if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
-    color += bsdf_eval(bsdf, uEnergyDirect, uEnergyCoat, uSheenLut, wo, wi) * radiance * wi.z;
+    color += bsdf_lobes(bsdf, uEnergyDirect, uEnergyCoat, uSheenLut, wo, wi) * radiance * wi.z;
 #else
-    color += brdf_eval(brdf, uEnergyDirect, wo, wi) * radiance * wi.z;
+    color += brdf_lobes(brdf, uEnergyDirect, wo, wi) * radiance * wi.z;
 #endif
   }
 
@@ -526,6 +532,7 @@ void main() {
     Brdf ibl = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
     vec3 indirect = ibl_shading(ibl, uEnergyIBL, dot(n, v), prefiltered, irradiance);
 #endif
+    indirect = ibl_lobes(indirect, ibl, uEnergyIBL, dot(n, v), irradiance);
 #if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
     {
       // The diffuse lobe's environment light: E(n) for the part that stays, dt E(-n) for the
@@ -537,8 +544,8 @@ void main() {
 #endif
       Brdf ibl_dt = ibl;
       ibl_dt.base_color = dt_color;
-      indirect += ibl_diffuse(ibl_dt, uEnergyIBL, dot(n, v), dt_weight * irradiance_back) -
-                  ibl_diffuse(ibl, uEnergyIBL, dot(n, v), through * irradiance);
+      indirect += lobe(DEBUG_DIFFUSE, ibl_diffuse(ibl_dt, uEnergyIBL, dot(n, v), dt_weight * irradiance_back) -
+                                          ibl_diffuse(ibl, uEnergyIBL, dot(n, v), through * irradiance));
     }
 #endif
 #if MATERIAL_SHEEN
@@ -547,7 +554,7 @@ void main() {
       // simplified albedo scaling; bsdf.h's min form with the light's side left out).
       float sr = clamp(sheen_roughness, kMinSheenRoughness, 1.0);
       vec3 sc = clamp(sheen_color, 0.0, 1.0);
-      indirect = sheen_ibl(n, v, sc, sr) + (1.0 - max3(sc) * sheen_E(uSheenLut, dot(n, v), sr)) * indirect;
+      indirect = lobe(DEBUG_SHEEN, sheen_ibl(n, v, sc, sr)) + (1.0 - max3(sc) * sheen_E(uSheenLut, dot(n, v), sr)) * indirect;
     }
 #endif
 #if MATERIAL_CLEARCOAT
@@ -557,7 +564,7 @@ void main() {
       float cr = clamp(coat_roughness, kMinRoughness, 1.0);
       vec3 coat_prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, n_coat), uIblRotation),
                                          roughness_lod(cr, uSpecularLevels)).rgb;
-      indirect = coat_ibl(cw, cr, uEnergyCoat, ncv, coat_prefiltered) +
+      indirect = lobe(DEBUG_CLEARCOAT, coat_ibl(cw, cr, uEnergyCoat, ncv, coat_prefiltered)) +
                  (1.0 - cw * coat_fresnel(abs(ncv))) * indirect;
     }
 #endif
@@ -596,11 +603,18 @@ void main() {
 #if MATERIAL_CLEARCOAT
     transmitted *= 1.0 - saturate(coat_weight) * coat_fresnel(abs(dot(n_coat, v)));
 #endif
-    color += transmitted;
+    color += lobe(DEBUG_TRANSMISSION, transmitted);
   }
 #endif
 
-  color += emissive;
+  color += lobe(DEBUG_EMISSIVE, emissive);
+#if DEBUG_CHANNEL != DEBUG_NONE
+  float occlusion = 1.0;
+#if HAS_TEXTURE_3
+  occlusion = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(3)).r - 1.0);
+#endif
+  color = debug_channel(color, base_color.rgb, metallic, roughness, n, occlusion, emissive);
+#endif
   outColor = vec4(color, ALPHA_MODE == 2 ? base_color.a : 1.0);
 #endif
 }
