@@ -27,9 +27,16 @@ struct AnisotropicTap {
   float roughness = 0.0f;  ///< perceptual roughness of the cube lookup
 };
 
-/// The (u1, u2) of tap `i` in Heitz 2018's sampling: u1 stratified, u2 the golden-ratio
-/// sequence (a Fibonacci lattice of the unit square, one point per stratum of u1).
+/// The (u1, u2) of tap `i` in Heitz 2018's sampling: u1 stratified (one point per stratum),
+/// u2 = frac(i / 4 + 5 / 16), four arms of two radii (the rank-1 lattice measured best).
 glm::vec2 anisotropic_tap_point(int i);
+
+/// Heitz 2018's visible-normal sample of the anisotropic GGX lobe for the unit square's
+/// `u`, with the disk point's polar angle measured from the lobe's +X rather than from the
+/// sampler's view-dependent frame: the taps hold to the lobe as the view turns (a lattice
+/// turned with the view's azimuth creases the image where that azimuth swings by pi).
+/// Uniform `u` gives the visible normals' distribution exactly, as the original does.
+glm::vec3 anisotropic_visible_normal(glm::vec3 wo, glm::vec2 u, float alpha_x, float alpha_y);
 
 /// Tap `i` of the lobe for `wo` (local, wo.z > 0) and the lobe's alpha_x, alpha_y.
 /// The lobe's radiance without Fresnel, integral of D G2 / (4 n.v) L dwi, is estimated by
