@@ -1,7 +1,8 @@
-// ibl/anisotropic_taps.h: the eight taps of an anisotropic GGX lobe against the lobe's
-// integral under an analytic, non-uniform environment, integral of D G2 / (4 n.v) L dwi,
-// computed here by the path tracer's own estimator (random visible normals, Heitz 2018,
-// weight G2 / G1(wo)) with 2^16 samples.
+// ibl/anisotropic_taps.h: the eight taps of an anisotropic GGX lobe, each read through a
+// model of the prefiltered cube (the environment GGX-filtered at the tap's roughness, as the
+// bake does), against the lobe's integral under an analytic, non-uniform environment,
+// integral of D G2 / (4 n.v) L dwi, computed here by the path tracer's own estimator
+// (random visible normals, Heitz 2018, weight G2 / G1(wo)) with 2^16 samples.
 //
 // The tolerance is derived from that estimator: the taps are the same estimator at a fixed
 // lattice of K = 8 points, so they must do at least as well as K independent random
@@ -9,8 +10,8 @@
 // standard deviation, measured here). Each case is held within 3 such deviations (plus
 // the reference's own 3 standard errors), and the root mean square over all cases within
 // one: a lattice that is no better than random would fail the second about half the
-// time, and taps that sample the wrong lobe (the mirror direction, the isotropic lobe at
-// the mean roughness) fail both (the last test checks that this tolerance catches them).
+// time, and taps that sample the wrong lobe (the isotropic lobe at the mean roughness, the
+// split sum's old scale) fail it (ToleranceRejectsTheIsotropicLobe checks that).
 #include <algorithm>
 #include <cmath>
 #include <random>

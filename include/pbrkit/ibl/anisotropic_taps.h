@@ -2,7 +2,7 @@
 // The image-based lighting of an anisotropic GGX lobe (KHR_materials_anisotropy) in the
 // OpenGL renderer: a fixed set of directions drawn from the lobe's distribution of visible
 // normals, each looked up in the prefiltered specular cube at a roughness whose lobe covers
-// the directions's share of the solid angle ("filtered importance sampling", Colbert &
+// the direction's share of the solid angle ("filtered importance sampling", Colbert &
 // Krivanek, GPU Gems 3 ch. 20, 2007; Krivanek & Colbert 2008). The stretched lobe is
 // followed by the taps themselves (Heitz 2018's sampling stretches them along the major
 // axis), and their mean weight is the lobe's single-scattering albedo without Fresnel,

@@ -1,9 +1,10 @@
 // KHR_materials_anisotropy's image-based lighting: ibl/anisotropic_taps.h in GLSL (the
 // C++ is the reference; tests/gl/anisotropy_glsl_test.cpp holds them equal). A fixed set
 // of kAnisotropicTaps directions drawn from the anisotropic lobe's visible normals (Heitz
-// 2018) at a fixed lattice held to the lobe's axes, each looked up in the prefiltered cube at the roughness whose lobe covers its
-// share of the solid angle (filtered importance sampling: Colbert & Krivanek, GPU Gems 3
-// ch. 20, 2007), weighted by the VNDF estimator's G2 / G1(wo). The taps follow the
+// 2018) at a lattice held to the lobe's axes, each looked up in the prefiltered cube at the
+// roughness whose lobe covers its share of the solid angle (filtered importance sampling:
+// Colbert & Krivanek, GPU Gems 3 ch. 20, 2007), weighted by the VNDF estimator's
+// G2 / G1(wo). The taps follow the
 // stretched lobe, and their weights give the lobe's own albedo, the one the path tracer
 // integrates (the isotropic table at the geometric-mean roughness is far brighter on a
 // strongly stretched lobe: 0.88 against 0.53 at alpha 1 x 0.09, normal incidence).
