@@ -179,6 +179,18 @@ BENCHMARK(BM_GlFrameLayers)
     ->UseRealTime()
     ->MinTime(3.0);
 
+// The cost of KHR_materials_anisotropy's image-based lighting (eight prefiltered lookups
+// along the stretched lobe, anisotropy_ibl.glsl): the built-in `anisotropy` scene's 1280x720
+// frame (MSAA 1), 16 of its 18 spheres anisotropic. Goal: at most 1.3x the frame with one
+// lookup along the bent reflection.
+void BM_GlFrameAnisotropy(benchmark::State& state) {
+  gl::HeadlessContext context;
+  gl::RenderSettings settings;
+  settings.msaa = 1;
+  time_frames(state, builtin_scene("anisotropy"), 1280, 720, settings);
+}
+BENCHMARK(BM_GlFrameAnisotropy)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+
 // Issue 12: the cost of the transmission pass. The 1280x720 frame (MSAA 1) of `spheres`
 // as is (0: no transmissive material, so no capture and no mip chain), with every other
 // sphere thin-walled glass (1: the opaque frame captured, its mip chain built, the glass

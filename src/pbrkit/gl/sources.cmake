@@ -23,6 +23,7 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/display_eval.cpp
   ${_pbrkit_gl_dir}/iridescence_eval.cpp
   ${_pbrkit_gl_dir}/transmission_eval.cpp
+  ${_pbrkit_gl_dir}/anisotropy_eval.cpp
   ${_pbrkit_gl_dir}/energy_texture.cpp
   ${_pbrkit_gl_dir}/ibl_maps.cpp
   ${_pbrkit_gl_dir}/gpu_scene.cpp

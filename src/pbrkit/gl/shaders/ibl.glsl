@@ -19,8 +19,8 @@ vec3 eval_sh_irradiance(vec3 sh[9], vec3 n) {
 float roughness_lod(float roughness, int levels) { return roughness * float(levels - 1); }
 
 // Specular and diffuse IBL for one shading point. `prefiltered` is the specular cube at
-// R (the bent reflection for an anisotropic base) and the roughness's mip, `irradiance` E(n)
-// (not divided by pi). `ibl_table` is the EnergyTable of the IBL G (k = alpha/2 for
+// R and the roughness's mip (for an anisotropic base, anisotropy_ibl.glsl's lobe radiance
+// over E), `irradiance` E(n) (not divided by pi). `ibl_table` is the EnergyTable of the IBL G (k = alpha/2 for
 // classic), the split-sum LUT, and `b` was made with it.
 //
 // reference (glTF Appendix B, the split sum of each Fresnel term):
@@ -83,19 +83,6 @@ vec3 ibl_shading(Brdf b, sampler2D ibl_table, float NdotV, vec3 prefiltered, vec
   float mu = max(NdotV, 1e-4);
   return ibl_shading_ab(b, ibl_table, mu, energy_AB(ibl_table, mu, b.table_roughness),
                         prefiltered, irradiance);
-}
-
-// KHR_materials_anisotropy's IBL (the Khronos Sample Viewer's getIBLRadianceAnisotropy):
-// the reflection about a normal bent towards the plane across the anisotropy, more the
-// more anisotropic and the smoother; `direction` is the lobe's bitangent (the direction
-// across the anisotropy), world space; `roughness` the perceptual roughness.
-vec3 anisotropic_reflection(vec3 n, vec3 v, vec3 direction, float anisotropy, float roughness) {
-  vec3 anisotropic_tangent = cross(direction, v);
-  vec3 anisotropic_normal = cross(anisotropic_tangent, direction);
-  float bend = 1.0 - anisotropy * (1.0 - roughness);
-  float bend4 = bend * bend * bend * bend;
-  vec3 bent_normal = normalize(mix(anisotropic_normal, n, bend4));
-  return reflect(-v, bent_normal);
 }
 
 // KHR_materials_clearcoat's IBL: the coat's GGX lobe (ior 1.5, F0 0.04) as its own split

@@ -73,6 +73,9 @@
 #include "ibl.glsl"
 #include "bsdf.glsl"
 #include "debug_channels.glsl"
+#if MATERIAL_ANISOTROPY
+#include "anisotropy_ibl.glsl"
+#endif
 #if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
 #include "transmission.glsl"
 #endif
@@ -506,15 +509,21 @@ void main() {
 #if HAS_TEXTURE_3
     ao = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(3)).r - 1.0);
 #endif
-    vec3 r = reflect(-v, n);
+    vec3 prefiltered;
 #if MATERIAL_ANISOTROPY
-    // The bent reflection; the Sample Viewer bends about the direction across the
-    // anisotropy (its anisotropicB).
-    if (layer.anisotropy > 0.0)
-      r = anisotropic_reflection(n, v, cross(n, aniso_t), saturate(layer.anisotropy), brdf.roughness);
+    // The anisotropic lobe's own radiance (anisotropy_ibl.glsl: taps along the stretched
+    // lobe), divided by the isotropic table's albedo E = A + B that ibl_shading multiplies
+    // back (through F0 A + B), so the single scattering is the lobe's and the
+    // multiple-scattering and diffuse terms keep the table's, as in the path tracer.
+    if (layer.anisotropy > 0.0) {
+      vec2 ab_aniso = energy_AB(uEnergyIBL, max(wo.z, 1e-4), brdf.table_roughness);
+      prefiltered = anisotropic_ibl_radiance(uSpecularCube, uSpecularLevels, frame, uIblRotation, wo,
+                                             brdf.alpha_x, brdf.alpha_y) /
+                    max(ab_aniso.x + ab_aniso.y, 1e-4);
+    } else
 #endif
-    vec3 prefiltered = textureLod(uSpecularCube, world_to_env(r, uIblRotation),
-                                  roughness_lod(brdf.roughness, uSpecularLevels)).rgb;
+      prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, n), uIblRotation),
+                               roughness_lod(brdf.roughness, uSpecularLevels)).rgb;
     vec3 n_env = world_to_env(n, uIblRotation);
 #if IRRADIANCE_SH
     vec3 irradiance = max(eval_sh_irradiance(uSH, n_env), vec3(0.0));
