@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -15,6 +14,7 @@
 
 #include "commands.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/material_schema.h"
 
 namespace pbrkit::cli {
 
@@ -36,13 +36,10 @@ const char* alpha_mode(AlphaMode m) {
 // The texture slots a material uses, by glTF name.
 std::vector<std::string> material_textures(const Material& m) {
   std::vector<std::string> out;
-  for (std::size_t t = 0; t < kTextureSlotNames.size(); ++t)
-    if (m.textures()[t]->valid()) out.emplace_back(kTextureSlotNames[t]);
+  const auto slots = m.textures();
+  for (int t = 0; t < kTextureSlotCount; ++t)
+    if (slots[std::size_t(t)]->valid()) out.push_back(texture_slot_name(TextureSlot(t)));
   return out;
-}
-
-nlohmann::json vec3_json(glm::vec3 v) {
-  return {v.r, v.g, v.b};
 }
 
 // A texture reference as glTF names it: the scene texture, its texCoord and transform.
@@ -55,128 +52,57 @@ nlohmann::json texture_json(const TextureRef& ref) {
   return t;
 }
 
-// The KHR_materials_* extensions a material uses, each with every value (defaults
-// included) and its textures, under the extension's own property names.
-nlohmann::json material_extensions(const Material& m) {
+// A factor's value: a number, or an array for a colour (JSON has no infinity: an infinite
+// value, as an absent attenuationDistance, is null).
+nlohmann::json factor_json(const Material& m, const MaterialFactor& f) {
+  const float* v = f.read(m);
+  auto number = [](float x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
+  if (f.components == 1) return number(v[0]);
+  nlohmann::json a = nlohmann::json::array();
+  for (int c = 0; c < f.components; ++c) a.push_back(number(v[c]));
+  return a;
+}
+
+// The same for the text summary: "0.5", or "(1, 0.5, 0.2)" for a colour.
+std::string factor_text(const Material& m, const MaterialFactor& f) {
+  const float* v = f.read(m);
+  if (f.components == 1) return fmt::format("{:g}", v[0]);
+  std::string s = "(";
+  for (int c = 0; c < f.components; ++c) s += fmt::format("{}{:g}", c ? ", " : "", v[c]);
+  return s + ")";
+}
+
+// The KHR_materials_* extensions a material uses (as the material schema lists them), each
+// with every value (defaults included) and its textures, under the extension's own
+// property names.
+nlohmann::json material_extensions_json(const Material& m) {
   nlohmann::json out = nlohmann::json::object();
-  auto texture = [](nlohmann::json& o, const char* name, const TextureRef& ref) {
-    if (ref.valid()) o[name] = texture_json(ref);
-  };
-  if (m.ior != 1.5f) out["KHR_materials_ior"] = {{"ior", m.ior}};
-  if (m.specular) {
-    const SpecularExtension& e = *m.specular;
-    nlohmann::json o = {{"specularFactor", e.factor},
-                        {"specularColorFactor", vec3_json(e.color_factor)}};
-    texture(o, "specularTexture", e.texture);
-    texture(o, "specularColorTexture", e.color_texture);
-    out["KHR_materials_specular"] = o;
+  for (const MaterialExtension& x : material_extensions()) {
+    if (!x.present(m)) continue;
+    nlohmann::json o = nlohmann::json::object();
+    for (const MaterialFactor& f : x.factors) o[f.json_name] = factor_json(m, f);
+    for (const MaterialTexture& t : x.textures) {
+      const TextureRef& ref = *m.textures()[std::size_t(t.slot)];
+      if (!ref.valid()) continue;
+      o[t.json_name] = texture_json(ref);
+      if (t.scale) o[t.json_name]["scale"] = *t.scale(const_cast<Material&>(m));
+    }
+    out[x.name] = o;
   }
-  if (m.clearcoat) {
-    const ClearcoatExtension& e = *m.clearcoat;
-    nlohmann::json o = {{"clearcoatFactor", e.factor},
-                        {"clearcoatRoughnessFactor", e.roughness_factor}};
-    texture(o, "clearcoatTexture", e.texture);
-    texture(o, "clearcoatRoughnessTexture", e.roughness_texture);
-    texture(o, "clearcoatNormalTexture", e.normal_texture);
-    if (e.normal_texture.valid()) o["clearcoatNormalTexture"]["scale"] = e.normal_scale;
-    out["KHR_materials_clearcoat"] = o;
-  }
-  if (m.sheen) {
-    const SheenExtension& e = *m.sheen;
-    nlohmann::json o = {{"sheenColorFactor", vec3_json(e.color_factor)},
-                        {"sheenRoughnessFactor", e.roughness_factor}};
-    texture(o, "sheenColorTexture", e.color_texture);
-    texture(o, "sheenRoughnessTexture", e.roughness_texture);
-    out["KHR_materials_sheen"] = o;
-  }
-  if (m.anisotropy) {
-    const AnisotropyExtension& e = *m.anisotropy;
-    nlohmann::json o = {{"anisotropyStrength", e.strength}, {"anisotropyRotation", e.rotation}};
-    texture(o, "anisotropyTexture", e.texture);
-    out["KHR_materials_anisotropy"] = o;
-  }
-  if (m.iridescence) {
-    const IridescenceExtension& e = *m.iridescence;
-    nlohmann::json o = {{"iridescenceFactor", e.factor},
-                        {"iridescenceIor", e.ior},
-                        {"iridescenceThicknessMinimum", e.thickness_min},
-                        {"iridescenceThicknessMaximum", e.thickness_max}};
-    texture(o, "iridescenceTexture", e.texture);
-    texture(o, "iridescenceThicknessTexture", e.thickness_texture);
-    out["KHR_materials_iridescence"] = o;
-  }
-  if (m.transmission) {
-    nlohmann::json o = {{"transmissionFactor", m.transmission->factor}};
-    texture(o, "transmissionTexture", m.transmission->texture);
-    out["KHR_materials_transmission"] = o;
-  }
-  if (m.volume) {
-    const VolumeExtension& e = *m.volume;
-    // JSON has no infinity: an absent attenuationDistance (no absorption) is null.
-    nlohmann::json o = {{"thicknessFactor", e.thickness_factor},
-                        {"attenuationDistance", std::isfinite(e.attenuation_distance)
-                                                    ? nlohmann::json(e.attenuation_distance)
-                                                    : nlohmann::json()},
-                        {"attenuationColor", vec3_json(e.attenuation_color)}};
-    texture(o, "thicknessTexture", e.thickness_texture);
-    out["KHR_materials_volume"] = o;
-  }
-  if (m.dispersion) out["KHR_materials_dispersion"] = {{"dispersion", m.dispersion->dispersion}};
-  if (m.diffuse_transmission) {
-    const DiffuseTransmissionExtension& e = *m.diffuse_transmission;
-    nlohmann::json o = {{"diffuseTransmissionFactor", e.factor},
-                        {"diffuseTransmissionColorFactor", vec3_json(e.color_factor)}};
-    texture(o, "diffuseTransmissionTexture", e.texture);
-    texture(o, "diffuseTransmissionColorTexture", e.color_texture);
-    out["KHR_materials_diffuse_transmission"] = o;
-  }
-  if (m.unlit) out["KHR_materials_unlit"] = nlohmann::json::object();
   return out;
 }
 
-// The same, one short phrase per extension for the text summary.
+// The same, one short phrase per extension for the text summary: its name, each factor as
+// the schema's summary phrase, and its note.
 std::string material_extensions_text(const Material& m) {
   std::string s;
-  if (m.unlit) s += ", unlit";
-  if (m.ior != 1.5f) s += fmt::format(", ior {:g}", m.ior);
-  if (m.specular) {
-    const glm::vec3 c = m.specular->color_factor;
-    s += fmt::format(", specular {:g} ({:g}, {:g}, {:g})", m.specular->factor, c.r, c.g, c.b);
-  }
-  if (m.clearcoat)
-    s += fmt::format(", clearcoat {:g} roughness {:g}", m.clearcoat->factor,
-                     m.clearcoat->roughness_factor);
-  if (m.sheen) {
-    const glm::vec3 c = m.sheen->color_factor;
-    s += fmt::format(", sheen ({:g}, {:g}, {:g}) roughness {:g}", c.r, c.g, c.b,
-                     m.sheen->roughness_factor);
-  }
-  if (m.anisotropy)
-    s += fmt::format(", anisotropy {:g} rotation {:g}", m.anisotropy->strength,
-                     m.anisotropy->rotation);
-  if (m.iridescence)
-    s +=
-        fmt::format(", iridescence {:g} ior {:g} {:g}-{:g} nm", m.iridescence->factor,
-                    m.iridescence->ior, m.iridescence->thickness_min, m.iridescence->thickness_max);
-  if (m.transmission) s += fmt::format(", transmission {:g}", m.transmission->factor);
-  if (m.volume) {
-    const VolumeExtension& v = *m.volume;
-    s += v.thickness_factor > 0.0f ? fmt::format(", volume thickness {:g}", v.thickness_factor)
-                                   : std::string(", volume thin-walled (thickness 0)");
-    if (std::isfinite(v.attenuation_distance)) {
-      const glm::vec3 c = v.attenuation_color;
-      s += fmt::format(" attenuation ({:g}, {:g}, {:g}) at {:g}", c.r, c.g, c.b,
-                       v.attenuation_distance);
-    }
-  }
-  if (m.dispersion)
-    s += fmt::format(", dispersion {:g} (Abbe {:g})", m.dispersion->dispersion,
-                     m.dispersion->dispersion > 0.0f ? 20.0f / m.dispersion->dispersion
-                                                     : std::numeric_limits<float>::infinity());
-  if (m.diffuse_transmission) {
-    const glm::vec3 c = m.diffuse_transmission->color_factor;
-    s += fmt::format(", diffuse transmission {:g} ({:g}, {:g}, {:g})",
-                     m.diffuse_transmission->factor, c.r, c.g, c.b);
+  for (const MaterialExtension& x : material_extensions()) {
+    if (!x.present(m)) continue;
+    s += fmt::format(", {}", x.summary);
+    for (const MaterialFactor& f : x.factors)
+      s += " " + fmt::format(fmt::runtime(f.summary), factor_text(m, f));
+    if (x.note)
+      if (const std::string note = x.note(m); !note.empty()) s += " " + note;
   }
   return s;
 }
@@ -229,7 +155,7 @@ void run_info(const InfoOptions& opt) {
                          {"textures", material_textures(m)},
                          {"meshes", material_uses[i]}};
     if (m.alpha_mode == AlphaMode::kMask) mj["alpha_cutoff"] = m.alpha_cutoff;
-    if (nlohmann::json ext = material_extensions(m); !ext.empty()) mj["extensions"] = ext;
+    if (nlohmann::json ext = material_extensions_json(m); !ext.empty()) mj["extensions"] = ext;
     j["material_list"].push_back(mj);
   }
   j["default_material_meshes"] = default_material_uses;
