@@ -183,8 +183,11 @@ Scene scene_with_every_value() {
   Material unlit;
   unlit.name = "unlit";
   unlit.unlit = true;
-  for (const MaterialExtension& x : material_extensions())
+  for (const MaterialExtension& x : material_extensions()) {
     if (&x != find_material_extension("KHR_materials_unlit")) x.add(m);
+    // Unlit excludes the others: the writer must leave them out.
+    x.add(unlit);
+  }
   for (const ReadmeFactor& r : kReadme) {
     const Found f = find(r);
     for (int c = 0; c < r.components; ++c) f.factor->values(m)[c] = non_default(r, c);

@@ -56,6 +56,9 @@ struct MaterialExtension {
   std::span<const MaterialTexture> textures;
   /// A derived fact for `pbrkit info`'s summary ("" for none), null for none.
   std::string (*note)(const Material& m) = nullptr;
+  /// It excludes every other extension (KHR_materials_unlit: each other README lists it
+  /// among its exclusions): the writer writes it alone, the reader warns of the others.
+  bool exclusive = false;
 };
 
 /// Every KHR_materials_* extension the reader accepts but KHR_materials_emissive_strength,

@@ -7,7 +7,6 @@
 #include <fstream>
 #include <optional>
 #include <sstream>
-#include <string_view>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
@@ -194,9 +193,11 @@ void put_texture(tinygltf::Value::Object& o, const char* name, const tinygltf::T
 // of it.
 tinygltf::ExtensionMap Writer::material_extensions(const Material& m) {
   tinygltf::ExtensionMap out;
-  for (const MaterialExtension& x : pbrkit::material_extensions()) {
-    const bool unlit = std::string_view(x.name) == "KHR_materials_unlit";
-    if (!x.present(m) || (m.unlit && !unlit)) continue;
+  const auto extensions = pbrkit::material_extensions();
+  const bool exclusive = std::any_of(extensions.begin(), extensions.end(),
+                                     [&](const auto& x) { return x.exclusive && x.present(m); });
+  for (const MaterialExtension& x : extensions) {
+    if (!x.present(m) || (exclusive && !x.exclusive)) continue;
     tinygltf::Value::Object o;
     for (const MaterialFactor& f : x.factors) {
       const float* v = f.read(m);

@@ -229,7 +229,7 @@ constexpr MaterialExtension kExtensions[] = {
     {"KHR_materials_diffuse_transmission", "diffuse transmission",
      &has<&Material::diffuse_transmission>, &add<&Material::diffuse_transmission>,
      kDiffuseTransmissionFactors, kDiffuseTransmissionTextures},
-    {"KHR_materials_unlit", "unlit", &has_unlit, &add_unlit, {}, {}},
+    {"KHR_materials_unlit", "unlit", &has_unlit, &add_unlit, {}, {}, nullptr, true},
 };
 
 }  // namespace

@@ -22,7 +22,6 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
-#include <string_view>
 
 #include "pbrkit/scene/gltf/loader.h"
 
@@ -218,14 +217,15 @@ void Loader::warn_ineffective_combinations(const json& extensions, const std::st
         fmt::format("{}.doubleSided: has no effect on a volume boundary (KHR_materials_volume with "
                     "thicknessFactor > 0): both sides of the mesh bound the medium",
                     where));
-  if (m.unlit)
-    // Every other extension here names KHR_materials_unlit among its exclusions.
+  // KHR_materials_unlit: every other extension here names it among its exclusions.
+  for (const MaterialExtension& alone : material_extensions()) {
+    if (!alone.exclusive || !alone.present(m)) continue;
     for (const MaterialExtension& other : material_extensions())
-      if (std::string_view(other.name) != "KHR_materials_unlit" && extensions.contains(other.name))
-        warning(fmt::format(
-            "{}.extensions: KHR_materials_unlit must not be combined with {}; the material is "
-            "shown unlit",
-            where, other.name));
+      if (&other != &alone && extensions.contains(other.name))
+        warning(
+            fmt::format("{}.extensions: {} must not be combined with {}; the material is shown {}",
+                        where, alone.name, other.name, alone.summary));
+  }
 }
 
 }  // namespace pbrkit::gltf
