@@ -107,58 +107,80 @@ std::string material_extensions_text(const Material& m) {
   return s;
 }
 
-void run_info(const InfoOptions& opt) {
-  const auto start = std::chrono::steady_clock::now();
-  const Scene scene = load_scene(opt.input);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+// What `pbrkit info` reports beyond the scene itself: the load time and the counts
+// derived from it.
+struct SceneSummary {
+  Scene scene;
+  double load_seconds = 0.0;
+  std::size_t vertices = 0, unique_triangles = 0;
+  Bounds bounds;
+  // Per material, how many meshes use it (as glTF-Transform's `inspect` lists them), and
+  // how many use the glTF default material.
+  std::vector<std::size_t> material_uses;
+  std::size_t default_material_uses = 0;
+  std::vector<std::string> unsupported;  // extensions used that the loader ignores
+};
 
-  std::size_t unique_triangles = 0, vertices = 0;
+SceneSummary summarise(const std::string& input) {
+  SceneSummary s;
+  const auto start = std::chrono::steady_clock::now();
+  s.scene = load_scene(input);
+  s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Scene& scene = s.scene;
   for (const Mesh& m : scene.meshes) {
-    unique_triangles += m.triangle_count();
-    vertices += m.positions.size();
+    s.unique_triangles += m.triangle_count();
+    s.vertices += m.positions.size();
   }
-  const Bounds b = scene.world_bounds();
+  s.bounds = scene.world_bounds();
+  s.material_uses.assign(scene.materials.size(), 0);
+  for (const Mesh& m : scene.meshes) {
+    if (m.material >= 0 && std::size_t(m.material) < scene.materials.size())
+      ++s.material_uses[std::size_t(m.material)];
+    else
+      ++s.default_material_uses;
+  }
+  const std::vector<std::string> supported = supported_gltf_extensions();
+  for (const std::string& e : scene.extensions_used)
+    if (std::find(supported.begin(), supported.end(), e) == supported.end())
+      s.unsupported.push_back(e);
+  return s;
+}
+
+// A material's factors, alpha, sides, textures, KHR_materials_* extensions and users.
+nlohmann::json material_json(const Material& m, std::size_t uses) {
+  const glm::vec3 e = m.emissive_factor * m.emissive_strength;
+  nlohmann::json mj = {{"name", m.name},
+                       {"base_color",
+                        {m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b,
+                         m.base_color_factor.a}},
+                       {"metallic", m.metallic_factor},
+                       {"roughness", m.roughness_factor},
+                       {"emissive", {e.r, e.g, e.b}},
+                       {"alpha_mode", alpha_mode(m.alpha_mode)},
+                       {"double_sided", m.double_sided},
+                       {"textures", material_textures(m)},
+                       {"meshes", uses}};
+  if (m.alpha_mode == AlphaMode::kMask) mj["alpha_cutoff"] = m.alpha_cutoff;
+  if (nlohmann::json ext = material_extensions_json(m); !ext.empty()) mj["extensions"] = ext;
+  return mj;
+}
+
+nlohmann::json summary_json(const SceneSummary& s) {
+  const Scene& scene = s.scene;
   nlohmann::json j;
   j["source"] = scene.source;
-  j["load_seconds"] = seconds;
+  j["load_seconds"] = s.load_seconds;
   j["nodes"] = scene.node_count;
   j["instances"] = scene.instances.size();
   j["meshes"] = scene.meshes.size();
-  j["vertices"] = vertices;
+  j["vertices"] = s.vertices;
   j["triangles"] = scene.triangle_count();
-  j["unique_triangles"] = unique_triangles;
+  j["unique_triangles"] = s.unique_triangles;
   j["materials"] = scene.materials.size();
-  // Per material: its factors, alpha, sides, textures, KHR_materials_* extensions and how
-  // many meshes use it (as glTF-Transform's `inspect` lists them).
-  std::vector<std::size_t> material_uses(scene.materials.size(), 0);
-  std::size_t default_material_uses = 0;
-  for (const Mesh& m : scene.meshes) {
-    if (m.material >= 0 && std::size_t(m.material) < scene.materials.size())
-      ++material_uses[std::size_t(m.material)];
-    else
-      ++default_material_uses;
-  }
   j["material_list"] = nlohmann::json::array();
-  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    const Material& m = scene.materials[i];
-    const glm::vec3 e = m.emissive_factor * m.emissive_strength;
-    nlohmann::json mj = {{"name", m.name},
-                         {"base_color",
-                          {m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b,
-                           m.base_color_factor.a}},
-                         {"metallic", m.metallic_factor},
-                         {"roughness", m.roughness_factor},
-                         {"emissive", {e.r, e.g, e.b}},
-                         {"alpha_mode", alpha_mode(m.alpha_mode)},
-                         {"double_sided", m.double_sided},
-                         {"textures", material_textures(m)},
-                         {"meshes", material_uses[i]}};
-    if (m.alpha_mode == AlphaMode::kMask) mj["alpha_cutoff"] = m.alpha_cutoff;
-    if (nlohmann::json ext = material_extensions_json(m); !ext.empty()) mj["extensions"] = ext;
-    j["material_list"].push_back(mj);
-  }
-  j["default_material_meshes"] = default_material_uses;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    j["material_list"].push_back(material_json(scene.materials[i], s.material_uses[i]));
+  j["default_material_meshes"] = s.default_material_uses;
   j["textures"] = nlohmann::json::array();
   for (const Texture& t : scene.textures)
     j["textures"].push_back({{"name", t.name},
@@ -177,55 +199,55 @@ void run_info(const InfoOptions& opt) {
         {{"name", c.name},
          {"type", c.type == Camera::Type::kPerspective ? "perspective" : "orthographic"},
          {"yfov", c.yfov}});
+  const Bounds& b = s.bounds;
   if (!b.empty())
     j["bounds"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
   j["extensions_used"] = scene.extensions_used;
   j["extensions_required"] = scene.extensions_required;
-  const std::vector<std::string> supported = supported_gltf_extensions();
-  std::vector<std::string> unsupported;
-  for (const std::string& e : scene.extensions_used)
-    if (std::find(supported.begin(), supported.end(), e) == supported.end())
-      unsupported.push_back(e);
-  j["extensions_unsupported"] = unsupported;
+  j["extensions_unsupported"] = s.unsupported;
   j["warnings"] = scene.warnings;
-  if (opt.json) {
-    std::printf("%s\n", j.dump(2).c_str());
-    return;
+  return j;
+}
+
+// One line per material: its factors, then what differs from the defaults.
+void print_material(const Material& m, std::size_t index, std::size_t uses) {
+  const glm::vec4 c = m.base_color_factor;
+  const glm::vec3 e = m.emissive_factor * m.emissive_strength;
+  std::string extra;
+  if (m.alpha_mode == AlphaMode::kMask)
+    extra += fmt::format(", mask {:g}", m.alpha_cutoff);
+  else if (m.alpha_mode == AlphaMode::kBlend)
+    extra += ", blend";
+  if (m.double_sided) extra += ", double-sided";
+  if (e != glm::vec3(0.0f)) extra += fmt::format(", emissive ({:g}, {:g}, {:g})", e.r, e.g, e.b);
+  extra += material_extensions_text(m);
+  const std::vector<std::string> textures = material_textures(m);
+  if (!textures.empty()) {
+    extra += ", textures:";
+    for (const std::string& t : textures) extra += " " + t;
   }
+  std::printf("    %-30s base (%g, %g, %g, %g), metallic %g, roughness %g%s; %zu mesh%s\n",
+              m.name.empty() ? fmt::format("#{}", index).c_str() : m.name.c_str(), c.r, c.g, c.b,
+              c.a, m.metallic_factor, m.roughness_factor, extra.c_str(), uses,
+              uses == 1 ? "" : "es");
+}
+
+void print_summary(const SceneSummary& s) {
+  const Scene& scene = s.scene;
   std::printf("%s\n", scene.source.c_str());
-  std::printf("  load time    %.3f s\n", seconds);
+  std::printf("  load time    %.3f s\n", s.load_seconds);
   std::printf("  nodes        %zu\n", scene.node_count);
   std::printf("  instances    %zu\n", scene.instances.size());
-  std::printf("  meshes       %zu (%zu vertices, %zu triangles)\n", scene.meshes.size(), vertices,
-              unique_triangles);
+  std::printf("  meshes       %zu (%zu vertices, %zu triangles)\n", scene.meshes.size(), s.vertices,
+              s.unique_triangles);
   std::printf("  triangles    %zu (instanced)\n", scene.triangle_count());
-  std::printf(
-      "  materials    %zu%s\n", scene.materials.size(),
-      default_material_uses
-          ? fmt::format(" (+ the glTF default material, {} meshes)", default_material_uses).c_str()
-          : "");
-  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    const Material& m = scene.materials[i];
-    const glm::vec4 c = m.base_color_factor;
-    const glm::vec3 e = m.emissive_factor * m.emissive_strength;
-    std::string extra;
-    if (m.alpha_mode == AlphaMode::kMask)
-      extra += fmt::format(", mask {:g}", m.alpha_cutoff);
-    else if (m.alpha_mode == AlphaMode::kBlend)
-      extra += ", blend";
-    if (m.double_sided) extra += ", double-sided";
-    if (e != glm::vec3(0.0f)) extra += fmt::format(", emissive ({:g}, {:g}, {:g})", e.r, e.g, e.b);
-    extra += material_extensions_text(m);
-    const std::vector<std::string> textures = material_textures(m);
-    if (!textures.empty()) {
-      extra += ", textures:";
-      for (const std::string& t : textures) extra += " " + t;
-    }
-    std::printf("    %-30s base (%g, %g, %g, %g), metallic %g, roughness %g%s; %zu mesh%s\n",
-                m.name.empty() ? fmt::format("#{}", i).c_str() : m.name.c_str(), c.r, c.g, c.b, c.a,
-                m.metallic_factor, m.roughness_factor, extra.c_str(), material_uses[i],
-                material_uses[i] == 1 ? "" : "es");
-  }
+  std::printf("  materials    %zu%s\n", scene.materials.size(),
+              s.default_material_uses ? fmt::format(" (+ the glTF default material, {} meshes)",
+                                                    s.default_material_uses)
+                                            .c_str()
+                                      : "");
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    print_material(scene.materials[i], i, s.material_uses[i]);
   std::printf("  textures     %zu\n", scene.textures.size());
   for (const Texture& t : scene.textures)
     std::printf("    %-30s %5d x %-5d %s, %zu mips, %zu bytes\n", t.name.c_str(), t.width(),
@@ -238,21 +260,30 @@ void run_info(const InfoOptions& opt) {
   for (const Camera& c : scene.cameras)
     std::printf("    %-30s %s\n", c.name.c_str(),
                 c.type == Camera::Type::kPerspective ? "perspective" : "orthographic");
+  const Bounds& b = s.bounds;
   if (b.empty())
     std::printf("  bounds       (empty)\n");
   else
     std::printf("  bounds       (%g, %g, %g) - (%g, %g, %g)\n", b.min.x, b.min.y, b.min.z, b.max.x,
                 b.max.y, b.max.z);
   auto list = [](const std::vector<std::string>& v) {
-    std::string s;
-    for (const auto& e : v) s += (s.empty() ? "" : ", ") + e;
-    return s.empty() ? std::string("none") : s;
+    std::string text;
+    for (const auto& e : v) text += (text.empty() ? "" : ", ") + e;
+    return text.empty() ? std::string("none") : text;
   };
   std::printf("  extensions   used: %s\n", list(scene.extensions_used).c_str());
   std::printf("               required: %s\n", list(scene.extensions_required).c_str());
-  std::printf("               unsupported (ignored): %s\n", list(unsupported).c_str());
+  std::printf("               unsupported (ignored): %s\n", list(s.unsupported).c_str());
   std::printf("  warnings     %zu\n", scene.warnings.size());
   for (const std::string& w : scene.warnings) std::printf("    %s\n", w.c_str());
+}
+
+void run_info(const InfoOptions& opt) {
+  const SceneSummary s = summarise(opt.input);
+  if (opt.json)
+    std::printf("%s\n", summary_json(s).dump(2).c_str());
+  else
+    print_summary(s);
 }
 
 }  // namespace
