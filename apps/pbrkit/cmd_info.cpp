@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -15,6 +14,7 @@
 
 #include "commands.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/material_schema.h"
 
 namespace pbrkit::cli {
 
@@ -36,13 +36,10 @@ const char* alpha_mode(AlphaMode m) {
 // The texture slots a material uses, by glTF name.
 std::vector<std::string> material_textures(const Material& m) {
   std::vector<std::string> out;
-  for (std::size_t t = 0; t < kTextureSlotNames.size(); ++t)
-    if (m.textures()[t]->valid()) out.emplace_back(kTextureSlotNames[t]);
+  const auto slots = m.textures();
+  for (int t = 0; t < kTextureSlotCount; ++t)
+    if (slots[std::size_t(t)]->valid()) out.push_back(texture_slot_name(TextureSlot(t)));
   return out;
-}
-
-nlohmann::json vec3_json(glm::vec3 v) {
-  return {v.r, v.g, v.b};
 }
 
 // A texture reference as glTF names it: the scene texture, its texCoord and transform.
@@ -55,184 +52,135 @@ nlohmann::json texture_json(const TextureRef& ref) {
   return t;
 }
 
-// The KHR_materials_* extensions a material uses, each with every value (defaults
-// included) and its textures, under the extension's own property names.
-nlohmann::json material_extensions(const Material& m) {
+// A factor's value: a number, or an array for a colour (JSON has no infinity: an infinite
+// value, as an absent attenuationDistance, is null).
+nlohmann::json factor_json(const Material& m, const MaterialFactor& f) {
+  const float* v = f.read(m);
+  auto number = [](float x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
+  if (f.components == 1) return number(v[0]);
+  nlohmann::json a = nlohmann::json::array();
+  for (int c = 0; c < f.components; ++c) a.push_back(number(v[c]));
+  return a;
+}
+
+// The same for the text summary: "0.5", or "(1, 0.5, 0.2)" for a colour.
+std::string factor_text(const Material& m, const MaterialFactor& f) {
+  const float* v = f.read(m);
+  if (f.components == 1) return fmt::format("{:g}", v[0]);
+  std::string s = "(";
+  for (int c = 0; c < f.components; ++c) s += fmt::format("{}{:g}", c ? ", " : "", v[c]);
+  return s + ")";
+}
+
+// The KHR_materials_* extensions a material uses (as the material schema lists them), each
+// with every value (defaults included) and its textures, under the extension's own
+// property names.
+nlohmann::json material_extensions_json(const Material& m) {
   nlohmann::json out = nlohmann::json::object();
-  auto texture = [](nlohmann::json& o, const char* name, const TextureRef& ref) {
-    if (ref.valid()) o[name] = texture_json(ref);
-  };
-  if (m.ior != 1.5f) out["KHR_materials_ior"] = {{"ior", m.ior}};
-  if (m.specular) {
-    const SpecularExtension& e = *m.specular;
-    nlohmann::json o = {{"specularFactor", e.factor},
-                        {"specularColorFactor", vec3_json(e.color_factor)}};
-    texture(o, "specularTexture", e.texture);
-    texture(o, "specularColorTexture", e.color_texture);
-    out["KHR_materials_specular"] = o;
+  for (const MaterialExtension& x : material_extensions()) {
+    if (!x.present(m)) continue;
+    nlohmann::json o = nlohmann::json::object();
+    for (const MaterialFactor& f : x.factors) o[f.json_name] = factor_json(m, f);
+    for (const MaterialTexture& t : x.textures) {
+      const TextureRef& ref = *m.textures()[std::size_t(t.slot)];
+      if (!ref.valid()) continue;
+      o[t.json_name] = texture_json(ref);
+      if (t.scale) o[t.json_name]["scale"] = *t.scale(const_cast<Material&>(m));
+    }
+    out[x.name] = o;
   }
-  if (m.clearcoat) {
-    const ClearcoatExtension& e = *m.clearcoat;
-    nlohmann::json o = {{"clearcoatFactor", e.factor},
-                        {"clearcoatRoughnessFactor", e.roughness_factor}};
-    texture(o, "clearcoatTexture", e.texture);
-    texture(o, "clearcoatRoughnessTexture", e.roughness_texture);
-    texture(o, "clearcoatNormalTexture", e.normal_texture);
-    if (e.normal_texture.valid()) o["clearcoatNormalTexture"]["scale"] = e.normal_scale;
-    out["KHR_materials_clearcoat"] = o;
-  }
-  if (m.sheen) {
-    const SheenExtension& e = *m.sheen;
-    nlohmann::json o = {{"sheenColorFactor", vec3_json(e.color_factor)},
-                        {"sheenRoughnessFactor", e.roughness_factor}};
-    texture(o, "sheenColorTexture", e.color_texture);
-    texture(o, "sheenRoughnessTexture", e.roughness_texture);
-    out["KHR_materials_sheen"] = o;
-  }
-  if (m.anisotropy) {
-    const AnisotropyExtension& e = *m.anisotropy;
-    nlohmann::json o = {{"anisotropyStrength", e.strength}, {"anisotropyRotation", e.rotation}};
-    texture(o, "anisotropyTexture", e.texture);
-    out["KHR_materials_anisotropy"] = o;
-  }
-  if (m.iridescence) {
-    const IridescenceExtension& e = *m.iridescence;
-    nlohmann::json o = {{"iridescenceFactor", e.factor},
-                        {"iridescenceIor", e.ior},
-                        {"iridescenceThicknessMinimum", e.thickness_min},
-                        {"iridescenceThicknessMaximum", e.thickness_max}};
-    texture(o, "iridescenceTexture", e.texture);
-    texture(o, "iridescenceThicknessTexture", e.thickness_texture);
-    out["KHR_materials_iridescence"] = o;
-  }
-  if (m.transmission) {
-    nlohmann::json o = {{"transmissionFactor", m.transmission->factor}};
-    texture(o, "transmissionTexture", m.transmission->texture);
-    out["KHR_materials_transmission"] = o;
-  }
-  if (m.volume) {
-    const VolumeExtension& e = *m.volume;
-    // JSON has no infinity: an absent attenuationDistance (no absorption) is null.
-    nlohmann::json o = {{"thicknessFactor", e.thickness_factor},
-                        {"attenuationDistance", std::isfinite(e.attenuation_distance)
-                                                    ? nlohmann::json(e.attenuation_distance)
-                                                    : nlohmann::json()},
-                        {"attenuationColor", vec3_json(e.attenuation_color)}};
-    texture(o, "thicknessTexture", e.thickness_texture);
-    out["KHR_materials_volume"] = o;
-  }
-  if (m.dispersion) out["KHR_materials_dispersion"] = {{"dispersion", m.dispersion->dispersion}};
-  if (m.diffuse_transmission) {
-    const DiffuseTransmissionExtension& e = *m.diffuse_transmission;
-    nlohmann::json o = {{"diffuseTransmissionFactor", e.factor},
-                        {"diffuseTransmissionColorFactor", vec3_json(e.color_factor)}};
-    texture(o, "diffuseTransmissionTexture", e.texture);
-    texture(o, "diffuseTransmissionColorTexture", e.color_texture);
-    out["KHR_materials_diffuse_transmission"] = o;
-  }
-  if (m.unlit) out["KHR_materials_unlit"] = nlohmann::json::object();
   return out;
 }
 
-// The same, one short phrase per extension for the text summary.
+// The same, one short phrase per extension for the text summary: its name, each factor as
+// the schema's summary phrase, and its note.
 std::string material_extensions_text(const Material& m) {
   std::string s;
-  if (m.unlit) s += ", unlit";
-  if (m.ior != 1.5f) s += fmt::format(", ior {:g}", m.ior);
-  if (m.specular) {
-    const glm::vec3 c = m.specular->color_factor;
-    s += fmt::format(", specular {:g} ({:g}, {:g}, {:g})", m.specular->factor, c.r, c.g, c.b);
-  }
-  if (m.clearcoat)
-    s += fmt::format(", clearcoat {:g} roughness {:g}", m.clearcoat->factor,
-                     m.clearcoat->roughness_factor);
-  if (m.sheen) {
-    const glm::vec3 c = m.sheen->color_factor;
-    s += fmt::format(", sheen ({:g}, {:g}, {:g}) roughness {:g}", c.r, c.g, c.b,
-                     m.sheen->roughness_factor);
-  }
-  if (m.anisotropy)
-    s += fmt::format(", anisotropy {:g} rotation {:g}", m.anisotropy->strength,
-                     m.anisotropy->rotation);
-  if (m.iridescence)
-    s +=
-        fmt::format(", iridescence {:g} ior {:g} {:g}-{:g} nm", m.iridescence->factor,
-                    m.iridescence->ior, m.iridescence->thickness_min, m.iridescence->thickness_max);
-  if (m.transmission) s += fmt::format(", transmission {:g}", m.transmission->factor);
-  if (m.volume) {
-    const VolumeExtension& v = *m.volume;
-    s += v.thickness_factor > 0.0f ? fmt::format(", volume thickness {:g}", v.thickness_factor)
-                                   : std::string(", volume thin-walled (thickness 0)");
-    if (std::isfinite(v.attenuation_distance)) {
-      const glm::vec3 c = v.attenuation_color;
-      s += fmt::format(" attenuation ({:g}, {:g}, {:g}) at {:g}", c.r, c.g, c.b,
-                       v.attenuation_distance);
-    }
-  }
-  if (m.dispersion)
-    s += fmt::format(", dispersion {:g} (Abbe {:g})", m.dispersion->dispersion,
-                     m.dispersion->dispersion > 0.0f ? 20.0f / m.dispersion->dispersion
-                                                     : std::numeric_limits<float>::infinity());
-  if (m.diffuse_transmission) {
-    const glm::vec3 c = m.diffuse_transmission->color_factor;
-    s += fmt::format(", diffuse transmission {:g} ({:g}, {:g}, {:g})",
-                     m.diffuse_transmission->factor, c.r, c.g, c.b);
+  for (const MaterialExtension& x : material_extensions()) {
+    if (!x.present(m)) continue;
+    s += fmt::format(", {}", x.summary);
+    for (const MaterialFactor& f : x.factors)
+      s += " " + fmt::format(fmt::runtime(f.summary), factor_text(m, f));
+    if (x.note)
+      if (const std::string note = x.note(m); !note.empty()) s += " " + note;
   }
   return s;
 }
 
-void run_info(const InfoOptions& opt) {
-  const auto start = std::chrono::steady_clock::now();
-  const Scene scene = load_scene(opt.input);
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+// What `pbrkit info` reports beyond the scene itself: the load time and the counts
+// derived from it.
+struct SceneSummary {
+  Scene scene;
+  double load_seconds = 0.0;
+  std::size_t vertices = 0, unique_triangles = 0;
+  Bounds bounds;
+  // Per material, how many meshes use it (as glTF-Transform's `inspect` lists them), and
+  // how many use the glTF default material.
+  std::vector<std::size_t> material_uses;
+  std::size_t default_material_uses = 0;
+  std::vector<std::string> unsupported;  // extensions used that the loader ignores
+};
 
-  std::size_t unique_triangles = 0, vertices = 0;
+SceneSummary summarise(const std::string& input) {
+  SceneSummary s;
+  const auto start = std::chrono::steady_clock::now();
+  s.scene = load_scene(input);
+  s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const Scene& scene = s.scene;
   for (const Mesh& m : scene.meshes) {
-    unique_triangles += m.triangle_count();
-    vertices += m.positions.size();
+    s.unique_triangles += m.triangle_count();
+    s.vertices += m.positions.size();
   }
-  const Bounds b = scene.world_bounds();
+  s.bounds = scene.world_bounds();
+  s.material_uses.assign(scene.materials.size(), 0);
+  for (const Mesh& m : scene.meshes) {
+    if (m.material >= 0 && std::size_t(m.material) < scene.materials.size())
+      ++s.material_uses[std::size_t(m.material)];
+    else
+      ++s.default_material_uses;
+  }
+  const std::vector<std::string> supported = supported_gltf_extensions();
+  for (const std::string& e : scene.extensions_used)
+    if (std::find(supported.begin(), supported.end(), e) == supported.end())
+      s.unsupported.push_back(e);
+  return s;
+}
+
+// A material's factors, alpha, sides, textures, KHR_materials_* extensions and users.
+nlohmann::json material_json(const Material& m, std::size_t uses) {
+  const glm::vec3 e = m.emissive_factor * m.emissive_strength;
+  nlohmann::json mj = {{"name", m.name},
+                       {"base_color",
+                        {m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b,
+                         m.base_color_factor.a}},
+                       {"metallic", m.metallic_factor},
+                       {"roughness", m.roughness_factor},
+                       {"emissive", {e.r, e.g, e.b}},
+                       {"alpha_mode", alpha_mode(m.alpha_mode)},
+                       {"double_sided", m.double_sided},
+                       {"textures", material_textures(m)},
+                       {"meshes", uses}};
+  if (m.alpha_mode == AlphaMode::kMask) mj["alpha_cutoff"] = m.alpha_cutoff;
+  if (nlohmann::json ext = material_extensions_json(m); !ext.empty()) mj["extensions"] = ext;
+  return mj;
+}
+
+nlohmann::json summary_json(const SceneSummary& s) {
+  const Scene& scene = s.scene;
   nlohmann::json j;
   j["source"] = scene.source;
-  j["load_seconds"] = seconds;
+  j["load_seconds"] = s.load_seconds;
   j["nodes"] = scene.node_count;
   j["instances"] = scene.instances.size();
   j["meshes"] = scene.meshes.size();
-  j["vertices"] = vertices;
+  j["vertices"] = s.vertices;
   j["triangles"] = scene.triangle_count();
-  j["unique_triangles"] = unique_triangles;
+  j["unique_triangles"] = s.unique_triangles;
   j["materials"] = scene.materials.size();
-  // Per material: its factors, alpha, sides, textures, KHR_materials_* extensions and how
-  // many meshes use it (as glTF-Transform's `inspect` lists them).
-  std::vector<std::size_t> material_uses(scene.materials.size(), 0);
-  std::size_t default_material_uses = 0;
-  for (const Mesh& m : scene.meshes) {
-    if (m.material >= 0 && std::size_t(m.material) < scene.materials.size())
-      ++material_uses[std::size_t(m.material)];
-    else
-      ++default_material_uses;
-  }
   j["material_list"] = nlohmann::json::array();
-  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    const Material& m = scene.materials[i];
-    const glm::vec3 e = m.emissive_factor * m.emissive_strength;
-    nlohmann::json mj = {{"name", m.name},
-                         {"base_color",
-                          {m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b,
-                           m.base_color_factor.a}},
-                         {"metallic", m.metallic_factor},
-                         {"roughness", m.roughness_factor},
-                         {"emissive", {e.r, e.g, e.b}},
-                         {"alpha_mode", alpha_mode(m.alpha_mode)},
-                         {"double_sided", m.double_sided},
-                         {"textures", material_textures(m)},
-                         {"meshes", material_uses[i]}};
-    if (m.alpha_mode == AlphaMode::kMask) mj["alpha_cutoff"] = m.alpha_cutoff;
-    if (nlohmann::json ext = material_extensions(m); !ext.empty()) mj["extensions"] = ext;
-    j["material_list"].push_back(mj);
-  }
-  j["default_material_meshes"] = default_material_uses;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    j["material_list"].push_back(material_json(scene.materials[i], s.material_uses[i]));
+  j["default_material_meshes"] = s.default_material_uses;
   j["textures"] = nlohmann::json::array();
   for (const Texture& t : scene.textures)
     j["textures"].push_back({{"name", t.name},
@@ -251,55 +199,55 @@ void run_info(const InfoOptions& opt) {
         {{"name", c.name},
          {"type", c.type == Camera::Type::kPerspective ? "perspective" : "orthographic"},
          {"yfov", c.yfov}});
+  const Bounds& b = s.bounds;
   if (!b.empty())
     j["bounds"] = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}};
   j["extensions_used"] = scene.extensions_used;
   j["extensions_required"] = scene.extensions_required;
-  const std::vector<std::string> supported = supported_gltf_extensions();
-  std::vector<std::string> unsupported;
-  for (const std::string& e : scene.extensions_used)
-    if (std::find(supported.begin(), supported.end(), e) == supported.end())
-      unsupported.push_back(e);
-  j["extensions_unsupported"] = unsupported;
+  j["extensions_unsupported"] = s.unsupported;
   j["warnings"] = scene.warnings;
-  if (opt.json) {
-    std::printf("%s\n", j.dump(2).c_str());
-    return;
+  return j;
+}
+
+// One line per material: its factors, then what differs from the defaults.
+void print_material(const Material& m, std::size_t index, std::size_t uses) {
+  const glm::vec4 c = m.base_color_factor;
+  const glm::vec3 e = m.emissive_factor * m.emissive_strength;
+  std::string extra;
+  if (m.alpha_mode == AlphaMode::kMask)
+    extra += fmt::format(", mask {:g}", m.alpha_cutoff);
+  else if (m.alpha_mode == AlphaMode::kBlend)
+    extra += ", blend";
+  if (m.double_sided) extra += ", double-sided";
+  if (e != glm::vec3(0.0f)) extra += fmt::format(", emissive ({:g}, {:g}, {:g})", e.r, e.g, e.b);
+  extra += material_extensions_text(m);
+  const std::vector<std::string> textures = material_textures(m);
+  if (!textures.empty()) {
+    extra += ", textures:";
+    for (const std::string& t : textures) extra += " " + t;
   }
+  std::printf("    %-30s base (%g, %g, %g, %g), metallic %g, roughness %g%s; %zu mesh%s\n",
+              m.name.empty() ? fmt::format("#{}", index).c_str() : m.name.c_str(), c.r, c.g, c.b,
+              c.a, m.metallic_factor, m.roughness_factor, extra.c_str(), uses,
+              uses == 1 ? "" : "es");
+}
+
+void print_summary(const SceneSummary& s) {
+  const Scene& scene = s.scene;
   std::printf("%s\n", scene.source.c_str());
-  std::printf("  load time    %.3f s\n", seconds);
+  std::printf("  load time    %.3f s\n", s.load_seconds);
   std::printf("  nodes        %zu\n", scene.node_count);
   std::printf("  instances    %zu\n", scene.instances.size());
-  std::printf("  meshes       %zu (%zu vertices, %zu triangles)\n", scene.meshes.size(), vertices,
-              unique_triangles);
+  std::printf("  meshes       %zu (%zu vertices, %zu triangles)\n", scene.meshes.size(), s.vertices,
+              s.unique_triangles);
   std::printf("  triangles    %zu (instanced)\n", scene.triangle_count());
-  std::printf(
-      "  materials    %zu%s\n", scene.materials.size(),
-      default_material_uses
-          ? fmt::format(" (+ the glTF default material, {} meshes)", default_material_uses).c_str()
-          : "");
-  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
-    const Material& m = scene.materials[i];
-    const glm::vec4 c = m.base_color_factor;
-    const glm::vec3 e = m.emissive_factor * m.emissive_strength;
-    std::string extra;
-    if (m.alpha_mode == AlphaMode::kMask)
-      extra += fmt::format(", mask {:g}", m.alpha_cutoff);
-    else if (m.alpha_mode == AlphaMode::kBlend)
-      extra += ", blend";
-    if (m.double_sided) extra += ", double-sided";
-    if (e != glm::vec3(0.0f)) extra += fmt::format(", emissive ({:g}, {:g}, {:g})", e.r, e.g, e.b);
-    extra += material_extensions_text(m);
-    const std::vector<std::string> textures = material_textures(m);
-    if (!textures.empty()) {
-      extra += ", textures:";
-      for (const std::string& t : textures) extra += " " + t;
-    }
-    std::printf("    %-30s base (%g, %g, %g, %g), metallic %g, roughness %g%s; %zu mesh%s\n",
-                m.name.empty() ? fmt::format("#{}", i).c_str() : m.name.c_str(), c.r, c.g, c.b, c.a,
-                m.metallic_factor, m.roughness_factor, extra.c_str(), material_uses[i],
-                material_uses[i] == 1 ? "" : "es");
-  }
+  std::printf("  materials    %zu%s\n", scene.materials.size(),
+              s.default_material_uses ? fmt::format(" (+ the glTF default material, {} meshes)",
+                                                    s.default_material_uses)
+                                            .c_str()
+                                      : "");
+  for (std::size_t i = 0; i < scene.materials.size(); ++i)
+    print_material(scene.materials[i], i, s.material_uses[i]);
   std::printf("  textures     %zu\n", scene.textures.size());
   for (const Texture& t : scene.textures)
     std::printf("    %-30s %5d x %-5d %s, %zu mips, %zu bytes\n", t.name.c_str(), t.width(),
@@ -312,21 +260,30 @@ void run_info(const InfoOptions& opt) {
   for (const Camera& c : scene.cameras)
     std::printf("    %-30s %s\n", c.name.c_str(),
                 c.type == Camera::Type::kPerspective ? "perspective" : "orthographic");
+  const Bounds& b = s.bounds;
   if (b.empty())
     std::printf("  bounds       (empty)\n");
   else
     std::printf("  bounds       (%g, %g, %g) - (%g, %g, %g)\n", b.min.x, b.min.y, b.min.z, b.max.x,
                 b.max.y, b.max.z);
   auto list = [](const std::vector<std::string>& v) {
-    std::string s;
-    for (const auto& e : v) s += (s.empty() ? "" : ", ") + e;
-    return s.empty() ? std::string("none") : s;
+    std::string text;
+    for (const auto& e : v) text += (text.empty() ? "" : ", ") + e;
+    return text.empty() ? std::string("none") : text;
   };
   std::printf("  extensions   used: %s\n", list(scene.extensions_used).c_str());
   std::printf("               required: %s\n", list(scene.extensions_required).c_str());
-  std::printf("               unsupported (ignored): %s\n", list(unsupported).c_str());
+  std::printf("               unsupported (ignored): %s\n", list(s.unsupported).c_str());
   std::printf("  warnings     %zu\n", scene.warnings.size());
   for (const std::string& w : scene.warnings) std::printf("    %s\n", w.c_str());
+}
+
+void run_info(const InfoOptions& opt) {
+  const SceneSummary s = summarise(opt.input);
+  if (opt.json)
+    std::printf("%s\n", summary_json(s).dump(2).c_str());
+  else
+    print_summary(s);
 }
 
 }  // namespace

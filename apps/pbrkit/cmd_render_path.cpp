@@ -179,7 +179,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
                 "'raw') and the albedo, normal and depth as layers")
       ->group(group);
   render.add_option("--filter", p->filter, "pixel filter: tent (radius 1 px) or box (1 px)")
-      ->check(CLI::IsMember({"tent", "box"}))
+      ->check(CLI::IsMember(pixel_filter_names()))
       ->capture_default_str()
       ->group(group);
   render

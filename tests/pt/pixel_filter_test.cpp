@@ -49,6 +49,11 @@ TEST(PixelFilter, NamesParseAndUnknownIsAnError) {
   EXPECT_EQ(pixel_filter_name(PixelFilter::kTent), "tent");
   EXPECT_EQ(parse_pixel_filter("box"), PixelFilter::kBox);
   EXPECT_THROW(parse_pixel_filter("gaussian"), Error);
+  // The CLI's choices: every filter once, the default first.
+  EXPECT_EQ(pixel_filter_names(), (std::vector<std::string>{"tent", "box"}));
+  EXPECT_EQ(pixel_filter_names()[0], pixel_filter_name(PathTracerSettings{}.filter));
+  for (const std::string& name : pixel_filter_names())
+    EXPECT_EQ(pixel_filter_name(parse_pixel_filter(name)), name);
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/material_schema.h"
 #include "pbrkit/scene/primitives.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -527,7 +528,7 @@ TEST(MaterialExtensions, WriteLoadRoundTripKeepsEveryValueAndPassesTheValidator)
   EXPECT_FALSE(b.unlit);
   const auto ta = a.textures(), tb = b.textures();
   for (std::size_t i = 0; i < ta.size(); ++i)
-    expect_same_ref(original, *ta[i], loaded, *tb[i], kTextureSlotNames[i]);
+    expect_same_ref(original, *ta[i], loaded, *tb[i], texture_slot_name(TextureSlot(i)).c_str());
 
   const Material& u = loaded.materials[1];
   EXPECT_TRUE(u.unlit);

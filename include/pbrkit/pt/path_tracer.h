@@ -13,6 +13,7 @@
 #include <functional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/image/environment.h"
@@ -50,8 +51,11 @@ enum class PixelFilter {
   kBox,   ///< width 1 pixel (what an unfiltered rasteriser computes with supersampling)
   kTent,  ///< triangle of radius 1 pixel (width 2); the default
 };
-PixelFilter parse_pixel_filter(std::string_view name);  ///< "tent" | "box"
+/// The filter named `name` (one of pixel_filter_names()); an Error for any other name.
+PixelFilter parse_pixel_filter(std::string_view name);
 std::string_view pixel_filter_name(PixelFilter filter);
+/// Every filter's name, the default first.
+std::vector<std::string> pixel_filter_names();
 
 /// A render's settings. The defaults are the product's, and `pbrkit render --renderer path`
 /// takes its option defaults from here: a ground-truth render (up to 1024 spp, adaptive

@@ -184,6 +184,33 @@ struct DiffuseTransmissionExtension {
   TextureRef color_texture;      ///< diffuseTransmissionColorTexture, RGB (sRGB)
 };
 
+/// Material::textures()'s slots (the GL renderer's HAS_TEXTURE_n bits use these numbers;
+/// material_schema.h names each and says which extension and channels fill it).
+enum class TextureSlot {
+  kBaseColor,
+  kMetallicRoughness,
+  kNormal,
+  kOcclusion,
+  kEmissive,
+  kSpecular,
+  kSpecularColor,
+  kClearcoat,
+  kClearcoatRoughness,
+  kClearcoatNormal,
+  kSheenColor,
+  kSheenRoughness,
+  kAnisotropy,
+  kIridescence,
+  kIridescenceThickness,
+  kTransmission,
+  kThickness,
+  kDiffuseTransmission,
+  kDiffuseTransmissionColor,
+};
+inline constexpr int kTextureSlotCount = int(TextureSlot::kDiffuseTransmissionColor) + 1;
+/// The slots before this one are the core glTF material's; from it on, the extensions'.
+inline constexpr TextureSlot kFirstExtensionTextureSlot = TextureSlot::kSpecular;
+
 /// glTF 2.0 metallic-roughness material with the spec's defaults.
 struct Material {
   std::string name;
@@ -215,56 +242,9 @@ struct Material {
   std::optional<DispersionExtension> dispersion;
   std::optional<DiffuseTransmissionExtension> diffuse_transmission;
 
-  /// Every texture slot, in the order of TextureSlot / kTextureSlotNames; the slots of an
-  /// absent extension point at an empty TextureRef.
-  std::array<const TextureRef*, 19> textures() const;
-};
-
-/// Material::textures()'s slots (the GL renderer's HAS_TEXTURE_n bits use these numbers).
-enum class TextureSlot {
-  kBaseColor,
-  kMetallicRoughness,
-  kNormal,
-  kOcclusion,
-  kEmissive,
-  kSpecular,
-  kSpecularColor,
-  kClearcoat,
-  kClearcoatRoughness,
-  kClearcoatNormal,
-  kSheenColor,
-  kSheenRoughness,
-  kAnisotropy,
-  kIridescence,
-  kIridescenceThickness,
-  kTransmission,
-  kThickness,
-  kDiffuseTransmission,
-  kDiffuseTransmissionColor,
-};
-inline constexpr int kTextureSlotCount = 19;
-
-/// glTF's names of Material::textures()'s slots (extension slots as "<extension>.<name>").
-inline constexpr std::array<const char*, kTextureSlotCount> kTextureSlotNames = {
-    "baseColor",
-    "metallicRoughness",
-    "normal",
-    "occlusion",
-    "emissive",
-    "KHR_materials_specular.specularTexture",
-    "KHR_materials_specular.specularColorTexture",
-    "KHR_materials_clearcoat.clearcoatTexture",
-    "KHR_materials_clearcoat.clearcoatRoughnessTexture",
-    "KHR_materials_clearcoat.clearcoatNormalTexture",
-    "KHR_materials_sheen.sheenColorTexture",
-    "KHR_materials_sheen.sheenRoughnessTexture",
-    "KHR_materials_anisotropy.anisotropyTexture",
-    "KHR_materials_iridescence.iridescenceTexture",
-    "KHR_materials_iridescence.iridescenceThicknessTexture",
-    "KHR_materials_transmission.transmissionTexture",
-    "KHR_materials_volume.thicknessTexture",
-    "KHR_materials_diffuse_transmission.diffuseTransmissionTexture",
-    "KHR_materials_diffuse_transmission.diffuseTransmissionColorTexture",
+  /// Every texture slot, in the order of TextureSlot (texture_slot_name() names them); the
+  /// slots of an absent extension point at an empty TextureRef.
+  std::array<const TextureRef*, kTextureSlotCount> textures() const;
 };
 
 /// One glTF primitive as an indexed triangle list (strips and fans converted), with

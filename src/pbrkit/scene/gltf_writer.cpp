@@ -18,6 +18,7 @@
 #include "pbrkit/core/color.h"
 #include "pbrkit/scene/gltf_container.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/material_schema.h"
 #include "pbrkit/util/atomic_file.h"
 #include "pbrkit/util/error.h"
 
@@ -184,120 +185,37 @@ void put_texture(tinygltf::Value::Object& o, const char* name, const tinygltf::T
   o[name] = tinygltf::Value(t);
 }
 
-// A number, left out when it is the extension's default.
-void put_number(tinygltf::Value::Object& o, const char* name, float value, float fallback) {
-  if (value != fallback) o[name] = tinygltf::Value(double(value));
-}
-
-void put_color(tinygltf::Value::Object& o, const char* name, glm::vec3 value, glm::vec3 fallback) {
-  if (value == fallback) return;
-  o[name] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(value.r)),
-                                                   tinygltf::Value(double(value.g)),
-                                                   tinygltf::Value(double(value.b))});
-}
-
-// The KHR_materials_* extensions the material uses, each with the values that differ
-// from the README's defaults. KHR_materials_unlit excludes the others (each of their READMEs
-// says so, and the glTF-Validator reports the combination), so an unlit material is
-// written with KHR_materials_unlit only: what a viewer would show of it.
+// The KHR_materials_* extensions the material uses, as the material schema lists them,
+// each with the values that differ from the README's defaults (a value JSON cannot write,
+// as an infinite attenuationDistance, is its default). KHR_materials_unlit excludes the
+// others (each of their READMEs says so, and the glTF-Validator reports the combination),
+// so an unlit material is written with KHR_materials_unlit only: what a viewer would show
+// of it.
 tinygltf::ExtensionMap Writer::material_extensions(const Material& m) {
   tinygltf::ExtensionMap out;
-  if (m.unlit) {
-    out["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object{});
-    return out;
-  }
-  if (m.ior != 1.5f) {
+  const auto extensions = pbrkit::material_extensions();
+  const bool exclusive = std::any_of(extensions.begin(), extensions.end(),
+                                     [&](const auto& x) { return x.exclusive && x.present(m); });
+  for (const MaterialExtension& x : extensions) {
+    if (!x.present(m) || (exclusive && !x.exclusive)) continue;
     tinygltf::Value::Object o;
-    o["ior"] = tinygltf::Value(double(m.ior));
-    out["KHR_materials_ior"] = tinygltf::Value(o);
-  }
-  if (m.specular) {
-    const SpecularExtension& e = *m.specular;
-    const SpecularExtension d;
-    tinygltf::Value::Object o;
-    put_number(o, "specularFactor", e.factor, d.factor);
-    put_texture(o, "specularTexture", texture_info(e.texture));
-    put_color(o, "specularColorFactor", e.color_factor, d.color_factor);
-    put_texture(o, "specularColorTexture", texture_info(e.color_texture));
-    out["KHR_materials_specular"] = tinygltf::Value(o);
-  }
-  if (m.clearcoat) {
-    const ClearcoatExtension& e = *m.clearcoat;
-    const ClearcoatExtension d;
-    tinygltf::Value::Object o;
-    put_number(o, "clearcoatFactor", e.factor, d.factor);
-    put_texture(o, "clearcoatTexture", texture_info(e.texture));
-    put_number(o, "clearcoatRoughnessFactor", e.roughness_factor, d.roughness_factor);
-    put_texture(o, "clearcoatRoughnessTexture", texture_info(e.roughness_texture));
-    put_texture(o, "clearcoatNormalTexture", texture_info(e.normal_texture), e.normal_scale);
-    out["KHR_materials_clearcoat"] = tinygltf::Value(o);
-  }
-  if (m.sheen) {
-    const SheenExtension& e = *m.sheen;
-    const SheenExtension d;
-    tinygltf::Value::Object o;
-    put_color(o, "sheenColorFactor", e.color_factor, d.color_factor);
-    put_texture(o, "sheenColorTexture", texture_info(e.color_texture));
-    put_number(o, "sheenRoughnessFactor", e.roughness_factor, d.roughness_factor);
-    put_texture(o, "sheenRoughnessTexture", texture_info(e.roughness_texture));
-    out["KHR_materials_sheen"] = tinygltf::Value(o);
-  }
-  if (m.anisotropy) {
-    const AnisotropyExtension& e = *m.anisotropy;
-    const AnisotropyExtension d;
-    tinygltf::Value::Object o;
-    put_number(o, "anisotropyStrength", e.strength, d.strength);
-    put_number(o, "anisotropyRotation", e.rotation, d.rotation);
-    put_texture(o, "anisotropyTexture", texture_info(e.texture));
-    out["KHR_materials_anisotropy"] = tinygltf::Value(o);
-  }
-  if (m.iridescence) {
-    const IridescenceExtension& e = *m.iridescence;
-    const IridescenceExtension d;
-    tinygltf::Value::Object o;
-    put_number(o, "iridescenceFactor", e.factor, d.factor);
-    put_texture(o, "iridescenceTexture", texture_info(e.texture));
-    put_number(o, "iridescenceIor", e.ior, d.ior);
-    put_number(o, "iridescenceThicknessMinimum", e.thickness_min, d.thickness_min);
-    put_number(o, "iridescenceThicknessMaximum", e.thickness_max, d.thickness_max);
-    put_texture(o, "iridescenceThicknessTexture", texture_info(e.thickness_texture));
-    out["KHR_materials_iridescence"] = tinygltf::Value(o);
-  }
-  if (m.transmission) {
-    const TransmissionExtension& e = *m.transmission;
-    const TransmissionExtension d;
-    tinygltf::Value::Object o;
-    put_number(o, "transmissionFactor", e.factor, d.factor);
-    put_texture(o, "transmissionTexture", texture_info(e.texture));
-    out["KHR_materials_transmission"] = tinygltf::Value(o);
-  }
-  if (m.volume) {
-    const VolumeExtension& e = *m.volume;
-    const VolumeExtension d;
-    tinygltf::Value::Object o;
-    put_number(o, "thicknessFactor", e.thickness_factor, d.thickness_factor);
-    put_texture(o, "thicknessTexture", texture_info(e.thickness_texture));
-    // Infinity (no absorption) is the README's meaning of an absent distance; JSON has no
-    // number for it.
-    if (std::isfinite(e.attenuation_distance))
-      o["attenuationDistance"] = tinygltf::Value(double(e.attenuation_distance));
-    put_color(o, "attenuationColor", e.attenuation_color, d.attenuation_color);
-    out["KHR_materials_volume"] = tinygltf::Value(o);
-  }
-  if (m.dispersion) {
-    tinygltf::Value::Object o;
-    put_number(o, "dispersion", m.dispersion->dispersion, DispersionExtension{}.dispersion);
-    out["KHR_materials_dispersion"] = tinygltf::Value(o);
-  }
-  if (m.diffuse_transmission) {
-    const DiffuseTransmissionExtension& e = *m.diffuse_transmission;
-    const DiffuseTransmissionExtension d;
-    tinygltf::Value::Object o;
-    put_number(o, "diffuseTransmissionFactor", e.factor, d.factor);
-    put_texture(o, "diffuseTransmissionTexture", texture_info(e.texture));
-    put_color(o, "diffuseTransmissionColorFactor", e.color_factor, d.color_factor);
-    put_texture(o, "diffuseTransmissionColorTexture", texture_info(e.color_texture));
-    out["KHR_materials_diffuse_transmission"] = tinygltf::Value(o);
+    for (const MaterialFactor& f : x.factors) {
+      const float* v = f.read(m);
+      bool finite = true, differs = false;
+      tinygltf::Value::Array values;
+      for (int c = 0; c < f.components; ++c) {
+        finite &= std::isfinite(v[c]);
+        differs |= v[c] != factor_default(x, f, c);
+        values.emplace_back(double(v[c]));
+      }
+      if (finite && differs)
+        o[f.json_name] = f.components == 1 ? values[0] : tinygltf::Value(std::move(values));
+    }
+    for (const MaterialTexture& t : x.textures)
+      put_texture(
+          o, t.json_name, texture_info(*m.textures()[std::size_t(t.slot)]),
+          t.scale ? std::optional<float>(*t.scale(const_cast<Material&>(m))) : std::nullopt);
+    out[x.name] = tinygltf::Value(std::move(o));
   }
   return out;
 }
@@ -569,7 +487,8 @@ tinygltf::Model Writer::build() {
   // Only the textures written count (an unlit material's extension textures are not).
   auto has_transform = [](const Material& m) {
     const auto slots = m.textures();
-    const std::size_t written = m.unlit ? std::size_t(TextureSlot::kSpecular) : slots.size();
+    const std::size_t written =
+        m.unlit ? std::size_t(kFirstExtensionTextureSlot) : std::size_t(kTextureSlotCount);
     for (std::size_t i = 0; i < written; ++i)
       if (slots[i]->valid() && slots[i]->transform) return true;
     return false;

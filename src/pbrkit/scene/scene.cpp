@@ -12,7 +12,7 @@ Bounds Scene::world_bounds() const {
   return bounds;
 }
 
-std::array<const TextureRef*, 19> Material::textures() const {
+std::array<const TextureRef*, kTextureSlotCount> Material::textures() const {
   static const TextureRef kNone;
   auto in = [](const auto& ext, auto member) -> const TextureRef* {
     return ext ? &((*ext).*member) : &kNone;

@@ -15,11 +15,11 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/gltf/meshopt.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/nodes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/textures.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/gltf/transmission_extensions.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/validation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_container.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_writer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/load.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/material_schema.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_attributes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_closure.cpp
   ${CMAKE_CURRENT_LIST_DIR}/primitives.cpp

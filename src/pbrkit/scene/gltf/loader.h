@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/material_schema.h"
 
 namespace pbrkit::gltf {
 
@@ -94,23 +95,26 @@ class Loader {
   void build_materials();
   TextureRef texture_ref(int texture_index, int texcoord, const tinygltf::ExtensionMap& ext,
                          bool srgb, const std::string& where);
-  // material_extensions.cpp: the KHR_materials_* surface extensions (ior, specular,
-  // clearcoat, sheen, anisotropy, iridescence, unlit) of one material, read from the JSON
-  // check_json kept (tinygltf drops extension values that are not objects, and empty
-  // objects inside them, so it cannot tell a wrong type from an absent value).
+  // material_extensions.cpp: the KHR_materials_* extensions of one material, as the
+  // material schema (material_schema.h) lists them, read from the JSON check_json kept
+  // (tinygltf drops extension values that are not objects, and empty objects inside them,
+  // so it cannot tell a wrong type from an absent value); then the warnings for
+  // combinations the READMEs give no effect.
   void read_material_extensions(const json& extensions, const std::string& where, Material& m);
+  void warn_ineffective_combinations(const json& extensions, const std::string& where,
+                                     const Material& m);
   // The extension object `name` of a material's extensions, or null when absent (an error
   // when it is not an object).
   const json* extension_object(const json& extensions, const char* name,
                                const std::string& where) const;
-  // transmission_extensions.cpp: KHR_materials_transmission, volume, dispersion and
-  // diffuse_transmission, and the warnings for their combinations.
-  void read_transmission_extensions(const json& extensions, const std::string& where, Material& m);
   float finite_float(const json& v, const std::string& path) const;
+  // One factor of the schema into `values` (left as they are when the JSON has none).
+  void extension_values(const json& ext, const MaterialFactor& factor, const std::string& where,
+                        float* values);
   float extension_factor(const json& ext, const char* name, float fallback, float lo, float hi,
                          const std::string& where);
-  glm::vec3 extension_color(const json& ext, const char* name, glm::vec3 fallback, float hi,
-                            const std::string& where);
+  glm::vec3 extension_color(const json& ext, const char* name, glm::vec3 fallback, float lo,
+                            float hi, const std::string& where);
   TextureRef extension_texture(const json& ext, const char* name, bool srgb,
                                const std::string& where, float* scale = nullptr);
   // textures.cpp: images decoded once per colour space, with their samplers.

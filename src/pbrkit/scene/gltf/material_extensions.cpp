@@ -1,35 +1,26 @@
-// The KHR_materials_* extensions of a material: the surface ones (ior, specular,
-// clearcoat, sheen, anisotropy, iridescence, unlit) and the transmission ones
-// (transmission, volume, dispersion, diffuse_transmission); each README in
-// KhronosGroup/glTF, extensions/2.0/Khronos/. Absent values keep the README's defaults
-// (Material's own).
+// The KHR_materials_* extensions of a material, read as the material schema
+// (scene/material_schema.h) lists them: each extension's factors and textures, by their
+// README's names (KhronosGroup/glTF, extensions/2.0/Khronos/). Absent values keep the
+// README's defaults (Material's own).
 //
 // What the loader does with values the schemas do not allow:
 // - a wrong JSON type (an extension that is not an object, a factor that is not a number,
 //   a colour that is not 3 numbers, a texture that is not a textureInfo) is an error;
 // - a value that is not finite (also a double that overflows a float) is an error;
 // - a number outside its schema range is a warning naming its JSON path, and is clamped
-//   to that range;
-// - KHR_materials_ior.ior: 0 is the README's specular-glossiness compatibility mode (an
-//   infinite index, a Fresnel term of 1) and is kept as 0, which is exactly what
-//   f0 = ((ior - 1) / (ior + 1))^2 gives; any other value below 1 is a warning and
-//   becomes 1 (the nearest index of the ordinary range);
-// - iridescenceThicknessMinimum may be greater than the maximum (the README allows it:
-//   the thickness texture then interpolates downwards), so that is not a warning;
-// - KHR_materials_volume.attenuationDistance: the README's range is (0, +inf); 0 or a
-//   negative distance is a warning and is ignored (+inf: the medium does not absorb),
-//   since sigma_t = -ln(c) / d has no finite value there;
-// - attenuationColor and diffuseTransmissionColorFactor: the schemas bound them below
-//   only, but a component above 1 makes light (transmittance c^(x/d) grows without bound
-//   with the distance x; a transmission colour above 1 transmits more than arrives), so
-//   it is a warning and is clamped to 1;
+//   to that range (the schema's rows say where the loader is stricter than a schema:
+//   attenuationColor and diffuseTransmissionColorFactor are clamped to 1);
+// - the two values a range cannot describe have a check of their own in the schema:
+//   KHR_materials_ior.ior 0 (the specular-glossiness mode) and
+//   KHR_materials_volume.attenuationDistance (an open range with an infinite default);
 // - combinations that the READMEs give no effect (a volume with neither transmission nor
-//   diffuse transmission, dispersion without a volume, doubleSided on a volume boundary)
-//   are warnings that say so; the values are kept.
+//   diffuse transmission, dispersion without a volume, doubleSided on a volume boundary,
+//   unlit with any other) are warnings that say so; the values are kept.
+//
+// Whether a volume's mesh is closed is decided per primitive in meshes.cpp (Mesh::closed).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <initializer_list>
 #include <limits>
 
 #include "pbrkit/scene/gltf/loader.h"
@@ -101,8 +92,8 @@ float Loader::extension_factor(const json& ext, const char* name, float fallback
   return value;
 }
 
-glm::vec3 Loader::extension_color(const json& ext, const char* name, glm::vec3 fallback, float hi,
-                                  const std::string& where) {
+glm::vec3 Loader::extension_color(const json& ext, const char* name, glm::vec3 fallback, float lo,
+                                  float hi, const std::string& where) {
   const auto it = ext.find(name);
   if (it == ext.end()) return fallback;
   const std::string path = where + "." + name;
@@ -117,14 +108,14 @@ glm::vec3 Loader::extension_color(const json& ext, const char* name, glm::vec3 f
     const std::string element = fmt::format("{}[{}]", path, c);
     if (!e.is_number()) error(element, fmt::format("must be a number, not {}", type_name(e)));
     color[c] = finite_float(e, element);
-    if (color[c] < 0.0f || color[c] > hi) clamped = true;
+    if (color[c] < lo || color[c] > hi) clamped = true;
   }
   if (clamped) {
-    const glm::vec3 out = glm::clamp(color, glm::vec3(0.0f), glm::vec3(hi));
+    const glm::vec3 out = glm::clamp(color, glm::vec3(lo), glm::vec3(hi));
     warning(
         fmt::format("{}: ({:g}, {:g}, {:g}) is outside the valid range (each component {}); using "
                     "({:g}, {:g}, {:g})",
-                    path, color.r, color.g, color.b, range_text(0.0f, hi), out.r, out.g, out.b));
+                    path, color.r, color.g, color.b, range_text(lo, hi), out.r, out.g, out.b));
     return out;
   }
   return color;
@@ -168,97 +159,72 @@ const json* Loader::extension_object(const json& extensions, const char* name,
   return &*it;
 }
 
+void Loader::extension_values(const json& ext, const MaterialFactor& factor,
+                              const std::string& where, float* values) {
+  if (factor.components == 3) {
+    const glm::vec3 color = extension_color(
+        ext, factor.json_name, {values[0], values[1], values[2]}, factor.min, factor.max, where);
+    for (int c = 0; c < 3; ++c) values[c] = color[c];
+    return;
+  }
+  if (!factor.check) {
+    *values = extension_factor(ext, factor.json_name, *values, factor.min, factor.max, where);
+    return;
+  }
+  const float read = extension_factor(ext, factor.json_name, *values, -kInf, kInf, where);
+  float value = read;
+  if (const char* why = factor.check(value))
+    warning(fmt::format("{}.{}: {:g} is invalid {}", where, factor.json_name, read, why));
+  *values = value;
+}
+
 void Loader::read_material_extensions(const json& extensions, const std::string& where,
                                       Material& m) {
-  auto object = [&](const char* name) { return extension_object(extensions, name, where); };
-
-  if (const json* e = object("KHR_materials_ior")) {
-    const std::string path = where + ".extensions.KHR_materials_ior";
-    const float ior = extension_factor(*e, "ior", 1.5f, -kInf, kInf, path);
-    if (ior != 0.0f && ior < 1.0f) {
-      warning(fmt::format(
-          "{}.ior: {:g} is invalid (the index must be >= 1, or 0 for the specular-glossiness "
-          "mode); using 1",
-          path, ior));
-      m.ior = 1.0f;
-    } else {
-      m.ior = ior;
-    }
+  for (const MaterialExtension& x : material_extensions()) {
+    const json* e = extension_object(extensions, x.name, where);
+    if (!e) continue;
+    const std::string path = where + ".extensions." + x.name;
+    x.add(m);
+    for (const MaterialFactor& f : x.factors) extension_values(*e, f, path, f.values(m));
+    for (const MaterialTexture& t : x.textures)
+      texture_in(m, t.slot) =
+          extension_texture(*e, t.json_name, t.srgb, path, t.scale ? t.scale(m) : nullptr);
   }
+  warn_ineffective_combinations(extensions, where, m);
+}
 
-  if (const json* e = object("KHR_materials_specular")) {
-    const std::string path = where + ".extensions.KHR_materials_specular";
-    SpecularExtension s;
-    s.factor = extension_factor(*e, "specularFactor", s.factor, 0.0f, 1.0f, path);
-    s.texture = extension_texture(*e, "specularTexture", false, path);
-    // The schema bounds specularColorFactor below only: an F0 tint above 1 is allowed.
-    s.color_factor = extension_color(*e, "specularColorFactor", s.color_factor, kInf, path);
-    s.color_texture = extension_texture(*e, "specularColorTexture", true, path);
-    m.specular = s;
-  }
-
-  if (const json* e = object("KHR_materials_clearcoat")) {
-    const std::string path = where + ".extensions.KHR_materials_clearcoat";
-    ClearcoatExtension c;
-    c.factor = extension_factor(*e, "clearcoatFactor", c.factor, 0.0f, 1.0f, path);
-    c.texture = extension_texture(*e, "clearcoatTexture", false, path);
-    c.roughness_factor =
-        extension_factor(*e, "clearcoatRoughnessFactor", c.roughness_factor, 0.0f, 1.0f, path);
-    c.roughness_texture = extension_texture(*e, "clearcoatRoughnessTexture", false, path);
-    c.normal_texture =
-        extension_texture(*e, "clearcoatNormalTexture", false, path, &c.normal_scale);
-    m.clearcoat = c;
-  }
-
-  if (const json* e = object("KHR_materials_sheen")) {
-    const std::string path = where + ".extensions.KHR_materials_sheen";
-    SheenExtension s;
-    s.color_factor = extension_color(*e, "sheenColorFactor", s.color_factor, 1.0f, path);
-    s.color_texture = extension_texture(*e, "sheenColorTexture", true, path);
-    s.roughness_factor =
-        extension_factor(*e, "sheenRoughnessFactor", s.roughness_factor, 0.0f, 1.0f, path);
-    s.roughness_texture = extension_texture(*e, "sheenRoughnessTexture", false, path);
-    m.sheen = s;
-  }
-
-  if (const json* e = object("KHR_materials_anisotropy")) {
-    const std::string path = where + ".extensions.KHR_materials_anisotropy";
-    AnisotropyExtension a;
-    a.strength = extension_factor(*e, "anisotropyStrength", a.strength, 0.0f, 1.0f, path);
-    a.rotation = extension_factor(*e, "anisotropyRotation", a.rotation, -kInf, kInf, path);
-    a.texture = extension_texture(*e, "anisotropyTexture", false, path);
-    m.anisotropy = a;
-  }
-
-  if (const json* e = object("KHR_materials_iridescence")) {
-    const std::string path = where + ".extensions.KHR_materials_iridescence";
-    IridescenceExtension i;
-    i.factor = extension_factor(*e, "iridescenceFactor", i.factor, 0.0f, 1.0f, path);
-    i.texture = extension_texture(*e, "iridescenceTexture", false, path);
-    i.ior = extension_factor(*e, "iridescenceIor", i.ior, 1.0f, kInf, path);
-    i.thickness_min =
-        extension_factor(*e, "iridescenceThicknessMinimum", i.thickness_min, 0.0f, kInf, path);
-    i.thickness_max =
-        extension_factor(*e, "iridescenceThicknessMaximum", i.thickness_max, 0.0f, kInf, path);
-    i.thickness_texture = extension_texture(*e, "iridescenceThicknessTexture", false, path);
-    m.iridescence = i;
-  }
-
-  read_transmission_extensions(extensions, where, m);
-
-  if (object("KHR_materials_unlit")) {
-    m.unlit = true;
-    // Every other extension here names KHR_materials_unlit among its exclusions.
-    for (const char* other :
-         {"KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
-          "KHR_materials_sheen", "KHR_materials_anisotropy", "KHR_materials_iridescence",
-          "KHR_materials_transmission", "KHR_materials_volume", "KHR_materials_dispersion",
-          "KHR_materials_diffuse_transmission"})
-      if (extensions.contains(other))
-        warning(fmt::format(
-            "{}.extensions: KHR_materials_unlit must not be combined with {}; the material is "
-            "shown unlit",
-            where, other));
+// Combinations the READMEs give no effect: said, and kept as the file has them.
+void Loader::warn_ineffective_combinations(const json& extensions, const std::string& where,
+                                           const Material& m) {
+  if (m.volume && !m.transmission && !m.diffuse_transmission)
+    // KHR_materials_volume, "Dependencies": the volume needs an extension that lets light
+    // through the surface.
+    warning(fmt::format(
+        "{}.extensions.KHR_materials_volume: has no effect without KHR_materials_transmission "
+        "or KHR_materials_diffuse_transmission (no light enters the volume)",
+        where));
+  if (m.dispersion && m.dispersion->dispersion > 0.0f &&
+      !(m.volume && m.volume->thickness_factor > 0.0f))
+    // KHR_materials_dispersion, "Dependencies": it spreads the refraction through a volume;
+    // a thin-walled surface does not refract.
+    warning(fmt::format(
+        "{}.extensions.KHR_materials_dispersion: has no effect without KHR_materials_volume "
+        "with thicknessFactor > 0 (a thin-walled surface does not refract)",
+        where));
+  if (m.volume && m.volume->thickness_factor > 0.0f && m.double_sided)
+    // KHR_materials_volume, "Properties": doubleSided has no effect on volume boundaries.
+    warning(
+        fmt::format("{}.doubleSided: has no effect on a volume boundary (KHR_materials_volume with "
+                    "thicknessFactor > 0): both sides of the mesh bound the medium",
+                    where));
+  // KHR_materials_unlit: every other extension here names it among its exclusions.
+  for (const MaterialExtension& alone : material_extensions()) {
+    if (!alone.exclusive || !alone.present(m)) continue;
+    for (const MaterialExtension& other : material_extensions())
+      if (&other != &alone && extensions.contains(other.name))
+        warning(
+            fmt::format("{}.extensions: {} must not be combined with {}; the material is shown {}",
+                        where, alone.name, other.name, alone.summary));
   }
 }
 

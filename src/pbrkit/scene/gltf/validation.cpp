@@ -16,25 +16,20 @@ namespace gltf {
 
 namespace {
 
-// Extensions this loader implements; any other one in extensionsRequired is an error.
-const std::set<std::string> kSupportedExtensions = {"KHR_materials_emissive_strength",
-                                                    "KHR_materials_ior",
-                                                    "KHR_materials_specular",
-                                                    "KHR_materials_clearcoat",
-                                                    "KHR_materials_sheen",
-                                                    "KHR_materials_anisotropy",
-                                                    "KHR_materials_iridescence",
-                                                    "KHR_materials_unlit",
-                                                    "KHR_materials_transmission",
-                                                    "KHR_materials_volume",
-                                                    "KHR_materials_dispersion",
-                                                    "KHR_materials_diffuse_transmission",
-                                                    "KHR_texture_transform",
-                                                    "KHR_lights_punctual",
-                                                    "KHR_mesh_quantization",
-                                                    "KHR_draco_mesh_compression",
-                                                    "EXT_meshopt_compression",
-                                                    "EXT_mesh_gpu_instancing"};
+// Extensions this loader implements; any other one in extensionsRequired is an error. The
+// KHR_materials_* ones are the material schema's, with KHR_materials_emissive_strength
+// (read with the core emissiveFactor, in materials.cpp).
+const std::set<std::string>& supported_extensions() {
+  static const std::set<std::string> kNames = [] {
+    std::set<std::string> names = {
+        "KHR_materials_emissive_strength", "KHR_texture_transform",      "KHR_lights_punctual",
+        "KHR_mesh_quantization",           "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+        "EXT_mesh_gpu_instancing"};
+    for (const MaterialExtension& e : material_extensions()) names.insert(e.name);
+    return names;
+  }();
+  return kNames;
+}
 
 }  // namespace
 
@@ -96,12 +91,12 @@ void Loader::check_json(const json& root) {
   scene_.extensions_required = string_list("extensionsRequired");
   for (std::size_t i = 0; i < scene_.extensions_required.size(); ++i) {
     const std::string& e = scene_.extensions_required[i];
-    if (!kSupportedExtensions.count(e))
+    if (!supported_extensions().count(e))
       error(fmt::format("extensionsRequired[{}]", i),
             fmt::format("required extension '{}' is not supported", e));
   }
   for (const std::string& e : scene_.extensions_used)
-    if (!kSupportedExtensions.count(e) &&
+    if (!supported_extensions().count(e) &&
         std::find(scene_.extensions_required.begin(), scene_.extensions_required.end(), e) ==
             scene_.extensions_required.end())
       warning(fmt::format("optional extension '{}' is not supported and is ignored", e));
@@ -207,7 +202,7 @@ void Loader::check_buffer_views() {
 }  // namespace gltf
 
 std::vector<std::string> supported_gltf_extensions() {
-  return {gltf::kSupportedExtensions.begin(), gltf::kSupportedExtensions.end()};
+  return {gltf::supported_extensions().begin(), gltf::supported_extensions().end()};
 }
 
 }  // namespace pbrkit
