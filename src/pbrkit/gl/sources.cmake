@@ -21,6 +21,7 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/compute_eval.cpp
   ${_pbrkit_gl_dir}/display_eval.cpp
   ${_pbrkit_gl_dir}/iridescence_eval.cpp
+  ${_pbrkit_gl_dir}/sheen_eval.cpp
   ${_pbrkit_gl_dir}/transmission_eval.cpp
   ${_pbrkit_gl_dir}/energy_texture.cpp
   ${_pbrkit_gl_dir}/ibl_maps.cpp

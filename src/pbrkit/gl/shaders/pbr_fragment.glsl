@@ -216,17 +216,24 @@ vec3 map_normal(sampler2D tex, int slot, float scale, vec3 n) {
   return ml > 0.0 ? mapped / ml : n;
 }
 
-// The sheen's image-based lighting (the Khronos Sample Viewer's getIBLRadianceCharlie):
-// sheenColor times the Charlie-prefiltered environment along R at the sheen roughness's
-// mip, times the sheen's directional albedo E(n.v):
-// uSheenCube is the baker's Charlie-prefiltered chain (ibl/sheen_prefilter.h; its levels
-// follow the GGX chain's roughness mapping) and E the sheen's albedo table, which is also
-// the split sum's DG term for the README's Charlie visibility (ibl/sheen_lut.h).
+// The sheen's image-based lighting: sheenColor times the sheen's directional albedo E(n.v)
+// (the split sum's DG term for the README's Charlie visibility, ibl/sheen_lut.h) times the
+// environment averaged over a cosine lobe about the direction the Charlie lobe actually
+// gathers light from (core/sheen.h SheenTable::lobe_angle: the mean of the cosine-weighted
+// lobe, on the viewer's side of n; MODEL.md "Sheen maps"). The cosine lobe is the irradiance
+// E(d) / pi: the sheen lobe is about as wide (its mean cosine about its mean direction is
+// 0.50-0.74 over the table, a cosine lobe's 2/3). The Khronos Sample Viewer's
+// getIBLRadianceCharlie looks its Charlie-prefiltered cube up along R instead, the other
+// side of n, so its rims show the environment beside the object where the lobe
+// back-scatters what lies behind the viewer (measured in docs/SPLIT_SUM_ERRORS.md).
 vec3 sheen_ibl(vec3 n, vec3 v, vec3 sheen_color, float sheen_roughness) {
-  vec3 r = reflect(-v, n);
-  vec3 light = textureLod(uSheenCube, world_to_env(r, uIblRotation),
-                          roughness_lod(sheen_roughness, uSheenLevels)).rgb;
-  return light * sheen_color * sheen_E(uSheenLut, dot(n, v), sheen_roughness);
+  vec3 d = world_to_env(sheen_lobe_direction(uSheenLut, n, v, sheen_roughness), uIblRotation);
+#if IRRADIANCE_SH
+  vec3 irradiance = max(eval_sh_irradiance(uSH, d), vec3(0.0));
+#else
+  vec3 irradiance = textureLod(uIrradianceCube, d, 0.0).rgb;
+#endif
+  return irradiance * (1.0 / kPi) * sheen_color * sheen_E(uSheenLut, dot(n, v), sheen_roughness);
 }
 
 // KHR_lights_punctual's recommended range window clamp(1 - (d/range)^4, 0, 1) over d^2
@@ -543,11 +550,13 @@ void main() {
 #endif
 #if MATERIAL_SHEEN
     {
-      // The base under the sheen, scaled by the sheen's albedo at n.v (the README's
-      // simplified albedo scaling; bsdf.h's min form with the light's side left out).
+      // The base under the sheen, scaled as bsdf.h's min(1 - c E(n.v), 1 - c E(n.l)) scales
+      // it under a uniform environment: by 1 - c E_max_avg(n.v), the light's side averaged
+      // over a cosine lobe (core/sheen.h; the README's one-sided 1 - c E(n.v) left the base
+      // up to 20% brighter than the path tracer's at normal incidence).
       float sr = clamp(sheen_roughness, kMinSheenRoughness, 1.0);
       vec3 sc = clamp(sheen_color, 0.0, 1.0);
-      indirect = sheen_ibl(n, v, sc, sr) + (1.0 - max3(sc) * sheen_E(uSheenLut, dot(n, v), sr)) * indirect;
+      indirect = sheen_ibl(n, v, sc, sr) + (1.0 - max3(sc) * sheen_E_max_avg(uSheenLut, dot(n, v), sr)) * indirect;
     }
 #endif
 #if MATERIAL_CLEARCOAT
