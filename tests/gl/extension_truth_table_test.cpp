@@ -175,14 +175,14 @@ const std::vector<SphereError> kClearcoat = {
 };
 const std::vector<SphereError> kSheen = {
     {"sheen_color_0", -0.075, -0.074, -0.039},     {"sheen_color_1", -0.043, -0.044, -0.024},
-    {"sheen_color_2", -0.007, -0.006, +0.003},     {"sheen_color_3", +0.029, +0.032, +0.035},
-    {"sheen_color_4", +0.018, +0.020, +0.022},     {"sheen_color_5", +0.078, +0.081, +0.082},
-    {"sheen_roughness_0", -0.033, -0.033, -0.011}, {"sheen_roughness_1", -0.018, -0.017, -0.004},
-    {"sheen_roughness_2", +0.058, +0.061, +0.064}, {"sheen_roughness_3", +0.053, +0.057, +0.065},
-    {"sheen_roughness_4", +0.045, +0.048, +0.052}, {"sheen_roughness_5", +0.050, +0.052, +0.056},
-    {"sheen_tint_0", -0.038, -0.036, -0.004},      {"sheen_tint_1", +0.055, -0.082, -0.037},
-    {"sheen_tint_2", +0.056, +0.034, -0.033},      {"sheen_tint_3", -0.036, +0.079, +0.019},
-    {"sheen_tint_4", +0.040, +0.102, +0.120},      {"sheen_tint_5", +0.106, +0.056, +0.112},
+    {"sheen_color_2", -0.012, -0.012, -0.002},     {"sheen_color_3", +0.014, +0.015, +0.020},
+    {"sheen_color_4", +0.007, +0.007, +0.010},     {"sheen_color_5", +0.055, +0.057, +0.058},
+    {"sheen_roughness_0", -0.033, -0.033, -0.011}, {"sheen_roughness_1", -0.019, -0.018, -0.005},
+    {"sheen_roughness_2", +0.039, +0.040, +0.045}, {"sheen_roughness_3", +0.032, +0.034, +0.043},
+    {"sheen_roughness_4", +0.024, +0.025, +0.029}, {"sheen_roughness_5", +0.028, +0.029, +0.033},
+    {"sheen_tint_0", -0.038, -0.036, -0.004},      {"sheen_tint_1", +0.028, -0.092, -0.045},
+    {"sheen_tint_2", +0.027, +0.007, -0.042},      {"sheen_tint_3", -0.046, +0.046, +0.003},
+    {"sheen_tint_4", +0.027, +0.069, +0.083},      {"sheen_tint_5", +0.073, +0.036, +0.077},
 };
 const std::vector<SphereError> kAnisotropy = {
     {"anisotropy_strength_0", -0.008, -0.009, -0.009},

@@ -52,8 +52,8 @@ float charlie_pdf(glm::vec3 h, float roughness);
 /// while the components go to (0, |m|) continuously. Tabulated once at first use (thread-safe;
 /// about 20 ms on 2 cores, 30 on one) and looked up bilinearly. E is both the albedo scaling of the
 /// base (1 - max3(sheenColor) E(n.v)) and the split-sum scale of the sheen IBL (ibl/sheen_lut.h);
-/// the angle is where the real-time sheen IBL looks the environment up (sheen_lobe_direction,
-/// MODEL.md "Sheen maps").
+/// the moments (the mean and the second moments) are what the real-time sheen IBL averages
+/// the environment's SH with (ibl/sheen_sh.h, MODEL.md "Sheen maps").
 class SheenTable {
  public:
   static constexpr int kMuSize = 64;         ///< mu nodes: mu_i = (i / (kMuSize - 1))^2
@@ -79,6 +79,12 @@ class SheenTable {
   float E_max_avg(float mu, float roughness) const;
   /// The lobe's mean m(mu, roughness) as (along t, along n), bilinear on E's nodes.
   glm::vec2 lobe_mean(float mu, float roughness) const;
+  /// The lobe's second moments int l_a l_b D V (n.l) dl / E as (tt, nn, tn), bilinear on
+  /// E's nodes (bb = 1 - tt - nn; tb = nb = 0 by the lobe's symmetry across the plane of n
+  /// and v). With lobe_mean they give the lobe's integral against any polynomial of degree
+  /// 2 in l, so against an environment's order-2 spherical harmonics exactly
+  /// (ibl/sheen_sh.h).
+  glm::vec3 lobe_second_moments(float mu, float roughness) const;
   /// The angle (radians) of lobe_mean from n towards v. Positive: the Charlie lobe gathers
   /// light from the viewer's side of n (back-scatter), not around the mirror direction (at
   /// negative angles).
@@ -93,22 +99,18 @@ class SheenTable {
  private:
   struct Moments {
     double e, mean_t, mean_n;  // E and the unnormalised mean along t (towards v) and n
+    double tt, nn, tn;         // the unnormalised second moments
   };
   static Moments integrate_moments(float mu, float roughness, int samples);
   SheenTable();
   static const SheenTable& build();
   static inline std::atomic<const SheenTable*> built_{};
   float lerp_nodes(const std::vector<float>& nodes, float mu, float roughness) const;
-  std::vector<float> e_;          // [j * kMuSize + i]
-  std::vector<float> mean_t_;     // [j * kMuSize + i]
-  std::vector<float> mean_n_;     // [j * kMuSize + i]
-  std::vector<float> e_max_avg_;  // [j * kMuSize + i]
+  std::vector<float> e_;             // [j * kMuSize + i]
+  std::vector<float> mean_t_;        // [j * kMuSize + i]
+  std::vector<float> mean_n_;        // [j * kMuSize + i]
+  std::vector<float> e_max_avg_;     // [j * kMuSize + i]
+  std::vector<float> tt_, nn_, tn_;  // [j * kMuSize + i]: the second moments
 };
-
-/// The unit direction the real-time sheen IBL looks the environment up in (world or local
-/// frame alike; n, v unit, v above n's horizon): SheenTable::lobe_mean(n.v, roughness) in
-/// the frame (t, n), normalised (n itself at normal incidence). sheen.glsl's sheen_lobe_direction
-/// is its GLSL twin.
-glm::vec3 sheen_lobe_direction(glm::vec3 n, glm::vec3 v, float roughness);
 
 }  // namespace pbrkit

@@ -81,7 +81,7 @@ SheenTable::Moments SheenTable::integrate_moments(float mu, float roughness, int
   for (int k = 0; k < n; ++k)
     cos_phi[std::size_t(k)] = std::cos((float(k) + 0.5f) * kPi / float(n));
   const float exponent = 0.5f / r;  // sin^(1/r) = (sin^2)^(1/(2r))
-  double sum = 0.0, sum_t = 0.0, sum_n = 0.0;
+  double sum = 0.0, sum_t = 0.0, sum_n = 0.0, sum_tt = 0.0, sum_nn = 0.0, sum_tn = 0.0;
   for (int i = 0; i < n; ++i) {
     const float s = (float(i) + 0.5f) / float(n);
     const float NdotL = s * s;
@@ -90,21 +90,28 @@ SheenTable::Moments SheenTable::integrate_moments(float mu, float roughness, int
     const float weight = 2.0f * s / ((1.0f + lambda_v + SheenLambda(NdotL, r)) * 4.0f * mu);
     // h = (v + l) / |v + l|: cos^2(theta_h) = (n.v + n.l)^2 / (2 + 2 v.l).
     const float hz_num = sqr(mu + NdotL);
-    double row = 0.0, row_t = 0.0;
+    double row = 0.0, row_t = 0.0, row_tt = 0.0;
     for (int k = 0; k < n; ++k) {
       const float len2 = 2.0f + 2.0f * (mu * NdotL + sin_v * sin_l * cos_phi[std::size_t(k)]);
       const float sin2h = std::max(1.0f - hz_num / len2, 0.0f);
       const double d = double(std::pow(sin2h, exponent));
+      const double lt = double(sin_l * cos_phi[std::size_t(k)]);  // l.t
       row += d;
-      row_t += d * double(sin_l * cos_phi[std::size_t(k)]);  // l.t
+      row_t += d * lt;
+      row_tt += d * lt * lt;
     }
-    sum += row * double(weight);
-    sum_t += row_t * double(weight);
-    sum_n += row * double(weight) * double(NdotL);
+    const double w = double(weight), nl = double(NdotL);
+    sum += row * w;
+    sum_t += row_t * w;
+    sum_n += row * w * nl;
+    sum_tt += row_tt * w;
+    sum_nn += row * w * nl * nl;
+    sum_tn += row_t * w * nl;
   }
   const double norm = double(2.0f + 1.0f / r) * kInv2Pi;  // D = norm sin^(1/r)
   const double scale = 2.0 * norm / double(n) * (double(kPi) / double(n));
-  return {sum * scale, sum_t * scale, sum_n * scale};
+  return {sum * scale,    sum_t * scale,  sum_n * scale,
+          sum_tt * scale, sum_nn * scale, sum_tn * scale};
 }
 
 float SheenTable::integrate_E(float mu, float roughness, int samples) {
@@ -120,7 +127,10 @@ SheenTable::SheenTable()
     : e_(std::size_t(kMuSize) * kRoughnessSize),
       mean_t_(e_.size()),
       mean_n_(e_.size()),
-      e_max_avg_(e_.size()) {
+      e_max_avg_(e_.size()),
+      tt_(e_.size()),
+      nn_(e_.size()),
+      tn_(e_.size()) {
   pbrkit::parallel_for(0, kMuSize * kRoughnessSize, [&](int k) {
     const int i = k % kMuSize, j = k / kMuSize;
     const float s = float(i) / float(kMuSize - 1);
@@ -130,6 +140,11 @@ SheenTable::SheenTable()
     e_[std::size_t(k)] = float(m.e);
     mean_t_[std::size_t(k)] = m.e > 0.0 ? float(m.mean_t / m.e) : 0.0f;
     mean_n_[std::size_t(k)] = m.e > 0.0 ? float(m.mean_n / m.e) : 1.0f;
+    // (At n.v = 1 and the smallest roughness E is ~3e-4, still far from 0.)
+    const double inv_e = m.e > 0.0 ? 1.0 / m.e : 0.0;
+    tt_[std::size_t(k)] = float(m.tt * inv_e);
+    nn_[std::size_t(k)] = m.e > 0.0 ? float(m.nn * inv_e) : 1.0f;
+    tn_[std::size_t(k)] = float(m.tn * inv_e);
   });
   // E_max_avg = 2 int_0^1 max(E(mu), E(mu_l)) mu_l dmu_l; with mu_l = s^2 (E's nodes are
   // uniform in s): 4 int_0^1 max(E(mu), E(s^2)) s^3 ds, midpoint rule over 256 intervals on
@@ -181,18 +196,14 @@ glm::vec2 SheenTable::lobe_mean(float mu, float roughness) const {
   return {lerp_nodes(mean_t_, mu, roughness), lerp_nodes(mean_n_, mu, roughness)};
 }
 
+glm::vec3 SheenTable::lobe_second_moments(float mu, float roughness) const {
+  return {lerp_nodes(tt_, mu, roughness), lerp_nodes(nn_, mu, roughness),
+          lerp_nodes(tn_, mu, roughness)};
+}
+
 float SheenTable::lobe_angle(float mu, float roughness) const {
   const glm::vec2 m = lobe_mean(mu, roughness);
   return std::atan2(m.x, m.y);
-}
-
-glm::vec3 sheen_lobe_direction(glm::vec3 n, glm::vec3 v, float roughness) {
-  const float mu = glm::dot(n, v);
-  const glm::vec3 t = v - n * mu;  // v's part along the surface
-  const float tl = glm::length(t);
-  if (!(tl > 1e-6f)) return n;
-  const glm::vec2 m = SheenTable::get().lobe_mean(mu, roughness);
-  return glm::normalize(m.y * n + m.x / tl * t);
 }
 
 }  // namespace pbrkit

@@ -8,7 +8,7 @@
 
 namespace pbrkit::gl {
 
-std::vector<glm::vec4> sheen_lobe_glsl(const std::vector<SheenLobeCase>& cases) {
+std::vector<glm::vec4> sheen_sh_glsl(const std::vector<SheenLobeCase>& cases, const SH9& sh) {
   if (cases.empty()) return {};
   const Program program = Program::compute("sheen_test.glsl");
   // std430 layout of sheen_test.glsl's SheenLobeCase: two vec4.
@@ -21,6 +21,7 @@ std::vector<glm::vec4> sheen_lobe_glsl(const std::vector<SheenLobeCase>& cases) 
   const GLuint sheen_lut = create_sheen_lut_texture();
   program.use();
   program.set("uCount", int(cases.size()));
+  glProgramUniform3fv(program.id(), program.location("uSH"), 9, &sh[0].x);
   glBindTextureUnit(0, sheen_lut);
   std::vector<glm::vec4> output = detail::dispatch_cases(input, cases.size());
   glDeleteTextures(1, &sheen_lut);

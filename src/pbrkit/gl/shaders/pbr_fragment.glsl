@@ -218,22 +218,16 @@ vec3 map_normal(sampler2D tex, int slot, float scale, vec3 n) {
 
 // The sheen's image-based lighting: sheenColor times the sheen's directional albedo E(n.v)
 // (the split sum's DG term for the README's Charlie visibility, ibl/sheen_lut.h) times the
-// environment averaged over a cosine lobe about the direction the Charlie lobe actually
-// gathers light from (core/sheen.h SheenTable::lobe_angle: the mean of the cosine-weighted
-// lobe, on the viewer's side of n; MODEL.md "Sheen maps"). The cosine lobe is the irradiance
-// E(d) / pi: the sheen lobe is about as wide (its mean cosine about its mean direction is
-// 0.50-0.74 over the table, a cosine lobe's 2/3). The Khronos Sample Viewer's
-// getIBLRadianceCharlie looks its Charlie-prefiltered cube up along R instead, the other
-// side of n, so its rims show the environment beside the object where the lobe
-// back-scatters what lies behind the viewer (measured in docs/SPLIT_SUM_ERRORS.md).
+// environment's order-2 SH averaged over the Charlie lobe itself (sheen.glsl's
+// sheen_sh_radiance, from the lobe's tabulated first and second moments: where it gathers
+// light, on the viewer's side of n, and how widely; MODEL.md "Sheen maps"). The Khronos
+// Sample Viewer's getIBLRadianceCharlie looks its Charlie-prefiltered cube up along R
+// instead, the other side of n, so its rims show the environment beside the object where
+// the lobe back-scatters what lies behind the viewer (docs/SPLIT_SUM_ERRORS.md).
 vec3 sheen_ibl(vec3 n, vec3 v, vec3 sheen_color, float sheen_roughness) {
-  vec3 d = world_to_env(sheen_lobe_direction(uSheenLut, n, v, sheen_roughness), uIblRotation);
-#if IRRADIANCE_SH
-  vec3 irradiance = max(eval_sh_irradiance(uSH, d), vec3(0.0));
-#else
-  vec3 irradiance = textureLod(uIrradianceCube, d, 0.0).rgb;
-#endif
-  return irradiance * (1.0 / kPi) * sheen_color * sheen_E(uSheenLut, dot(n, v), sheen_roughness);
+  vec3 light = sheen_sh_radiance(uSheenLut, uSH, world_to_env(n, uIblRotation),
+                                 world_to_env(v, uIblRotation), sheen_roughness);
+  return max(light, vec3(0.0)) * sheen_color * sheen_E(uSheenLut, dot(n, v), sheen_roughness);
 }
 
 // KHR_lights_punctual's recommended range window clamp(1 - (d/range)^4, 0, 1) over d^2

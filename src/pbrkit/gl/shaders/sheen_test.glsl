@@ -1,7 +1,7 @@
 #version 450
-// Shader unit test: sheen.glsl's sheen_lobe_direction and sheen_E for a batch of inputs (one
+// Shader unit test: sheen.glsl's sheen_sh_radiance and sheen_E for a batch of inputs (one
 // invocation each) so tests/gl/sheen_glsl_test.cpp can compare them with the C++
-// pbrkit::sheen_lobe_direction and SheenTable::E.
+// pbrkit::sheen_sh_radiance and SheenTable::E.
 #include "brdf.glsl"
 #include "sheen.glsl"
 
@@ -16,6 +16,7 @@ layout(std430, binding = 1) writeonly buffer Results { vec4 results[]; };
 layout(binding = 0) uniform sampler2D uSheenLut;
 
 uniform int uCount;
+uniform vec3 uSH[9];
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -23,5 +24,5 @@ void main() {
   SheenLobeCase c = cases[i];
   vec3 n = c.n_roughness.xyz, v = c.v.xyz;
   float r = c.n_roughness.w;
-  results[i] = vec4(sheen_lobe_direction(uSheenLut, n, v, r), sheen_E(uSheenLut, dot(n, v), r));
+  results[i] = vec4(sheen_sh_radiance(uSheenLut, uSH, n, v, r), sheen_E(uSheenLut, dot(n, v), r));
 }
