@@ -155,8 +155,9 @@ layout(binding = 6) uniform sampler2D uEnergyIBL;     // EnergyTable of the IBL 
 uniform float uMetallicOverride;   // < 0: none
 uniform float uRoughnessOverride;  // < 0: none
 layout(binding = 19) uniform sampler2D uEnergyCoat;  // EnergyTable of the reference G (the coat's)
-// The sheen's IBL and albedo: the baker's Charlie-prefiltered cube (the GGX cube for maps
-// baked without it) and core/sheen.h's SheenTable.
+// The sheen's tables (core/sheen.h's SheenTable: E, E_max_avg and the lobe's moments;
+// gl/energy_texture.h). The baker's Charlie-prefiltered cube is still bound but no longer
+// read: the sheen's IBL averages the SH over the lobe (sheen_ibl, MODEL.md "Sheen maps").
 layout(binding = 20) uniform samplerCube uSheenCube;
 layout(binding = 21) uniform sampler2D uSheenLut;
 uniform int uSheenLevels;
