@@ -4,11 +4,11 @@
 // test map (coloured longitude bands, a bright top cap, a dark bottom cap: the sheen's rims
 // show which side of the environment the lobe gathers from). GL against the path tracer
 // restricted to direct environment light (one bounce, the same layered BSDF), per sphere and
-// channel: the error of the mean radiance is held to its measured value
+// channel (over the pixels with n.v > 0.2 whose whole footprint sees the sphere): the error
+// of the mean radiance is held to its measured value
 // (docs/SPLIT_SUM_ERRORS.md, "sheen grid"), as ExtensionTruthTable holds the built-in
-// scenes; so is the error of what the sheen adds (the sphere with the sheen less the same
-// sphere without it, in each renderer), which is also bounded: the base's own split-sum
-// error (up to -43% in one channel under the probe) is the core model's, not the sheen's.
+// scenes, and so is the error of what the sheen adds (the sphere with the sheen less the same
+// sphere without it, in each renderer); both are bounded by 15%.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -81,7 +81,7 @@ TEST_P(SheenGridTruth, PerSphereErrorsAsMeasuredAndSheenWithinBound) {
   bake.irradiance_size = 8;
   bake.lut_size = 32;
   const IblMaps maps = ibl_maps_from_bake(bake_environment(env, bake), env);
-  constexpr int kWidth = 288, kHeight = 96;
+  constexpr int kWidth = 384, kHeight = 128;
   // The built-in sheen scene's dark base and sphere mesh, three spheres in a row 3 apart
   // (none hides another's environment from the path tracer).
   auto render = [&](bool sheen_on) {
@@ -133,6 +133,18 @@ TEST_P(SheenGridTruth, PerSphereErrorsAsMeasuredAndSheenWithinBound) {
           const auto mu = testing::sphere_hit_cosine(
               testing::pixel_ray(camera, x, y, kWidth, kHeight), centre, radius);
           if (!mu || *mu < 0.2f) continue;
+          // Only pixels whose neighbours see the sphere too: the path tracer's box filter
+          // averages over the whole pixel, the GL image (MSAA 1) shades its centre, so a
+          // pixel straddling the silhouette mixes in the environment behind the sphere in
+          // one image only (with spheres ~8 px in radius, a tenth of the disc).
+          bool inside = true;
+          for (int dy = -1; dy <= 1 && inside; ++dy)
+            for (int dx = -1; dx <= 1 && inside; ++dx)
+              inside =
+                  testing::sphere_hit_cosine(
+                      testing::pixel_ray(camera, x + dx, y + dy, kWidth, kHeight), centre, radius)
+                      .has_value();
+          if (!inside) continue;
           const std::size_t p = std::size_t(y) * std::size_t(kWidth) + std::size_t(x);
           const double half = double(truth.film.count[p]) / 2.0;
           const glm::dvec3 sum(truth.film.sum[p]), even(truth.film.sum_even[p]);
@@ -187,10 +199,12 @@ TEST_P(SheenGridTruth, PerSphereErrorsAsMeasuredAndSheenWithinBound) {
       EXPECT_NEAR(es[c], want_s[c], 4.0 * std::sqrt(2.0) * sigma_s[c] + 0.01)
           << "sheen's part, roughness " << want.sheen_roughness << " channel "
           << "RGB"[c];
-      // What the sheen adds within 20% of the truth (measured: up to 16.5%, the probe's
-      // blue at roughness 0.3; 10% under the city map).
-      EXPECT_LT(std::abs(es[c]), 0.2) << "roughness " << want.sheen_roughness << " channel "
+      // The goal: no sphere, and not what the sheen adds, more than 15% off the truth
+      // (measured: within 2.6%; the Sample Viewer's lookup was up to 22% and 32% off).
+      EXPECT_LT(std::abs(e[c]), 0.15) << "roughness " << want.sheen_roughness << " channel "
                                       << "RGB"[c];
+      EXPECT_LT(std::abs(es[c]), 0.15) << "roughness " << want.sheen_roughness << " channel "
+                                       << "RGB"[c];
     }
   }
 }
@@ -199,13 +213,13 @@ TEST_P(SheenGridTruth, PerSphereErrorsAsMeasuredAndSheenWithinBound) {
 INSTANTIATE_TEST_SUITE_P(
     Environments, SheenGridTruth,
     ::testing::Values(GridCase{"city",
-                               {{0.3f, +0.034, +0.036, +0.039, +0.097, +0.098, +0.101},
-                                {0.6f, +0.015, +0.016, +0.019, +0.064, +0.063, +0.062},
-                                {1.0f, +0.023, +0.024, +0.027, +0.065, +0.065, +0.065}}},
+                               {{0.3f, -0.018, -0.019, -0.018, -0.016, -0.016, -0.018},
+                                {0.6f, -0.009, -0.009, -0.009, -0.004, -0.003, -0.005},
+                                {1.0f, -0.009, -0.009, -0.009, -0.003, -0.003, -0.005}}},
                       GridCase{"probe",
-                               {{0.3f, +0.039, -0.165, +0.052, +0.099, +0.091, +0.165},
-                                {0.6f, -0.027, -0.031, +0.019, +0.089, +0.081, +0.062},
-                                {1.0f, -0.116, +0.061, +0.012, +0.074, +0.092, +0.047}}}),
+                               {{0.3f, -0.007, -0.007, -0.019, +0.001, -0.001, -0.026},
+                                {0.6f, +0.004, +0.006, -0.009, +0.006, +0.007, -0.001},
+                                {1.0f, +0.008, +0.011, -0.010, +0.000, +0.007, +0.001}}}),
     [](const auto& info) { return std::string(info.param.environment); });
 
 }  // namespace
