@@ -207,14 +207,14 @@ const std::vector<SphereError> kClearcoat = {
 };
 const std::vector<SphereError> kSheen = {
     {"sheen_color_0", -0.075, -0.074, -0.039},     {"sheen_color_1", -0.043, -0.044, -0.024},
-    {"sheen_color_2", -0.085, -0.090, -0.068},     {"sheen_color_3", -0.109, -0.116, -0.095},
-    {"sheen_color_4", -0.138, -0.147, -0.129},     {"sheen_color_5", -0.138, -0.147, -0.132},
-    {"sheen_roughness_0", -0.033, -0.033, -0.011}, {"sheen_roughness_1", -0.087, -0.095, -0.061},
-    {"sheen_roughness_2", -0.144, -0.157, -0.131}, {"sheen_roughness_3", -0.186, -0.199, -0.177},
-    {"sheen_roughness_4", -0.196, -0.208, -0.192}, {"sheen_roughness_5", -0.202, -0.214, -0.200},
-    {"sheen_tint_0", -0.038, -0.036, -0.004},      {"sheen_tint_1", -0.209, -0.117, -0.047},
-    {"sheen_tint_2", -0.232, -0.222, -0.050},      {"sheen_tint_3", -0.080, -0.249, -0.080},
-    {"sheen_tint_4", -0.012, -0.176, -0.211},      {"sheen_tint_5", -0.211, -0.095, -0.222},
+    {"sheen_color_2", -0.012, -0.012, -0.002},     {"sheen_color_3", +0.014, +0.015, +0.020},
+    {"sheen_color_4", +0.007, +0.007, +0.010},     {"sheen_color_5", +0.055, +0.057, +0.058},
+    {"sheen_roughness_0", -0.033, -0.033, -0.011}, {"sheen_roughness_1", -0.019, -0.018, -0.005},
+    {"sheen_roughness_2", +0.039, +0.040, +0.045}, {"sheen_roughness_3", +0.032, +0.034, +0.043},
+    {"sheen_roughness_4", +0.024, +0.025, +0.029}, {"sheen_roughness_5", +0.028, +0.029, +0.033},
+    {"sheen_tint_0", -0.038, -0.036, -0.004},      {"sheen_tint_1", +0.028, -0.092, -0.045},
+    {"sheen_tint_2", +0.027, +0.007, -0.042},      {"sheen_tint_3", -0.046, +0.046, +0.003},
+    {"sheen_tint_4", +0.027, +0.069, +0.083},      {"sheen_tint_5", +0.073, +0.036, +0.077},
 };
 const std::vector<SphereError> kAnisotropy = {
     {"anisotropy_strength_0", -0.008, -0.009, -0.009},

@@ -43,9 +43,17 @@ float charlie_pdf(glm::vec3 h, float roughness);
 
 /// Directional albedo of the sheen lobe with sheenColor = 1:
 ///   E(mu, r) = int D_Charlie(h) V_Charlie(v, l) (n.l) dl over the upper hemisphere,
-/// n.v = mu. Tabulated once at first use (thread-safe; about 20 ms on 2 cores, 30 on one) and
-/// looked up bilinearly. It is both the albedo scaling of the base (1 - max3(sheenColor) E(n.v))
-/// and the split-sum scale of the sheen IBL (ibl/sheen_lut.h).
+/// n.v = mu, and the direction of the same cosine-weighted lobe's mean,
+///   m(mu, r) = int l D_Charlie(h) V_Charlie(v, l) (n.l) dl / E(mu, r),
+/// by its components along n and along t, v's direction in the tangent plane (m has no
+/// component across the plane of n and v). The components, not the angle, are tabulated:
+/// near normal incidence the angle jumps (at n.v = 1 it is 0 by symmetry, but already
+/// 26 degrees at n.v = 0.98 for roughness 0.3, where the lobe is a ring about n and m short),
+/// while the components go to (0, |m|) continuously. Tabulated once at first use (thread-safe;
+/// about 20 ms on 2 cores, 30 on one) and looked up bilinearly. E is both the albedo scaling of the
+/// base (1 - max3(sheenColor) E(n.v)) and the split-sum scale of the sheen IBL (ibl/sheen_lut.h);
+/// the moments (the mean and the second moments) are what the real-time sheen IBL averages
+/// the environment's SH with (ibl/sheen_sh.h, MODEL.md "Sheen maps").
 class SheenTable {
  public:
   static constexpr int kMuSize = 64;         ///< mu nodes: mu_i = (i / (kMuSize - 1))^2
@@ -61,15 +69,48 @@ class SheenTable {
   /// clamped to [kMinSheenRoughness, 1].
   float E(float mu, float roughness) const;
 
+  /// The cosine-weighted average over l of max(E(mu), E(n.l)):
+  ///   E_max_avg(mu, r) = 2 int_0^1 max(E(mu, r), E(mu_l, r)) mu_l dmu_l,
+  /// bilinear on E's nodes. The base under the sheen is scaled by min(1 - c E(n.v),
+  /// 1 - c E(n.l)) = 1 - c max(E(n.v), E(n.l)) (c = max3(sheenColor); the layered Bsdf, after
+  /// the README's albedo scaling made reciprocal), so under a uniform environment its
+  /// image-based light is scaled by exactly 1 - c E_max_avg(n.v): the real-time renderer's
+  /// scaling of the base's IBL.
+  float E_max_avg(float mu, float roughness) const;
+  /// The lobe's mean m(mu, roughness) as (along t, along n), bilinear on E's nodes.
+  glm::vec2 lobe_mean(float mu, float roughness) const;
+  /// The lobe's second moments int l_a l_b D V (n.l) dl / E as (tt, nn, tn), bilinear on
+  /// E's nodes (bb = 1 - tt - nn; tb = nb = 0 by the lobe's symmetry across the plane of n
+  /// and v). With lobe_mean they give the lobe's integral against any polynomial of degree
+  /// 2 in l, so against an environment's order-2 spherical harmonics exactly
+  /// (ibl/sheen_sh.h).
+  glm::vec3 lobe_second_moments(float mu, float roughness) const;
+  /// The angle (radians) of lobe_mean from n towards v. Positive: the Charlie lobe gathers
+  /// light from the viewer's side of n (back-scatter), not around the mirror direction (at
+  /// negative angles).
+  float lobe_angle(float mu, float roughness) const;
+
   /// One entry computed directly with a `samples` x `samples` midpoint product quadrature in
   /// (sqrt(n.l), phi) (the half vector follows from l): used to build the table and by tests.
   static float integrate_E(float mu, float roughness, int samples);
+  /// lobe_angle's entry by the same quadrature as integrate_E.
+  static float integrate_lobe_angle(float mu, float roughness, int samples);
 
  private:
+  struct Moments {
+    double e, mean_t, mean_n;  // E and the unnormalised mean along t (towards v) and n
+    double tt, nn, tn;         // the unnormalised second moments
+  };
+  static Moments integrate_moments(float mu, float roughness, int samples);
   SheenTable();
   static const SheenTable& build();
   static inline std::atomic<const SheenTable*> built_{};
-  std::vector<float> e_;  // [j * kMuSize + i]
+  float lerp_nodes(const std::vector<float>& nodes, float mu, float roughness) const;
+  std::vector<float> e_;             // [j * kMuSize + i]
+  std::vector<float> mean_t_;        // [j * kMuSize + i]
+  std::vector<float> mean_n_;        // [j * kMuSize + i]
+  std::vector<float> e_max_avg_;     // [j * kMuSize + i]
+  std::vector<float> tt_, nn_, tn_;  // [j * kMuSize + i]: the second moments
 };
 
 }  // namespace pbrkit

@@ -69,23 +69,44 @@ unsigned create_energy_texture(GeometryModel model) {
 }
 
 unsigned create_sheen_lut_texture() {
-  // SheenTable's nodes, read back through E at each node (bilinear interpolation at a node
-  // is the node's value), so the GLSL interpolates the C++ table's own numbers. Texel
-  // (i, j) holds the cell's four corners E(i, j), E(i + 1, j), E(i, j + 1), E(i + 1, j + 1)
-  // (clamped at the last node).
+  // SheenTable's nodes, read back through E and lobe_mean at each node (bilinear
+  // interpolation at a node is the node's value), so the GLSL interpolates the C++ table's
+  // own numbers. Rows 0..ny-1: texel (i, j) holds E's cell's four corners E(i, j),
+  // E(i + 1, j), E(i, j + 1), E(i + 1, j + 1) (clamped at the last node). Rows ny..2 ny - 1:
+  // texel (i, ny + j) holds the lobe's mean (along t, along n) at nodes (i, j) and (i + 1, j),
+  // so a lookup reads rows ny + j and ny + j + 1. Rows 2 ny..3 ny - 1: E_max_avg's corners
+  // as E's. Rows 3 ny..4 ny - 1: the second moments (tt, nn) at (i, j) and (i + 1, j), as
+  // the mean's. Rows 4 ny..5 ny - 1: the second moment tn's corners as E's. One texture: the
+  // sheen's image-based light needs no texture unit of its own.
   const int nx = SheenTable::kMuSize, ny = SheenTable::kRoughnessSize;
-  auto node = [&](int i, int j) {
+  const SheenTable& table = SheenTable::get();
+  auto at = [&](int i, int j) {
     const float t = float(std::min(i, nx - 1)) / float(nx - 1);
     const float u = float(std::min(j, ny - 1)) / float(ny - 1);
-    return SheenTable::get().E(t * t, kMinSheenRoughness + (1.0f - kMinSheenRoughness) * u * u);
+    return glm::vec2(t * t, kMinSheenRoughness + (1.0f - kMinSheenRoughness) * u * u);
   };
-  std::vector<float> texels(std::size_t(nx) * ny * 4);
+  auto e = [&](int i, int j) { return table.E(at(i, j).x, at(i, j).y); };
+  auto e_max = [&](int i, int j) { return table.E_max_avg(at(i, j).x, at(i, j).y); };
+  auto mean = [&](int i, int j) { return table.lobe_mean(at(i, j).x, at(i, j).y); };
+  auto second = [&](int i, int j) { return table.lobe_second_moments(at(i, j).x, at(i, j).y); };
+  std::vector<float> texels(std::size_t(nx) * ny * 5 * 4);
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
       float* t = &texels[(std::size_t(j) * nx + std::size_t(i)) * 4];
-      t[0] = node(i, j), t[1] = node(i + 1, j), t[2] = node(i, j + 1), t[3] = node(i + 1, j + 1);
+      t[0] = e(i, j), t[1] = e(i + 1, j), t[2] = e(i, j + 1), t[3] = e(i + 1, j + 1);
+      float* m = &texels[(std::size_t(ny + j) * nx + std::size_t(i)) * 4];
+      const glm::vec2 m0 = mean(i, j), m1 = mean(i + 1, j);
+      m[0] = m0.x, m[1] = m0.y, m[2] = m1.x, m[3] = m1.y;
+      float* a = &texels[(std::size_t(2 * ny + j) * nx + std::size_t(i)) * 4];
+      a[0] = e_max(i, j), a[1] = e_max(i + 1, j), a[2] = e_max(i, j + 1),
+      a[3] = e_max(i + 1, j + 1);
+      float* q = &texels[(std::size_t(3 * ny + j) * nx + std::size_t(i)) * 4];
+      const glm::vec3 q0 = second(i, j), q1 = second(i + 1, j);
+      q[0] = q0.x, q[1] = q0.y, q[2] = q1.x, q[3] = q1.y;
+      float* c = &texels[(std::size_t(4 * ny + j) * nx + std::size_t(i)) * 4];
+      c[0] = q0.z, c[1] = q1.z, c[2] = second(i, j + 1).z, c[3] = second(i + 1, j + 1).z;
     }
-  return create_rgba32f(nx, ny, texels);
+  return create_rgba32f(nx, 5 * ny, texels);
 }
 
 }  // namespace pbrkit::gl

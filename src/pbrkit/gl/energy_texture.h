@@ -12,10 +12,11 @@ namespace pbrkit::gl {
 /// caller owns the texture name.
 unsigned create_energy_texture(GeometryModel model);
 
-/// The sheen's directional albedo table (core/sheen.h SheenTable) for sheen.glsl's sheen_E:
-/// a 64 x 48 GL_RGBA32F texture whose texel (i, j) holds the four corners of the table's
-/// cell (i, j) (nearest filtering; the shader interpolates by hand). The caller owns the texture
-/// name.
+/// The sheen's tables (core/sheen.h SheenTable) for sheen.glsl: a 64 x 240 GL_RGBA32F
+/// texture (nearest filtering; the shader interpolates by hand) of five 48-row blocks:
+/// E (texel (i, j): the four corners of the cell (i, j)), lobe_mean (texel (i, j): nodes
+/// (i, j) and (i + 1, j)), E_max_avg (corners), lobe_second_moments' (tt, nn) (nodes (i, j)
+/// and (i + 1, j)) and its tn (corners). The caller owns the texture name.
 unsigned create_sheen_lut_texture();
 
 }  // namespace pbrkit::gl

@@ -22,6 +22,7 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/compute_eval.cpp
   ${_pbrkit_gl_dir}/display_eval.cpp
   ${_pbrkit_gl_dir}/iridescence_eval.cpp
+  ${_pbrkit_gl_dir}/sheen_eval.cpp
   ${_pbrkit_gl_dir}/transmission_eval.cpp
   ${_pbrkit_gl_dir}/anisotropy_eval.cpp
   ${_pbrkit_gl_dir}/energy_texture.cpp

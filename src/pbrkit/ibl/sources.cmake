@@ -7,6 +7,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/prefilter.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sheen_prefilter.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sheen_lut.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/sheen_sh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/irradiance_cube.cpp
   ${CMAKE_CURRENT_LIST_DIR}/bake.cpp
   ${CMAKE_CURRENT_LIST_DIR}/prefilter_kernels.cpp

@@ -159,8 +159,9 @@ layout(binding = 6) uniform sampler2D uEnergyIBL;     // EnergyTable of the IBL 
 uniform float uMetallicOverride;   // < 0: none
 uniform float uRoughnessOverride;  // < 0: none
 layout(binding = 19) uniform sampler2D uEnergyCoat;  // EnergyTable of the reference G (the coat's)
-// The sheen's IBL and albedo: the baker's Charlie-prefiltered cube (the GGX cube for maps
-// baked without it) and core/sheen.h's SheenTable.
+// The sheen's tables (core/sheen.h's SheenTable: E, E_max_avg and the lobe's moments;
+// gl/energy_texture.h). The baker's Charlie-prefiltered cube is still bound but no longer
+// read: the sheen's IBL averages the SH over the lobe (sheen_ibl, MODEL.md "Sheen maps").
 layout(binding = 20) uniform samplerCube uSheenCube;
 layout(binding = 21) uniform sampler2D uSheenLut;
 uniform int uSheenLevels;
@@ -220,17 +221,18 @@ vec3 map_normal(sampler2D tex, int slot, float scale, vec3 n) {
   return ml > 0.0 ? mapped / ml : n;
 }
 
-// The sheen's image-based lighting (the Khronos Sample Viewer's getIBLRadianceCharlie):
-// sheenColor times the Charlie-prefiltered environment along R at the sheen roughness's
-// mip, times the sheen's directional albedo E(n.v):
-// uSheenCube is the baker's Charlie-prefiltered chain (ibl/sheen_prefilter.h; its levels
-// follow the GGX chain's roughness mapping) and E the sheen's albedo table, which is also
-// the split sum's DG term for the README's Charlie visibility (ibl/sheen_lut.h).
+// The sheen's image-based lighting: sheenColor times the sheen's directional albedo E(n.v)
+// (the split sum's DG term for the README's Charlie visibility, ibl/sheen_lut.h) times the
+// environment's order-2 SH averaged over the Charlie lobe itself (sheen.glsl's
+// sheen_sh_radiance, from the lobe's tabulated first and second moments: where it gathers
+// light, on the viewer's side of n, and how widely; MODEL.md "Sheen maps"). The Khronos
+// Sample Viewer's getIBLRadianceCharlie looks its Charlie-prefiltered cube up along R
+// instead, the other side of n, so its rims show the environment beside the object where
+// the lobe back-scatters what lies behind the viewer (docs/SPLIT_SUM_ERRORS.md).
 vec3 sheen_ibl(vec3 n, vec3 v, vec3 sheen_color, float sheen_roughness) {
-  vec3 r = reflect(-v, n);
-  vec3 light = textureLod(uSheenCube, world_to_env(r, uIblRotation),
-                          roughness_lod(sheen_roughness, uSheenLevels)).rgb;
-  return light * sheen_color * sheen_E(uSheenLut, dot(n, v), sheen_roughness);
+  vec3 light = sheen_sh_radiance(uSheenLut, uSH, world_to_env(n, uIblRotation),
+                                 world_to_env(v, uIblRotation), sheen_roughness);
+  return max(light, vec3(0.0)) * sheen_color * sheen_E(uSheenLut, dot(n, v), sheen_roughness);
 }
 
 // KHR_lights_punctual's recommended range window clamp(1 - (d/range)^4, 0, 1) over d^2
@@ -559,11 +561,14 @@ void main() {
 #endif
 #if MATERIAL_SHEEN
     {
-      // The base under the sheen, scaled by the sheen's albedo at n.v (the README's
-      // simplified albedo scaling; bsdf.h's min form with the light's side left out).
+      // The base under the sheen, scaled as bsdf.h's min(1 - c E(n.v), 1 - c E(n.l)) scales
+      // it under a uniform environment: by 1 - c E_max_avg(n.v), the light's side averaged
+      // over a cosine lobe (core/sheen.h; the README's one-sided 1 - c E(n.v) left the base
+      // up to 20% brighter than the path tracer's at normal incidence).
       float sr = clamp(sheen_roughness, kMinSheenRoughness, 1.0);
       vec3 sc = clamp(sheen_color, 0.0, 1.0);
-      indirect = lobe(DEBUG_SHEEN, sheen_ibl(n, v, sc, sr)) + (1.0 - max3(sc) * sheen_E(uSheenLut, dot(n, v), sr)) * indirect;
+      indirect = lobe(DEBUG_SHEEN, sheen_ibl(n, v, sc, sr)) +
+                 (1.0 - max3(sc) * sheen_E_max_avg(uSheenLut, dot(n, v), sr)) * indirect;
     }
 #endif
 #if MATERIAL_CLEARCOAT
