@@ -2,10 +2,12 @@
 // back-face pass): a smooth glass sphere (ior 1.5, thickness its diameter) in front of a
 // black backdrop with a bright band above the sphere's centre. A ball lens inverts what
 // lies behind it beyond its focus (n R / (2 (n - 1)) = 0.375 behind the centre here; the
-// band is 1.9 behind): the band appears in the sphere's lower half. One refraction
-// at the entry (the Sample Viewer's model) shows it in the upper half instead. Each pixel of
-// the sphere is compared with a ray traced here in double through both interfaces (Snell at
-// the entry and at the exit of the exact sphere) to the band's plane.
+// band is 1.9 behind): the band appears in the sphere's lower half. One refraction at the
+// entry (the Sample Viewer's model) shows a magnified patch of what lies just behind the
+// centre instead, none of the band (measured: 0 of the 750 lower pixels bright, 1248 of
+// 1628 agreeing with the traced rays). Each pixel of the sphere is compared with a ray
+// traced here in double through both interfaces (Snell at the entry and at the exit of the
+// exact sphere) to the band's plane.
 #include <cmath>
 #include <cstdio>
 
