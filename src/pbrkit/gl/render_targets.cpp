@@ -66,7 +66,7 @@ GLuint nearest_texture(GLenum format, int w, int h) {
 
 }  // namespace
 
-void RenderTargets::begin_back_faces() {
+void RenderTargets::begin_back_faces(int x0, int y0, int x1, int y1) {
   if (!back_fbo) {
     back_position = nearest_texture(GL_RGBA32F, width, height);
     back_normal = nearest_texture(GL_RGBA32F, width, height);
@@ -83,6 +83,8 @@ void RenderTargets::begin_back_faces() {
            height);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, back_fbo);
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(x0, y0, x1 - x0, y1 - y0);
   const float zero[4] = {0, 0, 0, 0};
   const float far_depth = 1.0f;
   glClearNamedFramebufferfv(back_fbo, GL_COLOR, 0, zero);

@@ -20,7 +20,7 @@ struct RenderTargets {
   GLuint resolve_fbo = 0, resolve_color = 0;
   // The opaque frame for the transmission pass: single-sample, every mip level down to 1x1.
   GLuint transmission_fbo = 0, transmission_color = 0;
-  // Its depth (thick objects' exit rays are marched against it), made on first use.
+  // Its depth (where thick objects' exit rays meet the frame), made on first use.
   GLuint transmission_depth = 0;
   // One thick object's back faces: world position (w = 1 where covered) and outward normal.
   GLuint back_fbo = 0, back_position = 0, back_normal = 0, back_depth = 0;
@@ -40,8 +40,9 @@ struct RenderTargets {
   /// and builds its mip chain (a box-filter chain: glGenerateMipmap); with `depth`, also
   /// its depth into transmission_depth.
   void capture_frame(bool depth = false);
-  /// Binds the back-face target (made on first use), cleared: no back face anywhere.
-  void begin_back_faces();
+  /// Binds the back-face target (made on first use) and clears the pixels [x0, x1) x [y0, y1)
+  /// (GL's rows): no back face there. Leaves the scissor test on over that rectangle.
+  void begin_back_faces(int x0, int y0, int x1, int y1);
   /// The resolved frame, linear RGBA float, row 0 at the top (as Image everywhere).
   Image read_back() const;
 };

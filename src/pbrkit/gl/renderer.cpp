@@ -161,17 +161,25 @@ bool refracts_thick(const Material& m, bool closed) {
 
 // The back-face pass of thick refraction (Wyman 2005; thick_refraction.glsl): instance
 // `index`'s back faces alone (front faces culled, the nearest back face kept) into the
-// back-face target, cleared first, so that the object reads only its own; then the frame's
-// target is bound again. Binds the target's textures for the surface shader. `program` is
-// compiled on first use.
-void draw_back_faces(Program& program, RenderTargets& targets, const GpuScene& scene,
-                     std::size_t index, const glm::mat4& view_projection) {
+// back-face target over the object's screen rectangle `lo`..`hi` (NDC), cleared first;
+// then the frame's target is bound again. Binds the target's textures for the surface
+// shader and returns the rectangle in texture coordinates: the shader reads back faces only
+// inside it (outside, the target holds other objects'). `program` is made on first use.
+glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuScene& scene,
+                          std::size_t index, glm::vec2 lo, glm::vec2 hi,
+                          const glm::mat4& view_projection) {
+  const glm::vec2 size(float(targets.width), float(targets.height));
+  // Whole pixels covering the rectangle, one more each side for rounding.
+  const glm::ivec2 p0 = glm::clamp(glm::ivec2(glm::floor((lo * 0.5f + 0.5f) * size)) - 1,
+                                   glm::ivec2(0), glm::ivec2(size));
+  const glm::ivec2 p1 = glm::clamp(glm::ivec2(glm::ceil((hi * 0.5f + 0.5f) * size)) + 1,
+                                   glm::ivec2(0), glm::ivec2(size));
   const Instance& inst = scene.instances[index];
   const GpuMesh& mesh = scene.meshes[std::size_t(inst.mesh)];
   if (!program.id())
     program =
         Program::graphics("pbr_vertex.glsl", "back_face_fragment.glsl", "#define HAS_COLOR_0 0\n");
-  targets.begin_back_faces();
+  targets.begin_back_faces(p0.x, p0.y, p1.x, p1.y);
   program.use();
   program.set("uViewProjection", view_projection);
   program.set("uInstanceBase", GLint(scene.slot_of[index]));
@@ -180,9 +188,11 @@ void draw_back_faces(Program& program, RenderTargets& targets, const GpuScene& s
   glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
   glBindVertexArray(mesh.vao);
   glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, 1);
+  glDisable(GL_SCISSOR_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, targets.msaa_fbo);
   glBindTextureUnit(kBackPositionUnit, targets.back_position);
   glBindTextureUnit(kBackNormalUnit, targets.back_normal);
+  return glm::vec4(glm::vec2(p0) / size, glm::vec2(p1) / size);
 }
 
 }  // namespace
@@ -357,7 +367,9 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   // winding), in one glDrawElementsInstanced. `cull`: the faces to cull (GL_BACK,
   // GL_FRONT), or 0 for the material's choice.
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBufferBinding, s.scene.instance_buffer);
-  bool back_faces_drawn = false;  // the back-face target holds the instance drawn next
+  bool back_faces_drawn = false;   // the back-face target holds the instance drawn next
+  glm::vec4 back_face_rect(0.0f);  // over this rectangle (texture coordinates)
+  const glm::mat4 inverse_view_projection = glm::inverse(view_projection);
   auto draw = [&](std::size_t index, GLenum cull = 0, std::size_t count = 1) {
     const Instance& inst = s.scene.instances[index];
     const GpuMesh& mesh = s.scene.meshes[std::size_t(inst.mesh)];
@@ -390,7 +402,11 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uOcclusionStrength", m.occlusion_strength);
     p.set("uAlphaCutoff", m.alpha_cutoff);
     set_extension_uniforms(p, m);
-    if (features.transmission && features.volume) p.set("uBackFaces", GLint(back_faces_drawn));
+    if (features.transmission && features.volume) {
+      p.set("uBackFaces", GLint(back_faces_drawn));
+      p.set("uBackFaceRect", back_face_rect);
+      p.set("uInverseViewProjection", inverse_view_projection);
+    }
     if (features.transmission || features.diffuse_transmission)
       p.set("uModelScale", glm::vec3(glm::length(glm::vec3(inst.transform[0])),
                                      glm::length(glm::vec3(inst.transform[1])),
@@ -515,7 +531,8 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
       const GpuMesh& mesh = s.scene.meshes[std::size_t(s.scene.instances[t.index].mesh)];
       back_faces_drawn = refracts_thick(s.scene.material_of(mesh), mesh.closed);
       if (back_faces_drawn)
-        draw_back_faces(s.back_faces, s.targets, s.scene, t.index, view_projection);
+        back_face_rect =
+            draw_back_faces(s.back_faces, s.targets, s.scene, t.index, t.lo, t.hi, view_projection);
       draw(t.index);
       back_faces_drawn = false;
     }

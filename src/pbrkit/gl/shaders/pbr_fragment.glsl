@@ -160,6 +160,8 @@ layout(binding = 27) uniform sampler2D uBackPosition;
 layout(binding = 28) uniform sampler2D uBackNormal;
 layout(binding = 29) uniform sampler2D uTransmissionDepth;
 uniform int uBackFaces;
+uniform vec4 uBackFaceRect;  // where the pass ran: (min, max) texture coordinates
+uniform mat4 uInverseViewProjection;
 #endif
 
 // Model.
@@ -600,9 +602,9 @@ void main() {
 #if MATERIAL_VOLUME
     vec3 seen = thick_refracted_radiance(
         t, uBackFaces != 0, uTransmissionFrame, uTransmissionDepth, uTransmissionFrameSize,
-        uBackPosition, uBackNormal, gl_FragCoord.xy / uTransmissionFrameSize, uViewProjection,
-        uCameraPosition, uSpecularCube, uIblRotation, uSpecularLevels, IBL != 0 ? uIblScale : 0.0,
-        MATERIAL_DISPERSION != 0);
+        uBackPosition, uBackNormal, uBackFaceRect, gl_FragCoord.xy / uTransmissionFrameSize,
+        uViewProjection, uInverseViewProjection, uCameraPosition, uSpecularCube, uIblRotation,
+        uSpecularLevels, IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
 #else
     vec3 seen = refracted_radiance(t, uTransmissionFrame, uTransmissionFrameSize, uViewProjection,
                                    uCameraPosition, uSpecularCube, uIblRotation, uSpecularLevels,

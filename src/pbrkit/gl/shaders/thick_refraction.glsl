@@ -4,7 +4,7 @@
 // alone (their world position and normal, renderer.cpp's back-face pass); the front face
 // refracts the view ray at the entry, estimates how far the refracted ray travels to the
 // back face, refracts it again there with the back face's normal, and reads the captured
-// opaque frame where that exit ray meets the frame's depth (a screen-space march), or the
+// opaque frame where that exit ray meets the frame's depth (an iterative search), or the
 // environment where the exit ray leaves the screen. A smooth sphere so shows the inverted,
 // minified wide view behind it that the path tracer shows, where one refraction shows a
 // magnified patch just behind it.
@@ -67,53 +67,51 @@ bool project_with_depth(mat4 view_projection, vec3 p, out vec2 uv, out float dep
   return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
 }
 
-// Where the ray from `origin` along `dir` first passes behind the captured frame's depth
-// (a screen-space ray march: geometric steps from `step` on, then a bisection of the last
-// one), as the frame's texture coordinates; false when the ray leaves the screen, goes
-// behind the camera or runs on past everything (the environment is what it sees then).
-const int kMarchSteps = 24;
-const int kBisections = 5;
-bool march_frame_depth(vec3 origin, vec3 dir, float step, mat4 view_projection,
-                       sampler2D frame_depth, out vec2 uv) {
-  float t_prev = 0.0, t = step;
+// The texel of a single-level, unfiltered target at texture coordinates uv (a texel fetch:
+// llvmpipe's filtered path costs several times more per lookup).
+vec4 texel_at(sampler2D target, vec2 uv) {
+  ivec2 size = textureSize(target, 0);
+  return texelFetch(target, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0);
+}
+
+// Where the ray from `origin` along `dir` meets the captured frame (Wyman 2005's
+// nearby-geometry lookup made iterative, as relief and parallax mapping search a height
+// field): from d = 0, the distance to the frame's surface point seen where the ray's point at
+// d projects (unprojected from the frame's depth), repeated; for a smooth surface behind the
+// object (a floor, a wall) it converges to the ray's intersection with it in a few steps,
+// with one depth fetch each where a march needs one per step. Returns the frame's texture
+// coordinates and the distance; false where the ray leaves the screen, goes behind the
+// camera or meets the background (the environment is what it sees then).
+const int kFrameHitIterations = 4;
+bool frame_hit(vec3 origin, vec3 dir, mat4 view_projection, mat4 inverse_view_projection,
+               sampler2D frame_depth, out vec2 uv, out float d) {
+  d = 0.0;
   float depth;
-  for (int k = 0; k < kMarchSteps; ++k) {
-    if (!project_with_depth(view_projection, origin + t * dir, uv, depth)) return false;
-    if (depth >= textureLod(frame_depth, uv, 0.0).r) {
-      float lo = t_prev, hi = t;
-      for (int b = 0; b < kBisections; ++b) {
-        float mid = 0.5 * (lo + hi);
-        vec2 uv_mid;
-        float depth_mid;
-        bool on = project_with_depth(view_projection, origin + mid * dir, uv_mid, depth_mid);
-        if (on && depth_mid >= textureLod(frame_depth, uv_mid, 0.0).r)
-          hi = mid;
-        else
-          lo = mid;
-      }
-      project_with_depth(view_projection, origin + hi * dir, uv, depth);
-      return true;
-    }
-    t_prev = t;
-    t *= 1.5;
+  for (int k = 0; k < kFrameHitIterations; ++k) {
+    if (!project_with_depth(view_projection, origin + d * dir, uv, depth)) return false;
+    float scene = texel_at(frame_depth, uv).r;
+    if (scene >= 1.0) return false;
+    vec4 b = inverse_view_projection * vec4(vec3(uv, scene) * 2.0 - 1.0, 1.0);
+    d = distance(b.xyz / b.w, origin);
   }
-  return false;
+  return project_with_depth(view_projection, origin + d * dir, uv, depth);
 }
 
 // The back faces of the object being drawn (renderer.cpp's back-face pass): world position
-// (w = 1 where a back face is) and outward normal, per pixel.
+// (w = 1 where a back face is) and outward normal, per pixel, inside the rectangle `rect`
+// ((min, max) texture coordinates) where the pass ran for it.
 struct BackFaceHit {
   vec3 position;
   vec3 normal;
   bool found;
 };
 
-BackFaceHit back_face_at(sampler2D back_position, sampler2D back_normal, vec2 uv) {
-  vec4 p = textureLod(back_position, uv, 0.0);
+BackFaceHit back_face_at(sampler2D back_position, sampler2D back_normal, vec4 rect, vec2 uv) {
+  vec4 p = texel_at(back_position, uv);
   BackFaceHit h;
   h.position = p.xyz;
-  h.found = p.w > 0.5;
-  h.normal = h.found ? normalize(textureLod(back_normal, uv, 0.0).xyz) : vec3(0.0, 0.0, 1.0);
+  h.found = p.w > 0.5 && all(greaterThanEqual(uv, rect.xy)) && all(lessThan(uv, rect.zw));
+  h.normal = h.found ? normalize(texel_at(back_normal, uv).xyz) : vec3(0.0, 0.0, 1.0);
   return h;
 }
 
@@ -128,13 +126,13 @@ const int kInsideSegments = 2;
 // estimate `d` on: back_plane_distance at the back face seen where the ray's point at d
 // projects) and that face's normal; false where no back face the ray heads for is seen there.
 bool to_back_face(vec3 origin, vec3 dir, mat4 view_projection, sampler2D back_position,
-                  sampler2D back_normal, inout float d, out vec3 n_back) {
+                  sampler2D back_normal, vec4 rect, inout float d, out vec3 n_back) {
   n_back = vec3(0.0);
   bool found = false;
   for (int k = 0; k < kBackFaceRefinements; ++k) {
     vec2 uv;
     if (!project_to_screen(view_projection, origin + d * dir, uv)) break;
-    BackFaceHit h = back_face_at(back_position, back_normal, uv);
+    BackFaceHit h = back_face_at(back_position, back_normal, rect, uv);
     // A face the ray runs away from (or along) is not where it leaves: a reflected ray in a
     // thin curved wall heads for the outer wall's front face, which the pass does not hold.
     if (!h.found || dot(dir, h.normal) < 1e-3) break;
@@ -148,23 +146,28 @@ bool to_back_face(vec3 origin, vec3 dir, mat4 view_projection, sampler2D back_po
 // refracted_radiance (transmission.glsl) through both interfaces: per channel (three iors
 // with dispersion), the view ray refracted at the entry, carried to the back face (Wyman's
 // estimate, then to_back_face), refracted out of it (or reflected inside, kInsideSegments)
-// and followed to the frame's depth; Beer-Lambert over the path inside. Where the back-face
+// and followed to the frame's surface (frame_hit; with dispersion once, for green: the
+// other channels' exit rays are read at the same distance along them); Beer-Lambert over the path
+// inside. Where the back-face
 // pass holds nothing at the fragment's own pixel (a silhouette), or has not run for this
 // draw (`back_faces` false), transmission.glsl's one refraction through the thickness.
 vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D frame,
                               sampler2D frame_depth, vec2 frame_size, sampler2D back_position,
-                              sampler2D back_normal, vec2 pixel_uv, mat4 view_projection,
+                              sampler2D back_normal, vec4 back_rect, vec2 pixel_uv,
+                              mat4 view_projection, mat4 inverse_view_projection,
                               vec3 camera, samplerCube env_cube, vec2 env_rotation,
                               int env_levels, float env_scale, bool dispersion) {
-  BackFaceHit own = back_face_at(back_position, back_normal, pixel_uv);
+  BackFaceHit own = back_face_at(back_position, back_normal, back_rect, pixel_uv);
   if (!back_faces || !own.found)
     return refracted_radiance(t, frame, frame_size, view_projection, camera, env_cube,
                               env_rotation, env_levels, env_scale, dispersion);
   float d_v = distance(own.position, t.position);
-  float march_step = 0.02 * distance(camera, t.position);
   vec3 result = vec3(0.0);
   int channels = dispersion ? 3 : 1;
-  for (int c = 0; c < channels; ++c) {
+  bool hit = false;
+  float t_hit = 0.0;
+  for (int k = 0; k < channels; ++k) {
+    int c = dispersion ? (k + 1) % 3 : 0;  // green first: its search serves the others
     float ior = t.iors[c];
     vec3 dir = refract(-t.v, t.n, 1.0 / ior);
     dir = dot(dir, dir) > 0.0 ? normalize(dir) : -t.v;
@@ -174,7 +177,8 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
     float inside = 0.0;  // the path length inside, for Beer-Lambert
     for (int segment = 0; segment < kInsideSegments; ++segment) {
       vec3 n_back;
-      bool found = to_back_face(origin, dir, view_projection, back_position, back_normal, d, n_back);
+      bool found =
+          to_back_face(origin, dir, view_projection, back_position, back_normal, back_rect, d, n_back);
       // The first segment keeps Wyman's estimate and the fragment's own back face where the
       // refined point sees none. A reflected ray that meets no back face heads for a front
       // face (which the pass does not hold): it is taken to cross the object once more, as
@@ -190,7 +194,14 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
     float rough = transmission_roughness(t.roughness, ior);
     vec2 uv;
     vec3 seen;
-    if (march_frame_depth(origin, dir, march_step, view_projection, frame_depth, uv)) {
+    bool on;
+    if (k == 0) {
+      hit = frame_hit(origin, dir, view_projection, inverse_view_projection, frame_depth, uv, t_hit);
+      on = hit;
+    } else {
+      on = hit && project_to_screen(view_projection, origin + t_hit * dir, uv);
+    }
+    if (on) {
       seen = textureLod(frame, uv, log2(frame_size.x) * rough).rgb;
     } else {
       seen = env_scale * textureLod(env_cube, world_to_env(dir, env_rotation),
