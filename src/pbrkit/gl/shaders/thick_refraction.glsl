@@ -67,8 +67,8 @@ bool project_with_depth(mat4 view_projection, vec3 p, out vec2 uv, out float dep
   return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
 }
 
-// The texel of a single-level, unfiltered target at texture coordinates uv (a texel fetch:
-// llvmpipe's filtered path costs several times more per lookup).
+// The texel of a single-level target at texture coordinates uv, unfiltered: a blend of two
+// texels would be a position or depth between two surfaces, on neither.
 vec4 texel_at(sampler2D target, vec2 uv) {
   ivec2 size = textureSize(target, 0);
   return texelFetch(target, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0);
