@@ -169,11 +169,12 @@ glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuSce
                           std::size_t index, glm::vec2 lo, glm::vec2 hi,
                           const glm::mat4& view_projection) {
   const glm::vec2 size(float(targets.width), float(targets.height));
-  // Whole pixels covering the rectangle, one more each side for rounding.
-  const glm::ivec2 p0 = glm::clamp(glm::ivec2(glm::floor((lo * 0.5f + 0.5f) * size)) - 1,
-                                   glm::ivec2(0), glm::ivec2(size));
-  const glm::ivec2 p1 = glm::clamp(glm::ivec2(glm::ceil((hi * 0.5f + 0.5f) * size)) + 1,
-                                   glm::ivec2(0), glm::ivec2(size));
+  // Whole pixels covering the rectangle, one more each side for rounding (clamped as floats:
+  // a corner just in front of the camera projects far outside any int).
+  const glm::ivec2 p0(
+      glm::clamp(glm::floor((lo * 0.5f + 0.5f) * size) - 1.0f, glm::vec2(0.0f), size));
+  const glm::ivec2 p1(
+      glm::clamp(glm::ceil((hi * 0.5f + 0.5f) * size) + 1.0f, glm::vec2(0.0f), size));
   const Instance& inst = scene.instances[index];
   const GpuMesh& mesh = scene.meshes[std::size_t(inst.mesh)];
   if (!program.id())
