@@ -83,13 +83,16 @@ void set_extension_uniforms(const Program& p, const Material& m) {
 
 // The texture unit of Material::textures()'s slot t (pbr_fragment.glsl's bindings): the
 // core slots on 0..4, issue 11's extensions' (5..14) on 9..18, issue 12's (15..18) on
-// 22..25; 5..8 and 19..21 hold the energy tables and cubes, 26 the transmission frame.
+// 22..25; 5..8 and 19..21 hold the energy tables and cubes, 26 the transmission frame,
+// 27..29 the thick objects' back faces and the frame's depth.
 GLuint texture_unit(int t) {
   return GLuint(t < 5 ? t : t < 15 ? t + 4 : t + 7);
 }
 // The other units of pbr_fragment.glsl.
 constexpr GLuint kCoatEnergyUnit = 19, kSheenCubeUnit = 20, kSheenLutUnit = 21;
 constexpr GLuint kTransmissionFrameUnit = 26;
+constexpr GLuint kBackPositionUnit = 27, kBackNormalUnit = 28, kFrameDepthUnit = 29;
+constexpr GLuint kLastSurfaceUnit = kFrameDepthUnit;
 
 // The most captures of the frame a transmission pass makes (the opaque frame, then one more
 // each time a transmissive surface covers one drawn since the last capture): glass seen
@@ -154,6 +157,51 @@ void set_debug_features(const RenderSettings& settings, SurfaceFeatures& f) {
   f.debug_channel = int(settings.debug_channel);
 }
 
+// Whether `m` on a mesh refracts through two interfaces (thick_refraction.glsl): a specular
+// transmission through a volume of thickness > 0; only these pay for the back-face pass.
+bool refracts_thick(const Material& m, bool closed) {
+  SurfaceFeatures f;
+  set_transmission_features(m, closed, f);
+  return f.transmission && f.volume;
+}
+
+// The back-face pass of thick refraction (Wyman 2005; thick_refraction.glsl): instance
+// `index`'s back faces alone (front faces culled, the nearest back face kept) into the
+// back-face target over the object's screen rectangle `lo`..`hi` (NDC), cleared first;
+// then the frame's target is bound again. Binds the target's textures for the surface
+// shader and returns the rectangle in texture coordinates: the shader reads back faces only
+// inside it (outside, the target holds other objects'). `program` is made on first use.
+glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuScene& scene,
+                          std::size_t index, glm::vec2 lo, glm::vec2 hi,
+                          const glm::mat4& view_projection) {
+  const glm::vec2 size(float(targets.width), float(targets.height));
+  // Whole pixels covering the rectangle, one more each side for rounding (clamped as floats:
+  // a corner just in front of the camera projects far outside any int).
+  const glm::ivec2 p0(
+      glm::clamp(glm::floor((lo * 0.5f + 0.5f) * size) - 1.0f, glm::vec2(0.0f), size));
+  const glm::ivec2 p1(
+      glm::clamp(glm::ceil((hi * 0.5f + 0.5f) * size) + 1.0f, glm::vec2(0.0f), size));
+  const Instance& inst = scene.instances[index];
+  const GpuMesh& mesh = scene.meshes[std::size_t(inst.mesh)];
+  if (!program.id())
+    program =
+        Program::graphics("pbr_vertex.glsl", "back_face_fragment.glsl", "#define HAS_COLOR_0 0\n");
+  targets.begin_back_faces(p0.x, p0.y, p1.x, p1.y);
+  program.use();
+  program.set("uViewProjection", view_projection);
+  program.set("uInstanceBase", GLint(scene.slot_of[index]));
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);
+  glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
+  glBindVertexArray(mesh.vao);
+  glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, 1);
+  glDisable(GL_SCISSOR_TEST);
+  glBindFramebuffer(GL_FRAMEBUFFER, targets.msaa_fbo);
+  glBindTextureUnit(kBackPositionUnit, targets.back_position);
+  glBindTextureUnit(kBackNormalUnit, targets.back_normal);
+  return glm::vec4(glm::vec2(p0) / size, glm::vec2(p1) / size);
+}
+
 }  // namespace
 
 // The parts a frame is made of, each in its own file; the members are made in this order
@@ -173,6 +221,9 @@ struct Renderer::State {
   // Whether a frame has needed more than kMaxTransmissionCaptures captures (warned once per
   // renderer: the viewer draws the same scene every frame).
   bool capture_limit_warned = false;
+  // The back-face pass's program (pbr_vertex.glsl, back_face_fragment.glsl), made on the
+  // first frame with a thick transmissive object.
+  Program back_faces;
 };
 
 Renderer::Renderer() : state_(std::make_unique<State>()) {
@@ -184,12 +235,12 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {
   glTextureSubImage2D(s.white_texture, 0, 0, 0, 1, 1, GL_RGBA, GL_FLOAT, white);
   s.sheen_lut = create_sheen_lut_texture();
   glCreateVertexArrays(1, &s.empty_vao);
-  // pbr_fragment.glsl binds samplers up to unit kTransmissionFrameUnit.
+  // pbr_fragment.glsl binds samplers up to unit kLastSurfaceUnit.
   GLint units = 0;
   glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &units);
-  if (units <= GLint(kTransmissionFrameUnit))
+  if (units <= GLint(kLastSurfaceUnit))
     fail("OpenGL: {} fragment texture units, the surface shader needs {}", units,
-         kTransmissionFrameUnit + 1);
+         kLastSurfaceUnit + 1);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
 }
 
@@ -324,6 +375,9 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   // winding), in one glDrawElementsInstanced. `cull`: the faces to cull (GL_BACK,
   // GL_FRONT), or 0 for the material's choice.
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBufferBinding, s.scene.instance_buffer);
+  bool back_faces_drawn = false;   // the back-face target holds the instance drawn next
+  glm::vec4 back_face_rect(0.0f);  // over this rectangle (texture coordinates)
+  const glm::mat4 inverse_view_projection = glm::inverse(view_projection);
   auto draw = [&](std::size_t index, GLenum cull = 0, std::size_t count = 1) {
     const Instance& inst = s.scene.instances[index];
     const GpuMesh& mesh = s.scene.meshes[std::size_t(inst.mesh)];
@@ -356,6 +410,11 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     p.set("uOcclusionStrength", m.occlusion_strength);
     p.set("uAlphaCutoff", m.alpha_cutoff);
     set_extension_uniforms(p, m);
+    if (features.transmission && features.volume) {
+      p.set("uBackFaces", GLint(back_faces_drawn));
+      p.set("uBackFaceRect", back_face_rect);
+      p.set("uInverseViewProjection", inverse_view_projection);
+    }
     if (features.transmission || features.diffuse_transmission)
       p.set("uModelScale", glm::vec3(glm::length(glm::vec3(inst.transform[0])),
                                      glm::length(glm::vec3(inst.transform[1])),
@@ -449,7 +508,12 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   // drawn since the last capture (at most kMaxTransmissionCaptures in all). A frame
   // without transmissive surfaces pays nothing: no copy, no mip chain.
   if (!transmissive.empty() || frame_read) {
-    s.targets.capture_frame();
+    const bool thick = std::any_of(transmissive.begin(), transmissive.end(), [&](const auto& t) {
+      const GpuMesh& mesh = s.scene.meshes[std::size_t(s.scene.instances[t.index].mesh)];
+      return refracts_thick(s.scene.material_of(mesh), mesh.closed);
+    });
+    s.targets.capture_frame(thick);
+    if (thick) glBindTextureUnit(kFrameDepthUnit, s.targets.transmission_depth);
     int captures = 1;
     glBindTextureUnit(kTransmissionFrameUnit, s.targets.transmission_color);
     std::sort(
@@ -460,7 +524,7 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
       const bool covers = std::any_of(since_capture.begin(), since_capture.end(),
                                       [&](const TransmissiveDraw* o) { return t.overlaps(*o); });
       if (covers && captures < kMaxTransmissionCaptures) {
-        s.targets.capture_frame();
+        s.targets.capture_frame(thick);
         ++captures;
         since_capture.clear();
       } else if (covers && !s.capture_limit_warned) {
@@ -472,7 +536,13 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
         s.capture_limit_warned = true;
       }
       since_capture.push_back(&t);
+      const GpuMesh& mesh = s.scene.meshes[std::size_t(s.scene.instances[t.index].mesh)];
+      back_faces_drawn = refracts_thick(s.scene.material_of(mesh), mesh.closed);
+      if (back_faces_drawn)
+        back_face_rect =
+            draw_back_faces(s.back_faces, s.targets, s.scene, t.index, t.lo, t.hi, view_projection);
       draw(t.index);
+      back_faces_drawn = false;
     }
     glDisable(GL_CULL_FACE);
     glFrontFace(GL_CCW);

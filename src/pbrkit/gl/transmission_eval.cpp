@@ -10,9 +10,9 @@ std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase
                                               const glm::mat4& view_projection) {
   if (cases.empty()) return {};
   const Program program = Program::compute("transmission_test.glsl");
-  // std430 layout of transmission_test.glsl's TransmissionCase: six vec4.
+  // std430 layout of transmission_test.glsl's TransmissionCase: eight vec4.
   std::vector<glm::vec4> input;
-  input.reserve(cases.size() * 6);
+  input.reserve(cases.size() * 8);
   for (const TransmissionCase& c : cases) {
     input.emplace_back(c.n, c.ior);
     input.emplace_back(c.v, c.thickness);
@@ -20,6 +20,8 @@ std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase
     input.emplace_back(c.attenuation_color, c.attenuation_distance);
     input.emplace_back(c.roughness, c.width, c.distance, 0.0f);
     input.emplace_back(c.base_color, c.metallic);
+    input.emplace_back(c.back_point, 0.0f);
+    input.emplace_back(c.back_normal, 0.0f);
   }
   program.use();
   program.set("uCount", int(cases.size()));

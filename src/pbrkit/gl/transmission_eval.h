@@ -1,7 +1,8 @@
 #pragma once
 // Evaluates the GLSL transmission functions (shaders/transmission.glsl) on the GPU for a
 // batch of inputs, through a compute shader: the shader unit test of the OpenGL renderer's
-// screen-space refraction, Beer-Lambert attenuation and dispersion. Needs a current GL 4.5
+// screen-space refraction, Beer-Lambert attenuation and dispersion, and of the thick
+// objects' two-interface refraction (shaders/thick_refraction.glsl). Needs a current GL 4.5
 // context.
 #include <vector>
 
@@ -24,6 +25,8 @@ struct TransmissionCase {
   float distance = 0.0f;       ///< through the medium (volume_attenuation)
   glm::vec3 base_color{1.0f};  ///< punctual_transmission's Brdf (n is wo, v the mirrored wi)
   float metallic = 0.0f;
+  glm::vec3 back_point{0.0f};               ///< a point of the back face (back_plane_distance)
+  glm::vec3 back_normal{0.0f, 0.0f, 1.0f};  ///< the back face's outward normal
 };
 
 enum class TransmissionFunction {
@@ -33,6 +36,12 @@ enum class TransmissionFunction {
   kRoughness = 3,    ///< (transmission_roughness, transmission_lod)
   kProject = 4,      ///< project_to_screen(view_projection, n) -> (uv, on screen)
   kPunctual = 5,     ///< punctual_transmission(Brdf(base, metallic, roughness, ior), n, v)
+  /// refract_twice(v, n, back_normal, ior) -> (direction, 1 under total internal reflection)
+  kRefractTwice = 6,
+  /// (wyman_distance(distance, thickness, dot(n, v), ior), 0, 0, 0)
+  kWymanDistance = 7,
+  /// (back_plane_distance(p = n, t1 = v, distance, back_point, back_normal), 0, 0, 0)
+  kBackPlaneDistance = 8,
 };
 
 /// `function` of transmission.glsl for every case, read back as one vec4 each.

@@ -22,7 +22,9 @@
 // Issue 12's (transmission.glsl; HAS_TEXTURE_15..18): MATERIAL_TRANSMISSION (the opaque
 // frame, uTransmissionFrame, read through the surface), MATERIAL_VOLUME (a thickness > 0:
 // refraction through the medium, Beer-Lambert), MATERIAL_DISPERSION (three iors),
-// MATERIAL_DIFFUSE_TRANSMISSION (the irradiance at -n through the diffuse lobe).
+// MATERIAL_DIFFUSE_TRANSMISSION (the irradiance at -n through the diffuse lobe). With
+// MATERIAL_TRANSMISSION and MATERIAL_VOLUME the refraction goes through both interfaces
+// (thick_refraction.glsl) where renderer.cpp has drawn the object's back faces.
 #ifndef MATERIAL_SPECULAR
 #define MATERIAL_SPECULAR 0
 #define MATERIAL_ANISOTROPY 0
@@ -78,6 +80,9 @@
 #endif
 #if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
 #include "transmission.glsl"
+#endif
+#if MATERIAL_TRANSMISSION && MATERIAL_VOLUME
+#include "thick_refraction.glsl"
 #endif
 
 in vec3 vPosition;
@@ -152,6 +157,16 @@ layout(binding = 25) uniform sampler2D uDiffuseTransmissionColorTexture;
 layout(binding = 26) uniform sampler2D uTransmissionFrame;
 uniform vec2 uTransmissionFrameSize;
 uniform mat4 uViewProjection;
+#if MATERIAL_TRANSMISSION && MATERIAL_VOLUME
+// The object's back faces (renderer.cpp's back-face pass; uBackFaces 0 where it has not run
+// for this draw: a blended surface) and the opaque frame's depth.
+layout(binding = 27) uniform sampler2D uBackPosition;
+layout(binding = 28) uniform sampler2D uBackNormal;
+layout(binding = 29) uniform sampler2D uTransmissionDepth;
+uniform int uBackFaces;
+uniform vec4 uBackFaceRect;  // where the pass ran: (min, max) texture coordinates
+uniform mat4 uInverseViewProjection;
+#endif
 
 // Model.
 layout(binding = 5) uniform sampler2D uEnergyDirect;  // EnergyTable of the direct G
@@ -605,9 +620,17 @@ void main() {
     t.model_scale = uModelScale;
     t.attenuation_color = uAttenuationColor;
     t.attenuation_distance = uAttenuationDistance;
+#if MATERIAL_VOLUME
+    vec3 seen = thick_refracted_radiance(
+        t, uBackFaces != 0, uTransmissionFrame, uTransmissionDepth, uTransmissionFrameSize,
+        uBackPosition, uBackNormal, uBackFaceRect, gl_FragCoord.xy / uTransmissionFrameSize,
+        uViewProjection, uInverseViewProjection, uCameraPosition, uSpecularCube, uIblRotation,
+        uSpecularLevels, IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
+#else
     vec3 seen = refracted_radiance(t, uTransmissionFrame, uTransmissionFrameSize, uViewProjection,
                                    uCameraPosition, uSpecularCube, uIblRotation, uSpecularLevels,
                                    IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
+#endif
     Brdf tb = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
     vec3 transmitted = ibl_diffuse(tb, uEnergyIBL, dot(n, v), kPi * transmission * seen);
 #if MATERIAL_SHEEN

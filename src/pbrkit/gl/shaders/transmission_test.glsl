@@ -1,8 +1,9 @@
 #version 450
-// Shader unit test: transmission.glsl's functions for a batch of inputs (one invocation
+// Shader unit test: transmission.glsl's and thick_refraction.glsl's functions for a batch of inputs (one invocation
 // each; uFunction picks which) so tests/gl/transmission_glsl_test.cpp can compare them
 // with their C++ references.
 #include "transmission.glsl"
+#include "thick_refraction.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -14,6 +15,8 @@ struct TransmissionCase {
   vec4 attenuation;       // attenuation colour, attenuation distance
   vec4 rough;             // roughness, frame width, distance through the medium
   vec4 base;              // base colour, metallic
+  vec4 back_point;        // a point of the back face
+  vec4 back_normal;       // the back face's outward normal
 };
 layout(std430, binding = 0) readonly buffer Cases { TransmissionCase cases[]; };
 layout(std430, binding = 1) writeonly buffer Results { vec4 results[]; };
@@ -44,6 +47,15 @@ void main() {
     layer.ior = c.n_ior.w;
     Brdf b = make_brdf(layer, GEOMETRY_REFERENCE, false, FRESNEL_SCHLICK, uEnergy);
     r.xyz = punctual_transmission(b, c.n_ior.xyz, c.v_thickness.xyz, c.n_ior.w);
+  } else if (uFunction == 6) {
+    bool tir;
+    r.xyz = refract_twice(c.v_thickness.xyz, c.n_ior.xyz, c.back_normal.xyz, c.n_ior.w, tir);
+    r.w = tir ? 1.0 : 0.0;
+  } else if (uFunction == 7) {
+    r.x = wyman_distance(c.rough.z, c.v_thickness.w, dot(c.n_ior.xyz, c.v_thickness.xyz), c.n_ior.w);
+  } else if (uFunction == 8) {
+    r.x = back_plane_distance(c.n_ior.xyz, c.v_thickness.xyz, c.rough.z, c.back_point.xyz,
+                              c.back_normal.xyz);
   } else {
     vec2 uv;
     r.z = project_to_screen(uViewProjection, c.n_ior.xyz, uv) ? 1.0 : 0.0;

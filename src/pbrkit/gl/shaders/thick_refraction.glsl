@@ -1,0 +1,217 @@
+// Refraction through both interfaces of a thick transmissive object (KHR_materials_volume
+// with a thickness > 0), after Wyman 2005, "An Approximate Image-Space Approach for
+// Interactive Refraction" (SIGGRAPH): the renderer first draws the object's back faces
+// alone (their world position and normal, renderer.cpp's back-face pass); the front face
+// refracts the view ray at the entry, estimates how far the refracted ray travels to the
+// back face, refracts it again there with the back face's normal, and reads the captured
+// opaque frame where that exit ray meets the frame's depth (an iterative search), or the
+// environment where the exit ray leaves the screen. A smooth sphere so shows the inverted,
+// minified wide view behind it that the path tracer shows, where one refraction shows a
+// magnified patch just behind it.
+#include "transmission.glsl"
+
+// Wyman 2005, eq. 2: the distance from the entry point to the back face along the refracted
+// ray, interpolated between d_v, the distance to the back face along the view ray (the
+// back-face pass at the fragment's own pixel), and d_n, the distance along the inward normal
+// (the material's thickness), by the ratio of the refraction angle to the incidence angle:
+// d = (theta_t / theta_i) d_v + (1 - theta_t / theta_i) d_n. At normal incidence the ratio
+// tends to 1 / ior (Snell for small angles), where d_v = d_n anyway.
+float wyman_distance(float d_v, float d_n, float cos_i, float ior) {
+  float sin_i = sqrt(max(1.0 - cos_i * cos_i, 0.0));
+  float theta_i = acos(clamp(cos_i, -1.0, 1.0));
+  float theta_t = asin(clamp(sin_i / ior, -1.0, 1.0));
+  float ratio = theta_i > 1e-4 ? theta_t / theta_i : 1.0 / ior;
+  return ratio * d_v + (1.0 - ratio) * d_n;
+}
+
+// One refinement of the distance along the refracted ray (origin p, direction t1): where the
+// ray meets the plane of the back face seen at the current estimate (point p_back, normal
+// n_back). Repeated, it converges to the exit point of a smooth convex back face; `d` is
+// kept where the ray runs nearly parallel to that plane.
+float back_plane_distance(vec3 p, vec3 t1, float d, vec3 p_back, vec3 n_back) {
+  float c = dot(t1, n_back);
+  if (c < 1e-3) return d;
+  return max(dot(p_back - p, n_back) / c, 0.0);
+}
+
+// The direction the ray t1 (unit, inside the medium of index `ior`) leaves in through the
+// back face of outward normal n_back (Snell, from ior to 1); under total internal reflection
+// (sin_t > 1) the ray reflected inside, the direction in which that light mostly leaves
+// after it (`tir` true).
+vec3 exit_direction(vec3 t1, vec3 n_back, float ior, out bool tir) {
+  vec3 n = dot(t1, n_back) > 0.0 ? -n_back : n_back;  // against the ray, as refract() wants
+  vec3 t2 = refract(t1, n, ior);
+  tir = dot(t2, t2) == 0.0;
+  return normalize(tir ? reflect(t1, n) : t2);
+}
+
+// The view ray (towards -v) refracted at the entry (normal n) and again at the back face
+// (normal n_back): the two-interface direction of the exit ray.
+vec3 refract_twice(vec3 v, vec3 n, vec3 n_back, float ior, out bool tir) {
+  vec3 t1 = refract(-v, n, 1.0 / ior);
+  tir = false;
+  if (dot(t1, t1) == 0.0) return -v;
+  return exit_direction(normalize(t1), n_back, ior, tir);
+}
+
+// The window-space depth (GL's default [0, 1] depth range) and screen position of p; false
+// when p is behind the camera or off the screen.
+bool project_with_depth(mat4 view_projection, vec3 p, out vec2 uv, out float depth) {
+  vec4 clip = view_projection * vec4(p, 1.0);
+  uv = vec2(0.0);
+  depth = 1.0;
+  if (clip.w <= 0.0) return false;
+  vec3 ndc = clip.xyz / clip.w;
+  uv = ndc.xy * 0.5 + 0.5;
+  depth = ndc.z * 0.5 + 0.5;
+  return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
+}
+
+// The texel of a single-level target at texture coordinates uv, unfiltered: a blend of two
+// texels would be a position or depth between two surfaces, on neither.
+vec4 texel_at(sampler2D target, vec2 uv) {
+  ivec2 size = textureSize(target, 0);
+  return texelFetch(target, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0);
+}
+
+// Where the ray from `origin` along `dir` meets the captured frame (Wyman 2005's
+// nearby-geometry lookup made iterative, as relief and parallax mapping search a height
+// field): from d = 0, the distance to the frame's surface point seen where the ray's point at
+// d projects (unprojected from the frame's depth), repeated; for a smooth surface behind the
+// object (a floor, a wall) it converges to the ray's intersection with it in a few steps,
+// with one depth fetch each where a march needs one per step. Returns the frame's texture
+// coordinates and the distance; false where the ray leaves the screen, goes behind the
+// camera or meets the background (the environment is what it sees then).
+const int kFrameHitIterations = 4;
+bool frame_hit(vec3 origin, vec3 dir, mat4 view_projection, mat4 inverse_view_projection,
+               sampler2D frame_depth, out vec2 uv, out float d) {
+  d = 0.0;
+  float depth;
+  for (int k = 0; k < kFrameHitIterations; ++k) {
+    if (!project_with_depth(view_projection, origin + d * dir, uv, depth)) return false;
+    float scene = texel_at(frame_depth, uv).r;
+    if (scene >= 1.0) return false;
+    vec4 b = inverse_view_projection * vec4(vec3(uv, scene) * 2.0 - 1.0, 1.0);
+    d = distance(b.xyz / b.w, origin);
+  }
+  return project_with_depth(view_projection, origin + d * dir, uv, depth);
+}
+
+// The back faces of the object being drawn (renderer.cpp's back-face pass): world position
+// (w = 1 where a back face is) and outward normal, per pixel, inside the rectangle `rect`
+// ((min, max) texture coordinates) where the pass ran for it.
+struct BackFaceHit {
+  vec3 position;
+  vec3 normal;
+  bool found;
+};
+
+BackFaceHit back_face_at(sampler2D back_position, sampler2D back_normal, vec4 rect, vec2 uv) {
+  vec4 p = texel_at(back_position, uv);
+  BackFaceHit h;
+  h.position = p.xyz;
+  h.found = p.w > 0.5 && all(greaterThanEqual(uv, rect.xy)) && all(lessThan(uv, rect.zw));
+  h.normal = h.found ? normalize(texel_at(back_normal, uv).xyz) : vec3(0.0, 0.0, 1.0);
+  return h;
+}
+
+// The refinements of the distance to the back face after Wyman's estimate.
+const int kBackFaceRefinements = 2;
+// The segments followed inside: the refracted ray's, then, where the back face reflects it
+// totally, the reflected ray's to the next back face (a slab's side face sends the light
+// down to its bottom face); past these, the light leaves along the last reflected ray.
+const int kInsideSegments = 2;
+
+// From `origin` along `dir` inside the object, the distance `d` to its back face (from the
+// estimate `d` on: back_plane_distance at the back face seen where the ray's point at d
+// projects) and that face's normal; false where no back face the ray heads for is seen there.
+bool to_back_face(vec3 origin, vec3 dir, mat4 view_projection, sampler2D back_position,
+                  sampler2D back_normal, vec4 rect, inout float d, out vec3 n_back) {
+  n_back = vec3(0.0);
+  bool found = false;
+  for (int k = 0; k < kBackFaceRefinements; ++k) {
+    vec2 uv;
+    if (!project_to_screen(view_projection, origin + d * dir, uv)) break;
+    BackFaceHit h = back_face_at(back_position, back_normal, rect, uv);
+    // A face the ray runs away from (or along) is not where it leaves: a reflected ray in a
+    // thin curved wall heads for the outer wall's front face, which the pass does not hold.
+    if (!h.found || dot(dir, h.normal) < 1e-3) break;
+    d = back_plane_distance(origin, dir, d, h.position, h.normal);
+    n_back = h.normal;
+    found = true;
+  }
+  return found;
+}
+
+// refracted_radiance (transmission.glsl) through both interfaces: per channel (three iors
+// with dispersion), the view ray refracted at the entry, carried to the back face (Wyman's
+// estimate, then to_back_face), refracted out of it (or reflected inside, kInsideSegments)
+// and followed to the frame's surface (frame_hit; with dispersion once, for green: the
+// other channels' exit rays are read at the same distance along them); Beer-Lambert over the path
+// inside. Where the back-face
+// pass holds nothing at the fragment's own pixel (a silhouette), or has not run for this
+// draw (`back_faces` false), transmission.glsl's one refraction through the thickness.
+vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D frame,
+                              sampler2D frame_depth, vec2 frame_size, sampler2D back_position,
+                              sampler2D back_normal, vec4 back_rect, vec2 pixel_uv,
+                              mat4 view_projection, mat4 inverse_view_projection,
+                              vec3 camera, samplerCube env_cube, vec2 env_rotation,
+                              int env_levels, float env_scale, bool dispersion) {
+  BackFaceHit own = back_face_at(back_position, back_normal, back_rect, pixel_uv);
+  if (!back_faces || !own.found)
+    return refracted_radiance(t, frame, frame_size, view_projection, camera, env_cube,
+                              env_rotation, env_levels, env_scale, dispersion);
+  float d_v = distance(own.position, t.position);
+  vec3 result = vec3(0.0);
+  int channels = dispersion ? 3 : 1;
+  bool hit = false;
+  float t_hit = 0.0;
+  for (int k = 0; k < channels; ++k) {
+    int c = dispersion ? (k + 1) % 3 : 0;  // green first: its search serves the others
+    float ior = t.iors[c];
+    vec3 dir = refract(-t.v, t.n, 1.0 / ior);
+    dir = dot(dir, dir) > 0.0 ? normalize(dir) : -t.v;
+    float d_n = length(volume_transmission_ray(t.n, t.v, t.thickness, ior, t.model_scale));
+    float d = wyman_distance(d_v, d_n, saturate(dot(t.n, t.v)), ior);
+    vec3 origin = t.position;
+    float inside = 0.0;  // the path length inside, for Beer-Lambert
+    for (int segment = 0; segment < kInsideSegments; ++segment) {
+      vec3 n_back;
+      bool found =
+          to_back_face(origin, dir, view_projection, back_position, back_normal, back_rect, d, n_back);
+      // The first segment keeps Wyman's estimate and the fragment's own back face where the
+      // refined point sees none. A reflected ray that meets no back face heads for a front
+      // face (which the pass does not hold): it is taken to cross the object once more, as
+      // long as the segment before, and to leave along its direction.
+      if (!found && segment == 0) n_back = own.normal;
+      origin += d * dir;
+      inside += d;
+      if (!found && segment > 0) break;
+      bool tir;
+      dir = exit_direction(dir, n_back, ior, tir);
+      if (!tir) break;
+    }
+    float rough = transmission_roughness(t.roughness, ior);
+    vec2 uv;
+    vec3 seen;
+    bool on;
+    if (k == 0) {
+      hit = frame_hit(origin, dir, view_projection, inverse_view_projection, frame_depth, uv, t_hit);
+      on = hit;
+    } else {
+      on = hit && project_to_screen(view_projection, origin + t_hit * dir, uv);
+    }
+    if (on) {
+      seen = textureLod(frame, uv, log2(frame_size.x) * rough).rgb;
+    } else {
+      seen = env_scale * textureLod(env_cube, world_to_env(dir, env_rotation),
+                                    rough * float(env_levels - 1)).rgb;
+    }
+    seen *= volume_attenuation(inside, t.attenuation_color, t.attenuation_distance);
+    if (dispersion)
+      result[c] = seen[c];
+    else
+      result = seen;
+  }
+  return result;
+}
