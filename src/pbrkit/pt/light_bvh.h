@@ -87,10 +87,6 @@ class LightBvh {
   };
   void build(std::vector<Item>& items, std::size_t begin, std::size_t end, int depth,
              std::uint64_t trail);
-  /// The probabilities of going to either child of interior node `node` (its importance's
-  /// share); false when neither child's lights reach p.
-  bool child_probabilities(const Node& node, std::size_t node_index, glm::vec3 p, glm::vec3 n,
-                           float& p1, float& p2) const;
 
   std::vector<Node> nodes_;
   /// Per light: bit k is the branch taken at depth k (0 first child, 1 second); lights
