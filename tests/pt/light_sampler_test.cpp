@@ -3,7 +3,8 @@
 // and spot lights; directional lights): the probability of choosing each light sums to 1,
 // a light the BVH never chooses cannot reach the point, the frequencies of sample() match
 // the pmf (chi-square), and the pmf a BSDF-sampled hit on an emitter recomputes is the one
-// the light sample used (MIS). Then renders: with a lone light both samplers give the
+// the light sample used (MIS); the BVH's paired (SSE) child evaluation is the scalar
+// importance bit for bit. Then renders: with a lone light both samplers give the
 // same bits, and on many lights their images agree within the noise.
 #include <gtest/gtest.h>
 
@@ -274,6 +275,56 @@ TEST(LightSampler, SampleFrequenciesMatchPmf) {
 // bit; and for an emissive triangle, the solid-angle pdf of the light sample is the one
 // triangle_pdf() computes when a ray from the point hits that triangle (what the
 // integrator does when a BSDF-sampled ray finds an emitter).
+// The traversal evaluates a node's two children together (one SSE vector); each must be
+// the scalar light_importance() bit for bit, so that the choice does not depend on which
+// path computed it. With two lights the tree is a root over two leaves and pmf(k) is
+// i_k / (i_0 + i_1) of the scalar importances. Boxes, cones (narrow to the whole sphere,
+// one- and two-sided, spreads from 0), points inside and outside the boxes, normals and
+// none.
+TEST(LightSampler, BvhChildPairImportanceIsTheScalarOne) {
+  Pcg32 rng(29);
+  int compared = 0, culled = 0;
+  for (int t = 0; t < 4000; ++t) {
+    LightBounds b[2];
+    for (LightBounds& l : b) {
+      const glm::vec3 c(rng.next_float() * 8.0f - 4.0f, rng.next_float() * 8.0f - 4.0f,
+                        rng.next_float() * 8.0f - 4.0f);
+      const glm::vec3 half(log_uniform(rng, 1e-3f, 2.0f), log_uniform(rng, 1e-3f, 2.0f),
+                           log_uniform(rng, 1e-3f, 2.0f));
+      l.lo = c - half;
+      l.hi = c + half;
+      l.w = random_unit(rng);
+      l.phi = log_uniform(rng, 1e-3f, 1e3f);
+      l.cos_theta_o = rng.next_float() < 0.3f ? 1.0f : 2.0f * rng.next_float() - 1.0f;
+      l.cos_theta_e = rng.next_float() < 0.3f ? 0.0f : rng.next_float();
+      l.two_sided = rng.next_float() < 0.3f;
+    }
+    const LightBvh bvh({b[0], b[1]});
+    ASSERT_EQ(bvh.node_count(), 3u);
+    // Half the points near a box (often inside its bounding sphere).
+    const glm::vec3 p =
+        rng.next_float() < 0.5f
+            ? 0.5f * (b[t % 2].lo + b[t % 2].hi) + 0.5f * random_unit(rng)
+            : glm::vec3(rng.next_float() * 16.0f - 8.0f, rng.next_float() * 16.0f - 8.0f,
+                        rng.next_float() * 16.0f - 8.0f);
+    const glm::vec3 n = rng.next_float() < 0.2f ? glm::vec3(0.0f) : random_unit(rng);
+    const float i0 = light_importance(b[0], p, n), i1 = light_importance(b[1], p, n);
+    const float sum = i0 + i1;
+    if (!(sum > 0.0f)) {
+      EXPECT_EQ(bvh.pmf(p, n, 0), 0.0f);
+      EXPECT_EQ(bvh.pmf(p, n, 1), 0.0f);
+      ++culled;
+      continue;
+    }
+    const float inv_sum = 1.0f / sum;
+    ASSERT_EQ(bvh.pmf(p, n, 0), i0 * inv_sum) << "trial " << t;
+    ASSERT_EQ(bvh.pmf(p, n, 1), i1 * inv_sum) << "trial " << t;
+    ++compared;
+  }
+  EXPECT_GT(compared, 2000);
+  EXPECT_GT(culled, 0);  // the emission-spread cut-off was exercised
+}
+
 TEST(LightSampler, PmfOfTheSampledLightIsTheOneSampleUsed) {
   Fixture& f = fixture();
   Pcg32 rng(5);
