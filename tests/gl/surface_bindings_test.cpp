@@ -7,15 +7,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <regex>
 #include <set>
 #include <string>
 #include <vector>
 
+#include <epoxy/gl.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_test_context.h"
 #include "pbrkit/gl/renderer.h"
+#include "pbrkit/gl/shader_permutations.h"
 #include "pbrkit/gl/shaders.h"
 #include "pbrkit/gl/surface_bindings.h"
 #include "pbrkit/scene/material_schema.h"
@@ -70,6 +73,42 @@ TEST(GlSurfaceBindings, TheSurfaceShadersTypeNoSlotOrBindingNumber) {
     EXPECT_FALSE(std::regex_search(text, literal_binding)) << file;
     EXPECT_FALSE(std::regex_search(text, literal_slot)) << file;
   }
+}
+
+// The renderer sets each extension's factors by the schema (factor_uniform()'s names): the
+// surface program with every extension on has each as an active uniform of the factor's
+// type, so that none is set on a name the shader does not read.
+TEST(GlSurfaceBindings, EverySchemaFactorIsAUniformOfItsType) {
+  testing::context();
+  ShaderPermutations permutations;
+  SurfaceFeatures f;
+  f.specular = f.anisotropy = f.iridescence = f.clearcoat = f.sheen = true;
+  f.transmission = f.volume = f.dispersion = f.diffuse_transmission = true;
+  f.ibl = true;
+  f.textures = (1u << kTextureSlotCount) - 1u;  // a factor may be read only with its texture
+  const GLuint program = permutations.surface(f).id();
+  std::map<std::string, GLenum> active;
+  GLint count = 0;
+  glGetProgramiv(program, GL_ACTIVE_UNIFORMS, &count);
+  for (GLint i = 0; i < count; ++i) {
+    char name[256];
+    GLsizei length = 0;
+    GLint size = 0;
+    GLenum type = 0;
+    glGetActiveUniform(program, GLuint(i), sizeof name, &length, &size, &type, name);
+    active[std::string(name, std::size_t(length))] = type;
+  }
+  int factors = 0;
+  for (const MaterialExtension& e : material_extensions())
+    for (const MaterialFactor& factor : e.factors) {
+      const std::string name = factor_uniform(factor);
+      const auto it = active.find(name);
+      ASSERT_NE(it, active.end()) << e.name << "." << factor.json_name << ": no " << name;
+      EXPECT_EQ(it->second, GLenum(factor.components == 3 ? GL_FLOAT_VEC3 : GL_FLOAT)) << name;
+      ++factors;
+    }
+  EXPECT_GE(factors, 20);  // ior 1, specular 2, clearcoat 2, sheen 2, anisotropy 2,
+                           // iridescence 4, transmission 1, volume 3, dispersion 1, DT 2
 }
 
 // Makes `slot`'s extension present in `m` with factors under which the slot's texture

@@ -19,6 +19,7 @@
 #include "pbrkit/gl/shader_permutations.h"
 #include "pbrkit/gl/surface_bindings.h"
 #include "pbrkit/scene/camera.h"
+#include "pbrkit/scene/material_schema.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 
@@ -38,48 +39,28 @@ glm::vec2 env_rotation_cs(float rotation_deg) {
   return {std::cos(a), std::sin(a)};
 }
 
-// The extensions' factors (their READMEs' defaults when the material has none, which the
-// permutation then does not read).
+// The extensions' factors, each on its uniform factor_uniform() names, from the material
+// schema (the READMEs' defaults when the material has none, which the permutation then
+// does not read).
 void set_extension_uniforms(const Program& p, const Material& m) {
-  p.set("uIor", m.ior);
-  const SpecularExtension spec = m.specular.value_or(SpecularExtension{});
-  p.set("uSpecularFactor", spec.factor);
-  p.set("uSpecularColorFactor", spec.color_factor);
-  if (m.clearcoat) {
-    p.set("uClearcoatFactor", m.clearcoat->factor);
-    p.set("uClearcoatRoughnessFactor", m.clearcoat->roughness_factor);
-    p.set("uClearcoatNormalScale", m.clearcoat->normal_scale);
+  for (const MaterialExtension& e : material_extensions()) {
+    const bool present = e.present(m);
+    for (const MaterialFactor& f : e.factors) {
+      glm::vec3 v(0.0f);
+      for (int c = 0; c < f.components; ++c)
+        v[c] = present ? f.read(m)[c] : factor_default(e, f, c);
+      const std::string name = factor_uniform(f);
+      if (f.components == 3)
+        p.set(name.c_str(), v);
+      else
+        p.set(name.c_str(), v.x);
+    }
   }
-  if (m.sheen) {
-    p.set("uSheenColorFactor", m.sheen->color_factor);
-    p.set("uSheenRoughnessFactor", m.sheen->roughness_factor);
-  }
-  if (m.anisotropy) {
-    p.set("uAnisotropyStrength", m.anisotropy->strength);
-    p.set("uAnisotropyRotation",
-          glm::vec2(std::cos(m.anisotropy->rotation), std::sin(m.anisotropy->rotation)));
-  }
-  if (m.iridescence) {
-    p.set("uIridescenceFactor", m.iridescence->factor);
-    p.set("uIridescenceIor", m.iridescence->ior);
-    p.set("uIridescenceThickness",
-          glm::vec2(m.iridescence->thickness_min, m.iridescence->thickness_max));
-  }
-  if (m.transmission) p.set("uTransmissionFactor", m.transmission->factor);
-  if (m.volume) {
-    p.set("uThicknessFactor", m.volume->thickness_factor);
-    p.set("uAttenuationColor", m.volume->attenuation_color);
-    // The shader's "none" is <= 0 (glTF requires a positive distance; absent is infinity).
-    const float d = m.volume->attenuation_distance;
-    p.set("uAttenuationDistance", std::isfinite(d) && d > 0.0f ? d : 0.0f);
-  } else {
-    p.set("uAttenuationDistance", 0.0f);
-  }
-  if (m.dispersion) p.set("uDispersion", m.dispersion->dispersion);
-  if (m.diffuse_transmission) {
-    p.set("uDiffuseTransmissionFactor", m.diffuse_transmission->factor);
-    p.set("uDiffuseTransmissionColorFactor", m.diffuse_transmission->color_factor);
-  }
+  // The shader's "none" is <= 0 (glTF requires a positive distance; absent is infinity).
+  const float d = m.volume ? m.volume->attenuation_distance : 0.0f;
+  p.set("uAttenuationDistance", std::isfinite(d) && d > 0.0f ? d : 0.0f);
+  // A normalTextureInfo's scale, not a factor of the schema.
+  p.set("uClearcoatNormalScale", m.clearcoat ? m.clearcoat->normal_scale : 1.0f);
 }
 
 // The most captures of the frame a transmission pass makes (the opaque frame, then one more

@@ -33,6 +33,12 @@ std::string texture_slot_macro(TextureSlot slot) {
   return macro;
 }
 
+std::string factor_uniform(const MaterialFactor& factor) {
+  std::string name = std::string("u") + factor.json_name;
+  name[1] = char(std::toupper(static_cast<unsigned char>(name[1])));
+  return name;
+}
+
 std::vector<SurfaceBinding> surface_bindings() {
   std::vector<SurfaceBinding> b;
   for (int t = 0; t < kTextureSlotCount; ++t)

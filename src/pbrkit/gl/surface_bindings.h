@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pbrkit/scene/material_schema.h"
 #include "pbrkit/scene/scene.h"
 
 namespace pbrkit::gl {
@@ -50,6 +51,11 @@ std::vector<SurfaceBinding> surface_bindings();
 /// "BASE_COLOR_TEXTURE", ..., "SHEEN_COLOR_TEXTURE" (texture_slot_name() in upper snake
 /// case, the extension dropped, "_TEXTURE" appended where the name lacks it).
 std::string texture_slot_macro(TextureSlot slot);
+
+/// The surface program's uniform for an extension's factor: "u" and the factor's JSON
+/// name capitalised ("sheenColorFactor": uSheenColorFactor), a float or a vec3 as the
+/// factor's components.
+std::string factor_uniform(const MaterialFactor& factor);
 
 /// The #defines every surface permutation starts with: SLOT_<slot> (the index into
 /// uTexcoordSet and uTextureTransform) for each texture slot and BINDING_<name> for each

@@ -109,10 +109,11 @@ uniform float uClearcoatNormalScale;
 uniform vec3 uSheenColorFactor;      // KHR_materials_sheen
 uniform float uSheenRoughnessFactor;
 uniform float uAnisotropyStrength;   // KHR_materials_anisotropy
-uniform vec2 uAnisotropyRotation;    // (cos, sin) of anisotropyRotation
+uniform float uAnisotropyRotation;   // radians from the tangent
 uniform float uIridescenceFactor;    // KHR_materials_iridescence
 uniform float uIridescenceIor;
-uniform vec2 uIridescenceThickness;  // (minimum, maximum), nm
+uniform float uIridescenceThicknessMinimum;  // nm
+uniform float uIridescenceThicknessMaximum;
 layout(binding = BINDING_SPECULAR_TEXTURE) uniform sampler2D uSpecularTexture;
 layout(binding = BINDING_SPECULAR_COLOR_TEXTURE) uniform sampler2D uSpecularColorTexture;
 layout(binding = BINDING_CLEARCOAT_TEXTURE) uniform sampler2D uClearcoatTexture;
@@ -123,7 +124,7 @@ layout(binding = BINDING_SHEEN_ROUGHNESS_TEXTURE) uniform sampler2D uSheenRoughn
 layout(binding = BINDING_ANISOTROPY_TEXTURE) uniform sampler2D uAnisotropyTexture;
 layout(binding = BINDING_IRIDESCENCE_TEXTURE) uniform sampler2D uIridescenceTexture;
 layout(binding = BINDING_IRIDESCENCE_THICKNESS_TEXTURE) uniform sampler2D uIridescenceThicknessTexture;
-// Issue 12's factors and textures: slots 15..18 on units 22..25 (after the model's 19..21).
+// The transmission extensions' factors and textures.
 uniform float uTransmissionFactor;          // KHR_materials_transmission
 uniform float uThicknessFactor;             // KHR_materials_volume (object space)
 uniform vec3 uAttenuationColor;
@@ -316,7 +317,7 @@ void main() {
     d = at.rg * 2.0 - 1.0;
     strength *= at.b;
 #endif
-    vec2 cs = uAnisotropyRotation;
+    vec2 cs = vec2(cos(uAnisotropyRotation), sin(uAnisotropyRotation));
     d = vec2(cs.x * d.x - cs.y * d.y, cs.y * d.x + cs.x * d.y);
     vec3 t = vTangent.xyz;
     vec3 b = cross(n_geom, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
@@ -340,7 +341,7 @@ void main() {
 #if HAS_IRIDESCENCE_THICKNESS_TEXTURE
   thickness_g = texture(uIridescenceThicknessTexture, texcoord(SLOT_IRIDESCENCE_THICKNESS_TEXTURE)).g;
 #endif
-  layer.iridescence_thickness = mix(uIridescenceThickness.x, uIridescenceThickness.y, thickness_g);
+  layer.iridescence_thickness = mix(uIridescenceThicknessMinimum, uIridescenceThicknessMaximum, thickness_g);
 #endif
   vec3 wo = to_local(frame, v);
 
