@@ -52,6 +52,8 @@ struct SurfaceFeatures {
   int debug_channel = 0;
 
   std::uint64_t key() const {
+    // The texture bits take the key's low 19 bits; more slots need the fields below moved.
+    static_assert(kTextureSlotCount <= 19, "SurfaceFeatures::key: widen the texture bits");
     return std::uint64_t(textures) | std::uint64_t(alpha_mode) << 19 | std::uint64_t(ibl) << 21 |
            std::uint64_t(irradiance_sh) << 22 | std::uint64_t(multiscatter) << 23 |
            std::uint64_t(geometry) << 24 | std::uint64_t(fresnel) << 26 |
