@@ -184,8 +184,8 @@ struct DiffuseTransmissionExtension {
   TextureRef color_texture;      ///< diffuseTransmissionColorTexture, RGB (sRGB)
 };
 
-/// Material::textures()'s slots (the GL renderer's HAS_TEXTURE_n bits use these numbers;
-/// material_schema.h names each and says which extension and channels fill it).
+/// Material::textures()'s slots (the GL renderer's texture bits and SLOT_<name>s use these
+/// numbers; material_schema.h names each and says which extension and channels fill it).
 enum class TextureSlot {
   kBaseColor,
   kMetallicRoughness,

@@ -17,7 +17,9 @@
 #include "pbrkit/gl/light_clusters.h"
 #include "pbrkit/gl/render_targets.h"
 #include "pbrkit/gl/shader_permutations.h"
+#include "pbrkit/gl/surface_bindings.h"
 #include "pbrkit/scene/camera.h"
+#include "pbrkit/scene/material_schema.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 
@@ -37,62 +39,29 @@ glm::vec2 env_rotation_cs(float rotation_deg) {
   return {std::cos(a), std::sin(a)};
 }
 
-// The extensions' factors (their READMEs' defaults when the material has none, which the
-// permutation then does not read).
+// The extensions' factors, each on its uniform factor_uniform() names, from the material
+// schema (the READMEs' defaults when the material has none, which the permutation then
+// does not read).
 void set_extension_uniforms(const Program& p, const Material& m) {
-  p.set("uIor", m.ior);
-  const SpecularExtension spec = m.specular.value_or(SpecularExtension{});
-  p.set("uSpecularFactor", spec.factor);
-  p.set("uSpecularColorFactor", spec.color_factor);
-  if (m.clearcoat) {
-    p.set("uClearcoatFactor", m.clearcoat->factor);
-    p.set("uClearcoatRoughnessFactor", m.clearcoat->roughness_factor);
-    p.set("uClearcoatNormalScale", m.clearcoat->normal_scale);
+  for (const MaterialExtension& e : material_extensions()) {
+    const bool present = e.present(m);
+    for (const MaterialFactor& f : e.factors) {
+      glm::vec3 v(0.0f);
+      for (int c = 0; c < f.components; ++c)
+        v[c] = present ? f.read(m)[c] : factor_default(e, f, c);
+      const std::string name = factor_uniform(f);
+      if (f.components == 3)
+        p.set(name.c_str(), v);
+      else
+        p.set(name.c_str(), v.x);
+    }
   }
-  if (m.sheen) {
-    p.set("uSheenColorFactor", m.sheen->color_factor);
-    p.set("uSheenRoughnessFactor", m.sheen->roughness_factor);
-  }
-  if (m.anisotropy) {
-    p.set("uAnisotropyStrength", m.anisotropy->strength);
-    p.set("uAnisotropyRotation",
-          glm::vec2(std::cos(m.anisotropy->rotation), std::sin(m.anisotropy->rotation)));
-  }
-  if (m.iridescence) {
-    p.set("uIridescenceFactor", m.iridescence->factor);
-    p.set("uIridescenceIor", m.iridescence->ior);
-    p.set("uIridescenceThickness",
-          glm::vec2(m.iridescence->thickness_min, m.iridescence->thickness_max));
-  }
-  if (m.transmission) p.set("uTransmissionFactor", m.transmission->factor);
-  if (m.volume) {
-    p.set("uThicknessFactor", m.volume->thickness_factor);
-    p.set("uAttenuationColor", m.volume->attenuation_color);
-    // The shader's "none" is <= 0 (glTF requires a positive distance; absent is infinity).
-    const float d = m.volume->attenuation_distance;
-    p.set("uAttenuationDistance", std::isfinite(d) && d > 0.0f ? d : 0.0f);
-  } else {
-    p.set("uAttenuationDistance", 0.0f);
-  }
-  if (m.dispersion) p.set("uDispersion", m.dispersion->dispersion);
-  if (m.diffuse_transmission) {
-    p.set("uDiffuseTransmissionFactor", m.diffuse_transmission->factor);
-    p.set("uDiffuseTransmissionColorFactor", m.diffuse_transmission->color_factor);
-  }
+  // The shader's "none" is <= 0 (glTF requires a positive distance; absent is infinity).
+  const float d = m.volume ? m.volume->attenuation_distance : 0.0f;
+  p.set("uAttenuationDistance", std::isfinite(d) && d > 0.0f ? d : 0.0f);
+  // A normalTextureInfo's scale, not a factor of the schema.
+  p.set("uClearcoatNormalScale", m.clearcoat ? m.clearcoat->normal_scale : 1.0f);
 }
-
-// The texture unit of Material::textures()'s slot t (pbr_fragment.glsl's bindings): the
-// core slots on 0..4, issue 11's extensions' (5..14) on 9..18, issue 12's (15..18) on
-// 22..25; 5..8 and 19..21 hold the energy tables and cubes, 26 the transmission frame,
-// 27..29 the thick objects' back faces and the frame's depth.
-GLuint texture_unit(int t) {
-  return GLuint(t < 5 ? t : t < 15 ? t + 4 : t + 7);
-}
-// The other units of pbr_fragment.glsl.
-constexpr GLuint kCoatEnergyUnit = 19, kSheenCubeUnit = 20, kSheenLutUnit = 21;
-constexpr GLuint kTransmissionFrameUnit = 26;
-constexpr GLuint kBackPositionUnit = 27, kBackNormalUnit = 28, kFrameDepthUnit = 29;
-constexpr GLuint kLastSurfaceUnit = kFrameDepthUnit;
 
 // The most captures of the frame a transmission pass makes (the opaque frame, then one more
 // each time a transmissive surface covers one drawn since the last capture): glass seen
@@ -184,8 +153,8 @@ glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuSce
   const Instance& inst = scene.instances[index];
   const GpuMesh& mesh = scene.meshes[std::size_t(inst.mesh)];
   if (!program.id())
-    program =
-        Program::graphics("pbr_vertex.glsl", "back_face_fragment.glsl", "#define HAS_COLOR_0 0\n");
+    program = Program::graphics("pbr_vertex.glsl", "back_face_fragment.glsl",
+                                surface_prelude() + "#define HAS_COLOR_0 0\n");
   targets.begin_back_faces(p0.x, p0.y, p1.x, p1.y);
   program.use();
   program.set("uViewProjection", view_projection);
@@ -331,10 +300,10 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
   if (frame.lights == 1 && int(lights.size()) <= kCompiledLightCount)
     frame.light_count = int(lights.size());
   set_debug_features(settings, frame);
-  glBindTextureUnit(5, s.energy[std::size_t(direct)]);
-  glBindTextureUnit(6, s.energy[std::size_t(ibl)]);
-  glBindTextureUnit(7, s.environment.specular_cube);
-  glBindTextureUnit(8, s.environment.irradiance_cube);
+  glBindTextureUnit(kEnergyDirectUnit, s.energy[std::size_t(direct)]);
+  glBindTextureUnit(kEnergyIblUnit, s.energy[std::size_t(ibl)]);
+  glBindTextureUnit(kSpecularCubeUnit, s.environment.specular_cube);
+  glBindTextureUnit(kIrradianceCubeUnit, s.environment.irradiance_cube);
   glBindTextureUnit(kCoatEnergyUnit, s.energy[std::size_t(GeometryModel::kReference)]);
   glBindTextureUnit(kSheenCubeUnit, s.environment.sheen_cube);
   glBindTextureUnit(kSheenLutUnit, s.sheen_lut);
@@ -422,11 +391,12 @@ void Renderer::render(const Camera& camera, int width, int height, const RenderS
     for (int t = 0; t < kTextureSlotCount; ++t) {
       const TextureRef& ref = *refs[std::size_t(t)];
       const bool valid = (features.textures >> t) & 1u;
-      if (t >= 5 && !valid) continue;  // an extension's unused slot is not sampled
+      if (t >= int(kFirstExtensionTextureSlot) && !valid)
+        continue;  // an extension's unused slot is not sampled
       p.set(indexed("uTexcoordSet", t).c_str(), ref.texcoord);
       p.set(indexed("uTextureTransform", t).c_str(),
             ref.transform ? ref.transform->matrix() : glm::mat3(1.0f));
-      glBindTextureUnit(texture_unit(t),
+      glBindTextureUnit(texture_unit(TextureSlot(t)),
                         valid ? s.scene.textures[std::size_t(ref.texture)] : s.white_texture);
     }
     // glTF: single-sided materials cull back faces; a mirroring transform flips winding.

@@ -11,6 +11,7 @@
 
 #include "pbrkit/core/color.h"
 #include "pbrkit/gl/program.h"
+#include "pbrkit/gl/surface_bindings.h"
 
 namespace pbrkit::gl {
 
@@ -21,7 +22,7 @@ inline constexpr int kCompiledLightCount = 16;
 // Compile-time features of the surface program (pbr_fragment.glsl says why they are not
 // uniforms: on llvmpipe an unused branch still costs its texture fetches).
 struct SurfaceFeatures {
-  unsigned textures = 0;  ///< bit t: texture slot t bound (scene.h's TextureSlot, 19 slots)
+  unsigned textures = 0;  ///< bit t: texture slot t bound (scene.h's TextureSlot: HAS_<slot>)
   bool colors = false;    ///< the mesh has COLOR_0
   int alpha_mode = 0;     ///< 0 opaque, 1 mask, 2 blend
   bool ibl = false;
@@ -51,6 +52,8 @@ struct SurfaceFeatures {
   int debug_channel = 0;
 
   std::uint64_t key() const {
+    // The texture bits take the key's low 19 bits; more slots need the fields below moved.
+    static_assert(kTextureSlotCount <= 19, "SurfaceFeatures::key: widen the texture bits");
     return std::uint64_t(textures) | std::uint64_t(alpha_mode) << 19 | std::uint64_t(ibl) << 21 |
            std::uint64_t(irradiance_sh) << 22 | std::uint64_t(multiscatter) << 23 |
            std::uint64_t(geometry) << 24 | std::uint64_t(fresnel) << 26 |
@@ -63,7 +66,7 @@ struct SurfaceFeatures {
            std::uint64_t(light_count + 1) << 43 | std::uint64_t(debug_channel) << 48;
   }
   std::string defines() const {
-    std::string d;
+    std::string d = surface_prelude();
     d += fmt::format(
         "#define MATERIAL_SPECULAR {}\n#define MATERIAL_ANISOTROPY {}\n"
         "#define MATERIAL_IRIDESCENCE {}\n#define MATERIAL_CLEARCOAT {}\n"
@@ -72,8 +75,9 @@ struct SurfaceFeatures {
         "#define MATERIAL_DISPERSION {}\n#define MATERIAL_DIFFUSE_TRANSMISSION {}\n",
         int(specular), int(anisotropy), int(iridescence), int(clearcoat), int(sheen), int(unlit),
         int(transmission), int(volume), int(dispersion), int(diffuse_transmission));
-    for (int t = 0; t < 19; ++t)
-      d += fmt::format("#define HAS_TEXTURE_{} {}\n", t, (textures >> t) & 1u);
+    for (int t = 0; t < kTextureSlotCount; ++t)
+      d += fmt::format("#define HAS_{} {}\n", texture_slot_macro(TextureSlot(t)),
+                       (textures >> t) & 1u);
     d += fmt::format("#define HAS_COLOR_0 {}\n", int(colors));
     d += fmt::format(
         "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"

@@ -29,6 +29,7 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/ibl_maps.cpp
   ${_pbrkit_gl_dir}/gpu_scene.cpp
   ${_pbrkit_gl_dir}/light_clusters.cpp
+  ${_pbrkit_gl_dir}/surface_bindings.cpp
   ${_pbrkit_gl_dir}/shader_permutations.cpp
   ${_pbrkit_gl_dir}/render_targets.cpp
   ${_pbrkit_gl_dir}/gpu_timer.cpp

@@ -3,23 +3,25 @@
 // and split-sum IBL (ibl.glsl), with glTF's textures, emission, normal and occlusion maps
 // (occlusion on indirect light only), alpha MASK / BLEND and double-sided materials.
 //
-// Features are compile-time constants (renderer.cpp's SurfaceFeatures writes the #defines;
-// the defaults below are only for tools that compile this file alone): llvmpipe, the
+// Features are compile-time constants (shader_permutations.h's SurfaceFeatures writes the
+// #defines after surface_bindings.h's prelude, which names every texture slot, SLOT_<slot>,
+// and every texture unit and buffer binding point, BINDING_<name>; the feature defaults
+// below are only for tools that compile this file with the prelude alone): llvmpipe, the
 // software rasteriser of CI and headless servers, runs both sides of a branch on a
 // uniform with masked lanes, so an unused texture or IBL term would still cost its
-// fetches. HAS_TEXTURE_0..4: baseColor, metallicRoughness, normal, occlusion, emissive
-// bound; HAS_COLOR_0: the mesh has COLOR_0 (a varying fewer without: llvmpipe sets up
+// fetches. HAS_<slot> (HAS_BASE_COLOR_TEXTURE, ..., one per scene.h TextureSlot): the slot
+// is bound; HAS_COLOR_0: the mesh has COLOR_0 (a varying fewer without: llvmpipe sets up
 // and interpolates every varying of every small triangle); ALPHA_MODE 0 opaque, 1 mask,
 // 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1; GEOMETRY (G for lights) and FRESNEL as
 // in brdf.glsl; LIGHTS: the punctual lights, 0 none, 1 every light for every fragment, 2
 // the fragment's cluster's (light_clusters.h); LIGHT_COUNT: with LIGHTS 1, the number of
 // lights when compiled in (-1: uLightCount).
 // The KHR_materials_* extensions (issue 11), each its own permutation feature with its
-// texture slots (Material::textures(): HAS_TEXTURE_5..14): MATERIAL_SPECULAR (ior and
+// texture slots (HAS_SPECULAR_TEXTURE .. HAS_IRIDESCENCE_THICKNESS_TEXTURE): MATERIAL_SPECULAR (ior and
 // specular), MATERIAL_ANISOTROPY, MATERIAL_IRIDESCENCE, MATERIAL_CLEARCOAT, MATERIAL_SHEEN,
 // MATERIAL_UNLIT. Every input is computed as the path tracer's shade_inputs
 // (pt/shading.cpp) computes it.
-// Issue 12's (transmission.glsl; HAS_TEXTURE_15..18): MATERIAL_TRANSMISSION (the opaque
+// Issue 12's (transmission.glsl; HAS_TRANSMISSION_TEXTURE .. HAS_DIFFUSE_TRANSMISSION_COLOR_TEXTURE): MATERIAL_TRANSMISSION (the opaque
 // frame, uTransmissionFrame, read through the surface), MATERIAL_VOLUME (a thickness > 0:
 // refraction through the medium, Beer-Lambert), MATERIAL_DISPERSION (three iors),
 // MATERIAL_DIFFUSE_TRANSMISSION (the irradiance at -n through the diffuse lobe). With
@@ -32,33 +34,14 @@
 #define MATERIAL_CLEARCOAT 0
 #define MATERIAL_SHEEN 0
 #define MATERIAL_UNLIT 0
-#define HAS_TEXTURE_5 0
-#define HAS_TEXTURE_6 0
-#define HAS_TEXTURE_7 0
-#define HAS_TEXTURE_8 0
-#define HAS_TEXTURE_9 0
-#define HAS_TEXTURE_10 0
-#define HAS_TEXTURE_11 0
-#define HAS_TEXTURE_12 0
-#define HAS_TEXTURE_13 0
-#define HAS_TEXTURE_14 0
 #endif
 #ifndef MATERIAL_TRANSMISSION
 #define MATERIAL_TRANSMISSION 0
 #define MATERIAL_VOLUME 0
 #define MATERIAL_DISPERSION 0
 #define MATERIAL_DIFFUSE_TRANSMISSION 0
-#define HAS_TEXTURE_15 0
-#define HAS_TEXTURE_16 0
-#define HAS_TEXTURE_17 0
-#define HAS_TEXTURE_18 0
 #endif
-#ifndef HAS_TEXTURE_0
-#define HAS_TEXTURE_0 0
-#define HAS_TEXTURE_1 0
-#define HAS_TEXTURE_2 0
-#define HAS_TEXTURE_3 0
-#define HAS_TEXTURE_4 0
+#ifndef HAS_COLOR_0
 #define HAS_COLOR_0 1
 #define ALPHA_MODE 0
 #define IBL 1
@@ -108,15 +91,15 @@ uniform float uOcclusionStrength;
 uniform float uAlphaCutoff;
 // Per texture slot (scene.h's TextureSlot): which TEXCOORD set, the KHR_texture_transform
 // matrix.
-uniform int uTexcoordSet[19];
-uniform mat3 uTextureTransform[19];
-layout(binding = 0) uniform sampler2D uBaseColorTexture;
-layout(binding = 1) uniform sampler2D uMetallicRoughnessTexture;
-layout(binding = 2) uniform sampler2D uNormalTexture;
-layout(binding = 3) uniform sampler2D uOcclusionTexture;
-layout(binding = 4) uniform sampler2D uEmissiveTexture;
+uniform int uTexcoordSet[TEXTURE_SLOT_COUNT];
+uniform mat3 uTextureTransform[TEXTURE_SLOT_COUNT];
+layout(binding = BINDING_BASE_COLOR_TEXTURE) uniform sampler2D uBaseColorTexture;
+layout(binding = BINDING_METALLIC_ROUGHNESS_TEXTURE) uniform sampler2D uMetallicRoughnessTexture;
+layout(binding = BINDING_NORMAL_TEXTURE) uniform sampler2D uNormalTexture;
+layout(binding = BINDING_OCCLUSION_TEXTURE) uniform sampler2D uOcclusionTexture;
+layout(binding = BINDING_EMISSIVE_TEXTURE) uniform sampler2D uEmissiveTexture;
 // The extensions' factors (the READMEs' defaults when absent) and textures: slot t >= 5 on
-// unit 4 + t (renderer.cpp's texture_unit).
+// its unit BINDING_<slot> (surface_bindings.h).
 uniform float uIor;                  // KHR_materials_ior
 uniform float uSpecularFactor;       // KHR_materials_specular
 uniform vec3 uSpecularColorFactor;
@@ -126,21 +109,22 @@ uniform float uClearcoatNormalScale;
 uniform vec3 uSheenColorFactor;      // KHR_materials_sheen
 uniform float uSheenRoughnessFactor;
 uniform float uAnisotropyStrength;   // KHR_materials_anisotropy
-uniform vec2 uAnisotropyRotation;    // (cos, sin) of anisotropyRotation
+uniform float uAnisotropyRotation;   // radians from the tangent
 uniform float uIridescenceFactor;    // KHR_materials_iridescence
 uniform float uIridescenceIor;
-uniform vec2 uIridescenceThickness;  // (minimum, maximum), nm
-layout(binding = 9) uniform sampler2D uSpecularTexture;
-layout(binding = 10) uniform sampler2D uSpecularColorTexture;
-layout(binding = 11) uniform sampler2D uClearcoatTexture;
-layout(binding = 12) uniform sampler2D uClearcoatRoughnessTexture;
-layout(binding = 13) uniform sampler2D uClearcoatNormalTexture;
-layout(binding = 14) uniform sampler2D uSheenColorTexture;
-layout(binding = 15) uniform sampler2D uSheenRoughnessTexture;
-layout(binding = 16) uniform sampler2D uAnisotropyTexture;
-layout(binding = 17) uniform sampler2D uIridescenceTexture;
-layout(binding = 18) uniform sampler2D uIridescenceThicknessTexture;
-// Issue 12's factors and textures: slots 15..18 on units 22..25 (after the model's 19..21).
+uniform float uIridescenceThicknessMinimum;  // nm
+uniform float uIridescenceThicknessMaximum;
+layout(binding = BINDING_SPECULAR_TEXTURE) uniform sampler2D uSpecularTexture;
+layout(binding = BINDING_SPECULAR_COLOR_TEXTURE) uniform sampler2D uSpecularColorTexture;
+layout(binding = BINDING_CLEARCOAT_TEXTURE) uniform sampler2D uClearcoatTexture;
+layout(binding = BINDING_CLEARCOAT_ROUGHNESS_TEXTURE) uniform sampler2D uClearcoatRoughnessTexture;
+layout(binding = BINDING_CLEARCOAT_NORMAL_TEXTURE) uniform sampler2D uClearcoatNormalTexture;
+layout(binding = BINDING_SHEEN_COLOR_TEXTURE) uniform sampler2D uSheenColorTexture;
+layout(binding = BINDING_SHEEN_ROUGHNESS_TEXTURE) uniform sampler2D uSheenRoughnessTexture;
+layout(binding = BINDING_ANISOTROPY_TEXTURE) uniform sampler2D uAnisotropyTexture;
+layout(binding = BINDING_IRIDESCENCE_TEXTURE) uniform sampler2D uIridescenceTexture;
+layout(binding = BINDING_IRIDESCENCE_THICKNESS_TEXTURE) uniform sampler2D uIridescenceThicknessTexture;
+// The transmission extensions' factors and textures.
 uniform float uTransmissionFactor;          // KHR_materials_transmission
 uniform float uThicknessFactor;             // KHR_materials_volume (object space)
 uniform vec3 uAttenuationColor;
@@ -149,36 +133,36 @@ uniform float uDispersion;                  // KHR_materials_dispersion
 uniform float uDiffuseTransmissionFactor;   // KHR_materials_diffuse_transmission
 uniform vec3 uDiffuseTransmissionColorFactor;
 uniform vec3 uModelScale;                   // the model matrix's column lengths
-layout(binding = 22) uniform sampler2D uTransmissionTexture;
-layout(binding = 23) uniform sampler2D uThicknessTexture;
-layout(binding = 24) uniform sampler2D uDiffuseTransmissionTexture;
-layout(binding = 25) uniform sampler2D uDiffuseTransmissionColorTexture;
+layout(binding = BINDING_TRANSMISSION_TEXTURE) uniform sampler2D uTransmissionTexture;
+layout(binding = BINDING_THICKNESS_TEXTURE) uniform sampler2D uThicknessTexture;
+layout(binding = BINDING_DIFFUSE_TRANSMISSION_TEXTURE) uniform sampler2D uDiffuseTransmissionTexture;
+layout(binding = BINDING_DIFFUSE_TRANSMISSION_COLOR_TEXTURE) uniform sampler2D uDiffuseTransmissionColorTexture;
 // The opaque frame with its mip chain (renderer.cpp's transmission pass), and its size.
-layout(binding = 26) uniform sampler2D uTransmissionFrame;
+layout(binding = BINDING_TRANSMISSION_FRAME) uniform sampler2D uTransmissionFrame;
 uniform vec2 uTransmissionFrameSize;
 uniform mat4 uViewProjection;
 #if MATERIAL_TRANSMISSION && MATERIAL_VOLUME
 // The object's back faces (renderer.cpp's back-face pass; uBackFaces 0 where it has not run
 // for this draw: a blended surface) and the opaque frame's depth.
-layout(binding = 27) uniform sampler2D uBackPosition;
-layout(binding = 28) uniform sampler2D uBackNormal;
-layout(binding = 29) uniform sampler2D uTransmissionDepth;
+layout(binding = BINDING_BACK_POSITION) uniform sampler2D uBackPosition;
+layout(binding = BINDING_BACK_NORMAL) uniform sampler2D uBackNormal;
+layout(binding = BINDING_FRAME_DEPTH) uniform sampler2D uTransmissionDepth;
 uniform int uBackFaces;
 uniform vec4 uBackFaceRect;  // where the pass ran: (min, max) texture coordinates
 uniform mat4 uInverseViewProjection;
 #endif
 
 // Model.
-layout(binding = 5) uniform sampler2D uEnergyDirect;  // EnergyTable of the direct G
-layout(binding = 6) uniform sampler2D uEnergyIBL;     // EnergyTable of the IBL G (the LUT)
+layout(binding = BINDING_ENERGY_DIRECT) uniform sampler2D uEnergyDirect;  // EnergyTable of the direct G
+layout(binding = BINDING_ENERGY_IBL) uniform sampler2D uEnergyIBL;     // EnergyTable of the IBL G (the LUT)
 uniform float uMetallicOverride;   // < 0: none
 uniform float uRoughnessOverride;  // < 0: none
-layout(binding = 19) uniform sampler2D uEnergyCoat;  // EnergyTable of the reference G (the coat's)
+layout(binding = BINDING_ENERGY_COAT) uniform sampler2D uEnergyCoat;  // EnergyTable of the reference G (the coat's)
 // The sheen's tables (core/sheen.h's SheenTable: E, E_max_avg and the lobe's moments;
 // gl/energy_texture.h). The baker's Charlie-prefiltered cube is still bound but no longer
 // read: the sheen's IBL averages the SH over the lobe (sheen_ibl, MODEL.md "Sheen maps").
-layout(binding = 20) uniform samplerCube uSheenCube;
-layout(binding = 21) uniform sampler2D uSheenLut;
+layout(binding = BINDING_SHEEN_CUBE) uniform samplerCube uSheenCube;
+layout(binding = BINDING_SHEEN_LUT) uniform sampler2D uSheenLut;
 uniform int uSheenLevels;
 
 // Lights (KHR_lights_punctual), world space, in light_clusters.h's GpuLight layout.
@@ -192,7 +176,7 @@ struct PunctualLight {
   vec2 cone;  // spot: (scale, offset) of the glTF cone falloff
   vec2 unused1;
 };
-layout(std430, binding = 4) readonly buffer PunctualLights { PunctualLight uLights[]; };
+layout(std430, binding = BINDING_PUNCTUAL_LIGHTS) readonly buffer PunctualLights { PunctualLight uLights[]; };
 uniform int uLightCount;
 // Clustered shading (Olsson et al. 2012; light_clusters.h): the lights of cluster c are
 // uLightIndex[uClusterRange[c].x ...][count uClusterRange[c].y]; the first
@@ -200,8 +184,8 @@ uniform int uLightCount;
 // or directional). Cluster (x, y, z): pixel tile gl_FragCoord.xy / uClusterTile, slice
 // floor(log(depth / uClusterDepth.x) * uClusterDepth.y) of the view depth
 // dot(uViewDepth.xyz, p) + uViewDepth.w.
-layout(std430, binding = 5) readonly buffer LightClusterRanges { uvec2 uClusterRange[]; };
-layout(std430, binding = 6) readonly buffer LightClusterIndices { uint uLightIndex[]; };
+layout(std430, binding = BINDING_LIGHT_CLUSTER_RANGES) readonly buffer LightClusterRanges { uvec2 uClusterRange[]; };
+layout(std430, binding = BINDING_LIGHT_CLUSTER_INDICES) readonly buffer LightClusterIndices { uint uLightIndex[]; };
 uniform int uGlobalLightCount;
 uniform ivec3 uClusterGrid;
 uniform float uClusterTile;
@@ -213,8 +197,8 @@ uniform vec3 uSH[9];
 uniform int uSpecularLevels;
 uniform vec2 uIblRotation;  // world_to_env (equirect.glsl) for the baked cubes
 uniform float uIblScale;
-layout(binding = 7) uniform samplerCube uSpecularCube;
-layout(binding = 8) uniform samplerCube uIrradianceCube;
+layout(binding = BINDING_SPECULAR_CUBE) uniform samplerCube uSpecularCube;
+layout(binding = BINDING_IRRADIANCE_CUBE) uniform samplerCube uIrradianceCube;
 
 vec2 texcoord(int i) {
   vec2 uv = uTexcoordSet[i] == 1 ? vTexcoord1 : vTexcoord0;
@@ -263,15 +247,15 @@ void main() {
 #if HAS_COLOR_0
   base_color *= vColor;
 #endif
-#if HAS_TEXTURE_0
-  base_color *= texture(uBaseColorTexture, texcoord(0));
+#if HAS_BASE_COLOR_TEXTURE
+  base_color *= texture(uBaseColorTexture, texcoord(SLOT_BASE_COLOR_TEXTURE));
 #endif
 #if ALPHA_MODE == 1
   if (base_color.a < uAlphaCutoff) discard;
 #endif
   vec3 emissive = uEmissive;
-#if HAS_TEXTURE_4
-  emissive *= texture(uEmissiveTexture, texcoord(4)).rgb;
+#if HAS_EMISSIVE_TEXTURE
+  emissive *= texture(uEmissiveTexture, texcoord(SLOT_EMISSIVE_TEXTURE)).rgb;
 #endif
 #if MATERIAL_UNLIT
   // KHR_materials_unlit: the base colour as is, from every direction (the path tracer's
@@ -283,8 +267,8 @@ void main() {
 #endif
 #else
   float metallic = uMetallicFactor, roughness = uRoughnessFactor;
-#if HAS_TEXTURE_1
-  vec4 mr = texture(uMetallicRoughnessTexture, texcoord(1));
+#if HAS_METALLIC_ROUGHNESS_TEXTURE
+  vec4 mr = texture(uMetallicRoughnessTexture, texcoord(SLOT_METALLIC_ROUGHNESS_TEXTURE));
   roughness *= mr.g;
   metallic *= mr.b;
 #endif
@@ -302,8 +286,8 @@ void main() {
   vec3 n_geom = normalize(vNormal);  // the interpolated normal (the PT's hit.ns)
   float side = dot(n_geom, ng) < 0.0 ? -1.0 : 1.0;
   vec3 n = n_geom;
-#if HAS_TEXTURE_2
-  if (dot(vTangent.xyz, vTangent.xyz) > 0.0) n = map_normal(uNormalTexture, 2, uNormalScale, n_geom);
+#if HAS_NORMAL_TEXTURE
+  if (dot(vTangent.xyz, vTangent.xyz) > 0.0) n = map_normal(uNormalTexture, SLOT_NORMAL_TEXTURE, uNormalScale, n_geom);
 #endif
   n *= side;
 
@@ -312,11 +296,11 @@ void main() {
   layer.ior = uIor;
   layer.specular = uSpecularFactor;
   layer.specular_color = uSpecularColorFactor;
-#if HAS_TEXTURE_5
-  layer.specular *= texture(uSpecularTexture, texcoord(5)).a;
+#if HAS_SPECULAR_TEXTURE
+  layer.specular *= texture(uSpecularTexture, texcoord(SLOT_SPECULAR_TEXTURE)).a;
 #endif
-#if HAS_TEXTURE_6
-  layer.specular_color *= texture(uSpecularColorTexture, texcoord(6)).rgb;
+#if HAS_SPECULAR_COLOR_TEXTURE
+  layer.specular_color *= texture(uSpecularColorTexture, texcoord(SLOT_SPECULAR_COLOR_TEXTURE)).rgb;
 #endif
 #endif
   mat3 frame = frame_from_normal(n);
@@ -328,12 +312,12 @@ void main() {
   if (vTangent != vec4(0.0)) {
     vec2 d = vec2(1.0, 0.0);
     float strength = uAnisotropyStrength;
-#if HAS_TEXTURE_12
-    vec3 at = texture(uAnisotropyTexture, texcoord(12)).rgb;
+#if HAS_ANISOTROPY_TEXTURE
+    vec3 at = texture(uAnisotropyTexture, texcoord(SLOT_ANISOTROPY_TEXTURE)).rgb;
     d = at.rg * 2.0 - 1.0;
     strength *= at.b;
 #endif
-    vec2 cs = uAnisotropyRotation;
+    vec2 cs = vec2(cos(uAnisotropyRotation), sin(uAnisotropyRotation));
     d = vec2(cs.x * d.x - cs.y * d.y, cs.y * d.x + cs.x * d.y);
     vec3 t = vTangent.xyz;
     vec3 b = cross(n_geom, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
@@ -350,25 +334,25 @@ void main() {
 #if MATERIAL_IRIDESCENCE
   layer.iridescence = uIridescenceFactor;
   layer.iridescence_ior = uIridescenceIor;
-#if HAS_TEXTURE_13
-  layer.iridescence *= texture(uIridescenceTexture, texcoord(13)).r;
+#if HAS_IRIDESCENCE_TEXTURE
+  layer.iridescence *= texture(uIridescenceTexture, texcoord(SLOT_IRIDESCENCE_TEXTURE)).r;
 #endif
   float thickness_g = 1.0;  // without a thickness texture the film is the maximum thick
-#if HAS_TEXTURE_14
-  thickness_g = texture(uIridescenceThicknessTexture, texcoord(14)).g;
+#if HAS_IRIDESCENCE_THICKNESS_TEXTURE
+  thickness_g = texture(uIridescenceThicknessTexture, texcoord(SLOT_IRIDESCENCE_THICKNESS_TEXTURE)).g;
 #endif
-  layer.iridescence_thickness = mix(uIridescenceThickness.x, uIridescenceThickness.y, thickness_g);
+  layer.iridescence_thickness = mix(uIridescenceThicknessMinimum, uIridescenceThicknessMaximum, thickness_g);
 #endif
   vec3 wo = to_local(frame, v);
 
 #if MATERIAL_SHEEN
   vec3 sheen_color = uSheenColorFactor;
   float sheen_roughness = uSheenRoughnessFactor;
-#if HAS_TEXTURE_10
-  sheen_color *= texture(uSheenColorTexture, texcoord(10)).rgb;
+#if HAS_SHEEN_COLOR_TEXTURE
+  sheen_color *= texture(uSheenColorTexture, texcoord(SLOT_SHEEN_COLOR_TEXTURE)).rgb;
 #endif
-#if HAS_TEXTURE_11
-  sheen_roughness *= texture(uSheenRoughnessTexture, texcoord(11)).a;
+#if HAS_SHEEN_ROUGHNESS_TEXTURE
+  sheen_roughness *= texture(uSheenRoughnessTexture, texcoord(SLOT_SHEEN_ROUGHNESS_TEXTURE)).a;
 #endif
 #else
   vec3 sheen_color = vec3(0.0);
@@ -377,16 +361,16 @@ void main() {
 #if MATERIAL_CLEARCOAT
   float coat_weight = uClearcoatFactor;
   float coat_roughness = uClearcoatRoughnessFactor;
-#if HAS_TEXTURE_7
-  coat_weight *= texture(uClearcoatTexture, texcoord(7)).r;
+#if HAS_CLEARCOAT_TEXTURE
+  coat_weight *= texture(uClearcoatTexture, texcoord(SLOT_CLEARCOAT_TEXTURE)).r;
 #endif
-#if HAS_TEXTURE_8
-  coat_roughness *= texture(uClearcoatRoughnessTexture, texcoord(8)).g;
+#if HAS_CLEARCOAT_ROUGHNESS_TEXTURE
+  coat_roughness *= texture(uClearcoatRoughnessTexture, texcoord(SLOT_CLEARCOAT_ROUGHNESS_TEXTURE)).g;
 #endif
   // The coat's own normal map; none means the interpolated normal, not the base's map.
   vec3 n_coat = n_geom;
-#if HAS_TEXTURE_9
-  if (coat_weight > 0.0) n_coat = map_normal(uClearcoatNormalTexture, 9, uClearcoatNormalScale, n_geom);
+#if HAS_CLEARCOAT_NORMAL_TEXTURE
+  if (coat_weight > 0.0) n_coat = map_normal(uClearcoatNormalTexture, SLOT_CLEARCOAT_NORMAL_TEXTURE, uClearcoatNormalScale, n_geom);
 #endif
   n_coat *= side;
 #else
@@ -398,27 +382,27 @@ void main() {
   float transmission = 0.0;
 #if MATERIAL_TRANSMISSION
   transmission = uTransmissionFactor;
-#if HAS_TEXTURE_15
-  transmission *= texture(uTransmissionTexture, texcoord(15)).r;
+#if HAS_TRANSMISSION_TEXTURE
+  transmission *= texture(uTransmissionTexture, texcoord(SLOT_TRANSMISSION_TEXTURE)).r;
 #endif
 #endif
   float diffuse_transmission = 0.0;
   vec3 dt_color = vec3(1.0);
 #if MATERIAL_DIFFUSE_TRANSMISSION
   diffuse_transmission = uDiffuseTransmissionFactor;
-#if HAS_TEXTURE_17
-  diffuse_transmission *= texture(uDiffuseTransmissionTexture, texcoord(17)).a;
+#if HAS_DIFFUSE_TRANSMISSION_TEXTURE
+  diffuse_transmission *= texture(uDiffuseTransmissionTexture, texcoord(SLOT_DIFFUSE_TRANSMISSION_TEXTURE)).a;
 #endif
   dt_color = uDiffuseTransmissionColorFactor;
-#if HAS_TEXTURE_18
-  dt_color *= texture(uDiffuseTransmissionColorTexture, texcoord(18)).rgb;
+#if HAS_DIFFUSE_TRANSMISSION_COLOR_TEXTURE
+  dt_color *= texture(uDiffuseTransmissionColorTexture, texcoord(SLOT_DIFFUSE_TRANSMISSION_COLOR_TEXTURE)).rgb;
 #endif
 #endif
   float thickness = 0.0;
 #if MATERIAL_VOLUME
   thickness = uThicknessFactor;
-#if HAS_TEXTURE_16
-  thickness *= texture(uThicknessTexture, texcoord(16)).g;
+#if HAS_THICKNESS_TEXTURE
+  thickness *= texture(uThicknessTexture, texcoord(SLOT_THICKNESS_TEXTURE)).g;
 #endif
 #endif
   transmission = saturate(transmission);
@@ -523,8 +507,8 @@ void main() {
 #if IBL
   {
     float ao = 1.0;
-#if HAS_TEXTURE_3
-    ao = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(3)).r - 1.0);
+#if HAS_OCCLUSION_TEXTURE
+    ao = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(SLOT_OCCLUSION_TEXTURE)).r - 1.0);
 #endif
     vec3 prefiltered;
 #if MATERIAL_ANISOTROPY
@@ -647,8 +631,8 @@ void main() {
   color += lobe(DEBUG_EMISSIVE, emissive);
 #if DEBUG_CHANNEL != DEBUG_NONE
   float occlusion = 1.0;
-#if HAS_TEXTURE_3
-  occlusion = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(3)).r - 1.0);
+#if HAS_OCCLUSION_TEXTURE
+  occlusion = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(SLOT_OCCLUSION_TEXTURE)).r - 1.0);
 #endif
   color = debug_channel(color, base_color.rgb, metallic, roughness, n, occlusion, emissive);
 #endif

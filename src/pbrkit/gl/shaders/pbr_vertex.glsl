@@ -13,7 +13,7 @@ layout(location = 5) in vec4 aColor;  // COLOR_0 (HAS_COLOR_0)
 // Every instance's model matrix and normal matrix (the inverse transpose of the model's
 // upper 3x3, in a mat4's columns), two per slot (gpu_scene.h, GpuScene::instance_buffer);
 // a draw of n instances (glDrawElementsInstanced) reads slots uInstanceBase ... + n - 1.
-layout(std430, binding = 3) readonly buffer InstanceTransforms { mat4 uInstanceMatrices[]; };
+layout(std430, binding = BINDING_INSTANCE_TRANSFORMS) readonly buffer InstanceTransforms { mat4 uInstanceMatrices[]; };
 uniform int uInstanceBase;
 uniform mat4 uViewProjection;
 

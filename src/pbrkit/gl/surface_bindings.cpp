@@ -1,0 +1,76 @@
+#include "pbrkit/gl/surface_bindings.h"
+
+#include <cctype>
+
+#include <fmt/format.h>
+
+#include "pbrkit/gl/gpu_scene.h"
+#include "pbrkit/gl/light_clusters.h"
+#include "pbrkit/scene/material_schema.h"
+
+namespace pbrkit::gl {
+
+GLuint texture_unit(TextureSlot slot) {
+  const int t = int(slot);
+  if (t < int(kFirstExtensionTextureSlot)) return GLuint(t);
+  if (t < int(TextureSlot::kTransmission)) return GLuint(t + 4);
+  if (t <= int(kLastInterleavedSlot)) return GLuint(t + 7);
+  return kFrameDepthUnit + GLuint(t - int(kLastInterleavedSlot));
+}
+
+std::string texture_slot_macro(TextureSlot slot) {
+  std::string name = texture_slot_name(slot);
+  if (const auto dot = name.rfind('.'); dot != std::string::npos) name = name.substr(dot + 1);
+  std::string macro;
+  for (const char c : name) {
+    if (std::isupper(static_cast<unsigned char>(c)) && !macro.empty()) macro += '_';
+    macro += char(std::toupper(static_cast<unsigned char>(c)));
+  }
+  const std::string suffix = "_TEXTURE";
+  if (macro.size() < suffix.size() ||
+      macro.compare(macro.size() - suffix.size(), suffix.size(), suffix) != 0)
+    macro += suffix;
+  return macro;
+}
+
+std::string factor_uniform(const MaterialFactor& factor) {
+  std::string name = std::string("u") + factor.json_name;
+  name[1] = char(std::toupper(static_cast<unsigned char>(name[1])));
+  return name;
+}
+
+std::vector<SurfaceBinding> surface_bindings() {
+  std::vector<SurfaceBinding> b;
+  for (int t = 0; t < kTextureSlotCount; ++t)
+    b.push_back({texture_slot_macro(TextureSlot(t)), texture_unit(TextureSlot(t)), false});
+  b.push_back({"ENERGY_DIRECT", kEnergyDirectUnit, false});
+  b.push_back({"ENERGY_IBL", kEnergyIblUnit, false});
+  b.push_back({"SPECULAR_CUBE", kSpecularCubeUnit, false});
+  b.push_back({"IRRADIANCE_CUBE", kIrradianceCubeUnit, false});
+  b.push_back({"ENERGY_COAT", kCoatEnergyUnit, false});
+  b.push_back({"SHEEN_CUBE", kSheenCubeUnit, false});
+  b.push_back({"SHEEN_LUT", kSheenLutUnit, false});
+  b.push_back({"TRANSMISSION_FRAME", kTransmissionFrameUnit, false});
+  b.push_back({"BACK_POSITION", kBackPositionUnit, false});
+  b.push_back({"BACK_NORMAL", kBackNormalUnit, false});
+  b.push_back({"FRAME_DEPTH", kFrameDepthUnit, false});
+  b.push_back({"INSTANCE_TRANSFORMS", kInstanceBufferBinding, true});
+  b.push_back({"PUNCTUAL_LIGHTS", kLightBufferBinding, true});
+  b.push_back({"LIGHT_CLUSTER_RANGES", kClusterRangeBufferBinding, true});
+  b.push_back({"LIGHT_CLUSTER_INDICES", kClusterIndexBufferBinding, true});
+  return b;
+}
+
+const std::string& surface_prelude() {
+  static const std::string prelude = [] {
+    std::string d = fmt::format("#define TEXTURE_SLOT_COUNT {}\n", kTextureSlotCount);
+    for (int t = 0; t < kTextureSlotCount; ++t)
+      d += fmt::format("#define SLOT_{} {}\n", texture_slot_macro(TextureSlot(t)), t);
+    for (const SurfaceBinding& b : surface_bindings())
+      d += fmt::format("#define BINDING_{} {}\n", b.name, b.point);
+    return d;
+  }();
+  return prelude;
+}
+
+}  // namespace pbrkit::gl
