@@ -122,7 +122,7 @@ struct DenoiseOptions {
   /// heavy-tailed benchmark scenes, so it is off)
   bool cross_selection = false;
   /// Also offer the unfiltered image as a candidate (last in DenoiseStats::candidate_share);
-  /// off: it changed no scene of denoise_bench measurably (BENCHMARKS.md, issue 13)
+  /// off: it changed no scene of denoise_bench measurably (BENCHMARKS.md, "the denoiser")
   bool raw_candidate = false;
 };
 

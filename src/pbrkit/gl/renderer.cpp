@@ -107,7 +107,7 @@ TransmissiveDraw transmissive_draw(std::size_t index, const glm::mat4& model, co
 }
 
 // Whether `m` on a mesh (closed or not) reads the opaque frame (KHR_materials_transmission),
-// and the features of issue 12 it compiles in. A volume is only a volume on a closed mesh
+// and the transmission features it compiles in. A volume is only a volume on a closed mesh
 // with a thickness (KHR_materials_volume: thickness 0 is thin walled); dispersion changes
 // only the refraction through a volume (KHR_materials_dispersion).
 void set_transmission_features(const Material& m, bool closed, SurfaceFeatures& f) {

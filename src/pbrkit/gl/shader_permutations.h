@@ -41,8 +41,8 @@ struct SurfaceFeatures {
   bool clearcoat = false;
   bool sheen = false;
   bool unlit = false;
-  // Issue 12's (transmission.glsl): KHR_materials_transmission (the screen-space refraction
-  // of the opaque frame), _volume (thickness > 0: refraction through a thick medium and
+  // The transmission features (transmission.glsl): KHR_materials_transmission (the screen-space
+  // refraction of the opaque frame), _volume (thickness > 0: refraction through a thick medium and
   // Beer-Lambert attenuation), _dispersion (three iors), _diffuse_transmission.
   bool transmission = false;
   bool volume = false;

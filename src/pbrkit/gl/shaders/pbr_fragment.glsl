@@ -16,12 +16,13 @@
 // in brdf.glsl; LIGHTS: the punctual lights, 0 none, 1 every light for every fragment, 2
 // the fragment's cluster's (light_clusters.h); LIGHT_COUNT: with LIGHTS 1, the number of
 // lights when compiled in (-1: uLightCount).
-// The KHR_materials_* extensions (issue 11), each its own permutation feature with its
+// The KHR_materials_* extensions, each its own permutation feature with its
 // texture slots (HAS_SPECULAR_TEXTURE .. HAS_IRIDESCENCE_THICKNESS_TEXTURE): MATERIAL_SPECULAR (ior and
 // specular), MATERIAL_ANISOTROPY, MATERIAL_IRIDESCENCE, MATERIAL_CLEARCOAT, MATERIAL_SHEEN,
 // MATERIAL_UNLIT. Every input is computed as the path tracer's shade_inputs
 // (pt/shading.cpp) computes it.
-// Issue 12's (transmission.glsl; HAS_TRANSMISSION_TEXTURE .. HAS_DIFFUSE_TRANSMISSION_COLOR_TEXTURE): MATERIAL_TRANSMISSION (the opaque
+// The transmission features (transmission.glsl; HAS_TRANSMISSION_TEXTURE ..
+// HAS_DIFFUSE_TRANSMISSION_COLOR_TEXTURE): MATERIAL_TRANSMISSION (the opaque
 // frame, uTransmissionFrame, read through the surface), MATERIAL_VOLUME (a thickness > 0:
 // refraction through the medium, Beer-Lambert), MATERIAL_DISPERSION (three iors),
 // MATERIAL_DIFFUSE_TRANSMISSION (the irradiance at -n through the diffuse lobe). With
