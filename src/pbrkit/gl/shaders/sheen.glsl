@@ -43,14 +43,20 @@ float V_Charlie(float NdotV, float NdotL, float roughness) {
 // cell's corners (i, j), (i + 1, j), (i, j + 1), (i + 1, j + 1), so one fetch per lookup.
 const int kSheenMuSize = 64;
 const int kSheenRoughnessSize = 48;
-// A table of the cell-corner layout whose rows start at `row0`.
-float sheen_table_corners(sampler2D sheen_lut, int row0, float mu, float roughness) {
+// The table cell holding (mu, roughness): its lower node (i0, j0) in .xy (as floats) and
+// the position within it in .zw, on the node spacing SheenTable uses.
+vec4 sheen_table_cell(float mu, float roughness) {
   float x = sqrt(clamp(mu, 0.0, 1.0)) * float(kSheenMuSize - 1);
   float r = clamp(roughness, kMinSheenRoughness, 1.0);
   float y = sqrt((r - kMinSheenRoughness) / (1.0 - kMinSheenRoughness)) * float(kSheenRoughnessSize - 1);
-  int i0 = min(int(x), kSheenMuSize - 2);
-  int j0 = min(int(y), kSheenRoughnessSize - 2);
-  float fx = x - float(i0), fy = y - float(j0);
+  vec2 n0 = vec2(min(floor(x), float(kSheenMuSize - 2)), min(floor(y), float(kSheenRoughnessSize - 2)));
+  return vec4(n0, x - n0.x, y - n0.y);
+}
+// A table of the cell-corner layout whose rows start at `row0`.
+float sheen_table_corners(sampler2D sheen_lut, int row0, float mu, float roughness) {
+  vec4 cell = sheen_table_cell(mu, roughness);
+  int i0 = int(cell.x), j0 = int(cell.y);
+  float fx = cell.z, fy = cell.w;
   vec4 c = texelFetch(sheen_lut, ivec2(i0, row0 + j0), 0);
   return mix(mix(c.x, c.y, fx), mix(c.z, c.w, fx), fy);
 }
@@ -70,12 +76,9 @@ float sheen_E_max_avg(sampler2D sheen_lut, float mu, float roughness) {
 // values at node (i, j) in .xy and at (i + 1, j) in .zw, so two fetches, interpolated as
 // sheen_E.
 vec2 sheen_table_pairs(sampler2D sheen_lut, int row0, float mu, float roughness) {
-  float x = sqrt(clamp(mu, 0.0, 1.0)) * float(kSheenMuSize - 1);
-  float r = clamp(roughness, kMinSheenRoughness, 1.0);
-  float y = sqrt((r - kMinSheenRoughness) / (1.0 - kMinSheenRoughness)) * float(kSheenRoughnessSize - 1);
-  int i0 = min(int(x), kSheenMuSize - 2);
-  int j0 = min(int(y), kSheenRoughnessSize - 2);
-  float fx = x - float(i0), fy = y - float(j0);
+  vec4 cell = sheen_table_cell(mu, roughness);
+  int i0 = int(cell.x), j0 = int(cell.y);
+  float fx = cell.z, fy = cell.w;
   vec4 c0 = texelFetch(sheen_lut, ivec2(i0, row0 + j0), 0);
   vec4 c1 = texelFetch(sheen_lut, ivec2(i0, row0 + j0 + 1), 0);
   return mix(mix(c0.xy, c0.zw, fx), mix(c1.xy, c1.zw, fx), fy);
