@@ -8,9 +8,9 @@
 // BRDF_IRIDESCENCE (defined or not): compile the thin-film Fresnel in (a material without
 // KHR_materials_iridescence pays nothing for it).
 
+#include "math.glsl"
+#include "iridescence.glsl"
 
-const float kPi = 3.14159265358979323846;
-const float kInvPi = 0.31830988618379067154;
 const float kMinRoughness = 0.02;  // pbrkit::kMinRoughness
 
 // pbrkit::GeometryModel
@@ -19,11 +19,6 @@ const int GEOMETRY_CLASSIC_DIRECT = 1;  // Schlick-GGX, k = (roughness + 1)^2 / 
 const int GEOMETRY_CLASSIC_IBL = 2;     // Schlick-GGX, k = alpha / 2
 const int FRESNEL_SCHLICK = 0;
 const int FRESNEL_SG = 1;  // UE4's spherical-Gaussian Schlick (real-time path only)
-
-float saturate(float x) { return clamp(x, 0.0, 1.0); }
-
-// (After kPi and saturate, which the thin-film code uses.)
-#include "iridescence.glsl"
 
 // GGX D for a local-frame half vector: 1 / (pi alpha^2 ((hx^2 + hy^2) / alpha^2 + hz^2)^2).
 float DistributionGGX(vec3 h, float alpha) {

@@ -2,7 +2,7 @@
 // src/pbrkit/core/iridescence.cpp line by line (same names, same order of operations; the
 // formulas and their derivation are in that file's header). tests/gl/iridescence_glsl_test.cpp
 // checks iridescence_fresnel below against pbrkit::iridescence_fresnel to 1e-4 relative.
-#include "brdf.glsl"
+#include "math.glsl"
 
 // The film's ior fades to the outside's (1) over this thickness (pbrkit's kThinFilmFadeNm).
 const float kThinFilmFadeNm = 0.03;
