@@ -94,14 +94,45 @@ TEST(GlSurfaceBindings, NoTwoBindingsShareANameOrANumber) {
   }
 }
 
-TEST(GlSurfaceBindings, TheSurfaceShadersTypeNoSlotOrBindingNumber) {
-  for (const char* file : {"pbr_vertex.glsl", "pbr_fragment.glsl", "back_face_fragment.glsl"}) {
+// Every shader a renderer program compiles (all but the *_test.glsl compute harnesses,
+// whose buffers the tests bind themselves) reads its units and binding points by name.
+TEST(GlSurfaceBindings, TheRenderersShadersTypeNoSlotOrBindingNumber) {
+  int scanned = 0;
+  for (const std::string& file : shader_names()) {
+    const std::string suffix = "_test.glsl";
+    if (file.size() > suffix.size() &&
+        file.compare(file.size() - suffix.size(), suffix.size(), suffix) == 0)
+      continue;
+    ++scanned;
     const std::string text = expand_shader(file);
     EXPECT_FALSE(number_follows(text, "binding", '=')) << file;
     EXPECT_FALSE(number_follows(text, "texcoord(", 0)) << file;
     EXPECT_FALSE(number_follows(text, "map_normal(", ',')) << file;
     EXPECT_EQ(text.find("HAS_TEXTURE_"), std::string::npos) << file;
   }
+  EXPECT_GE(scanned, 8);  // at least the surface, back-face, background and display shaders
+  // The scan sees a typed number where there is one.
+  EXPECT_TRUE(number_follows("layout(binding = 1) uniform sampler2D u;", "binding", '='));
+  EXPECT_FALSE(
+      number_follows("layout(binding = BINDING_FRAME) uniform sampler2D u;", "binding", '='));
+}
+
+// The background and display programs' preludes name each of their units with its number,
+// and no two of a program's units share one.
+TEST(GlSurfaceBindings, TheBackgroundAndDisplayPreludesNameTheirUnits) {
+  for (const auto& [bindings, prelude] : {std::pair{background_bindings(), background_prelude()},
+                                          std::pair{display_bindings(), display_prelude()}}) {
+    std::set<GLuint> units;
+    for (const SurfaceBinding& b : bindings) {
+      EXPECT_TRUE(units.insert(b.point).second) << b.name;
+      EXPECT_EQ(defined_value(prelude, "BINDING_" + b.name), int(b.point)) << b.name;
+    }
+  }
+  EXPECT_EQ(defined_value(background_prelude(), "BINDING_ENVIRONMENT"),
+            int(kBackgroundEnvironmentUnit));
+  EXPECT_EQ(defined_value(background_prelude(), "BINDING_SPECULAR_CUBE"),
+            int(kBackgroundSpecularCubeUnit));
+  EXPECT_EQ(defined_value(display_prelude(), "BINDING_FRAME"), int(kDisplayFrameUnit));
 }
 
 // The renderer sets each extension's factors by the schema (factor_uniform()'s names): the

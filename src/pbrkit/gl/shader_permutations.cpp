@@ -9,7 +9,7 @@ ShaderPermutations::ShaderPermutations() {
   for (int mode = 0; mode < 3; ++mode)
     background_[std::size_t(mode)] =
         Program::graphics("background_vertex.glsl", "background_fragment.glsl",
-                          fmt::format("#define MODE {}\n", mode));
+                          background_prelude() + fmt::format("#define MODE {}\n", mode));
 }
 
 const Program& ShaderPermutations::surface(const SurfaceFeatures& f) {
@@ -26,7 +26,7 @@ const Program& ShaderPermutations::display(ToneMapper mapper) {
   Program& p = display_[std::size_t(mapper)];
   if (!p.id())
     p = Program::graphics("display_vertex.glsl", "display_fragment.glsl",
-                          fmt::format("#define TONE_MAPPER {}\n", int(mapper)));
+                          display_prelude() + fmt::format("#define TONE_MAPPER {}\n", int(mapper)));
   return p;
 }
 

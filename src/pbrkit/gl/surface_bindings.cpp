@@ -61,14 +61,42 @@ std::vector<SurfaceBinding> surface_bindings() {
   return b;
 }
 
+std::vector<SurfaceBinding> background_bindings() {
+  return {{"ENVIRONMENT", kBackgroundEnvironmentUnit, false},
+          {"SPECULAR_CUBE", kBackgroundSpecularCubeUnit, false}};
+}
+
+std::vector<SurfaceBinding> display_bindings() {
+  return {{"FRAME", kDisplayFrameUnit, false}};
+}
+
+namespace {
+
+std::string binding_defines(const std::vector<SurfaceBinding>& bindings) {
+  std::string d;
+  for (const SurfaceBinding& b : bindings)
+    d += fmt::format("#define BINDING_{} {}\n", b.name, b.point);
+  return d;
+}
+
+}  // namespace
+
+const std::string& background_prelude() {
+  static const std::string prelude = binding_defines(background_bindings());
+  return prelude;
+}
+
+const std::string& display_prelude() {
+  static const std::string prelude = binding_defines(display_bindings());
+  return prelude;
+}
+
 const std::string& surface_prelude() {
   static const std::string prelude = [] {
     std::string d = fmt::format("#define TEXTURE_SLOT_COUNT {}\n", kTextureSlotCount);
     for (int t = 0; t < kTextureSlotCount; ++t)
       d += fmt::format("#define SLOT_{} {}\n", texture_slot_macro(TextureSlot(t)), t);
-    for (const SurfaceBinding& b : surface_bindings())
-      d += fmt::format("#define BINDING_{} {}\n", b.name, b.point);
-    return d;
+    return d + binding_defines(surface_bindings());
   }();
   return prelude;
 }

@@ -1,9 +1,11 @@
 #pragma once
 // Private to the OpenGL renderer: the names the surface program (pbr_vertex.glsl,
-// pbr_fragment.glsl) uses for its texture slots, texture units and buffer binding points.
-// The numbers live here once; surface_prelude() writes them as #defines that the shaders
-// read by name, so no GLSL file types a slot, a unit or a binding point, and adding a
-// texture slot to scene.h's TextureSlot names its defines without touching this file.
+// pbr_fragment.glsl) uses for its texture slots, texture units and buffer binding points,
+// and those of the background and display programs. The numbers live here once;
+// surface_prelude(), background_prelude() and display_prelude() write them as #defines that
+// the shaders read by name, so no GLSL file types a slot, a unit or a binding point, and
+// adding a texture slot to scene.h's TextureSlot names its defines without touching this
+// file.
 #include <epoxy/gl.h>
 
 #include <string>
@@ -37,7 +39,8 @@ inline constexpr GLuint kBackPositionUnit = 27, kBackNormalUnit = 28, kFrameDept
 inline constexpr GLuint kLastSurfaceUnit =
     kFrameDepthUnit + GLuint(kTextureSlotCount - 1 - int(kLastInterleavedSlot));
 
-/// One binding of the surface program as its prelude names it: BINDING_<name>.
+/// One binding of a program (the surface's, the background's, the display's) as its
+/// prelude names it: BINDING_<name>.
 struct SurfaceBinding {
   std::string name;     ///< e.g. "SHEEN_LUT", "SHEEN_COLOR_TEXTURE", "PUNCTUAL_LIGHTS"
   GLuint point = 0;     ///< the texture unit or the shader storage buffer binding point
@@ -56,6 +59,24 @@ std::string texture_slot_macro(TextureSlot slot);
 /// name capitalised ("sheenColorFactor": uSheenColorFactor), a float or a vec3 as the
 /// factor's components.
 std::string factor_uniform(const MaterialFactor& factor);
+
+// The background program's units (background_fragment.glsl) and the display program's
+// (display_fragment.glsl): programs of their own, so they number from 0 again.
+inline constexpr GLuint kBackgroundEnvironmentUnit = 0;   ///< the equirect environment
+inline constexpr GLuint kBackgroundSpecularCubeUnit = 1;  ///< the prefiltered cube
+inline constexpr GLuint kDisplayFrameUnit = 0;            ///< the linear frame
+
+/// Every texture unit of the background program, BINDING_<name> in its prelude.
+std::vector<SurfaceBinding> background_bindings();
+/// Every texture unit of the display program, BINDING_<name> in its prelude.
+std::vector<SurfaceBinding> display_bindings();
+
+/// The #defines every background permutation starts with: BINDING_<name> for each of
+/// background_bindings().
+const std::string& background_prelude();
+/// The #defines every display permutation starts with: BINDING_<name> for each of
+/// display_bindings().
+const std::string& display_prelude();
 
 /// The #defines every surface permutation starts with: SLOT_<slot> (the index into
 /// uTexcoordSet and uTextureTransform) for each texture slot and BINDING_<name> for each

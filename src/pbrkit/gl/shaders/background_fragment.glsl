@@ -17,8 +17,8 @@ uniform float uEnvScale;
 uniform vec2 uIblRotation;
 uniform float uIblScale;
 uniform float uBlurLod;
-layout(binding = 0) uniform sampler2D uEnvironment;
-layout(binding = 1) uniform samplerCube uSpecularCube;
+layout(binding = BINDING_ENVIRONMENT) uniform sampler2D uEnvironment;
+layout(binding = BINDING_SPECULAR_CUBE) uniform samplerCube uSpecularCube;
 
 void main() {
 #if MODE == 2

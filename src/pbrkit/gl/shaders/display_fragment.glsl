@@ -7,7 +7,7 @@
 #endif
 #include "display.glsl"
 
-layout(binding = 0) uniform sampler2D uFrame;
+layout(binding = BINDING_FRAME) uniform sampler2D uFrame;
 uniform float uExposureScale;
 layout(location = 0) out vec4 outColor;
 
