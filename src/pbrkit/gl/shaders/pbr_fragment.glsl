@@ -28,6 +28,10 @@
 // MATERIAL_DIFFUSE_TRANSMISSION (the irradiance at -n through the diffuse lobe). With
 // MATERIAL_TRANSMISSION and MATERIAL_VOLUME the refraction goes through both interfaces
 // (thick_refraction.glsl) where renderer.cpp has drawn the object's back faces.
+//
+// main() reads as the shading's steps: the material's inputs (material_inputs.glsl, one
+// function per extension), the material bound to the viewer (shading_at), the punctual
+// lights, the image-based light, the light transmitted from the frame behind, the output.
 #ifndef MATERIAL_SPECULAR
 #define MATERIAL_SPECULAR 0
 #define MATERIAL_ANISOTROPY 0
@@ -59,6 +63,7 @@
 #include "ibl.glsl"
 #include "bsdf.glsl"
 #include "debug_channels.glsl"
+#include "material_inputs.glsl"
 #if MATERIAL_ANISOTROPY
 #include "anisotropy_ibl.glsl"
 #endif
@@ -69,75 +74,12 @@
 #include "thick_refraction.glsl"
 #endif
 
-in vec3 vPosition;
-in vec3 vNormal;
-in vec4 vTangent;
-in vec2 vTexcoord0;
-in vec2 vTexcoord1;
-#if HAS_COLOR_0
-in vec4 vColor;
-#endif
 
 layout(location = 0) out vec4 outColor;
 
 uniform vec3 uCameraPosition;
-
-// Material (glTF metallic-roughness, factors times textures).
-uniform vec4 uBaseColorFactor;
-uniform float uMetallicFactor;
-uniform float uRoughnessFactor;
-uniform vec3 uEmissive;  // factor x KHR_materials_emissive_strength
-uniform float uNormalScale;
-uniform float uOcclusionStrength;
 uniform float uAlphaCutoff;
-// Per texture slot (scene.h's TextureSlot): which TEXCOORD set, the KHR_texture_transform
-// matrix.
-uniform int uTexcoordSet[TEXTURE_SLOT_COUNT];
-uniform mat3 uTextureTransform[TEXTURE_SLOT_COUNT];
-layout(binding = BINDING_BASE_COLOR_TEXTURE) uniform sampler2D uBaseColorTexture;
-layout(binding = BINDING_METALLIC_ROUGHNESS_TEXTURE) uniform sampler2D uMetallicRoughnessTexture;
-layout(binding = BINDING_NORMAL_TEXTURE) uniform sampler2D uNormalTexture;
-layout(binding = BINDING_OCCLUSION_TEXTURE) uniform sampler2D uOcclusionTexture;
-layout(binding = BINDING_EMISSIVE_TEXTURE) uniform sampler2D uEmissiveTexture;
-// The extensions' factors (the READMEs' defaults when absent) and textures: slot t >= 5 on
-// its unit BINDING_<slot> (surface_bindings.h).
-uniform float uIor;                  // KHR_materials_ior
-uniform float uSpecularFactor;       // KHR_materials_specular
-uniform vec3 uSpecularColorFactor;
-uniform float uClearcoatFactor;      // KHR_materials_clearcoat
-uniform float uClearcoatRoughnessFactor;
-uniform float uClearcoatNormalScale;
-uniform vec3 uSheenColorFactor;      // KHR_materials_sheen
-uniform float uSheenRoughnessFactor;
-uniform float uAnisotropyStrength;   // KHR_materials_anisotropy
-uniform float uAnisotropyRotation;   // radians from the tangent
-uniform float uIridescenceFactor;    // KHR_materials_iridescence
-uniform float uIridescenceIor;
-uniform float uIridescenceThicknessMinimum;  // nm
-uniform float uIridescenceThicknessMaximum;
-layout(binding = BINDING_SPECULAR_TEXTURE) uniform sampler2D uSpecularTexture;
-layout(binding = BINDING_SPECULAR_COLOR_TEXTURE) uniform sampler2D uSpecularColorTexture;
-layout(binding = BINDING_CLEARCOAT_TEXTURE) uniform sampler2D uClearcoatTexture;
-layout(binding = BINDING_CLEARCOAT_ROUGHNESS_TEXTURE) uniform sampler2D uClearcoatRoughnessTexture;
-layout(binding = BINDING_CLEARCOAT_NORMAL_TEXTURE) uniform sampler2D uClearcoatNormalTexture;
-layout(binding = BINDING_SHEEN_COLOR_TEXTURE) uniform sampler2D uSheenColorTexture;
-layout(binding = BINDING_SHEEN_ROUGHNESS_TEXTURE) uniform sampler2D uSheenRoughnessTexture;
-layout(binding = BINDING_ANISOTROPY_TEXTURE) uniform sampler2D uAnisotropyTexture;
-layout(binding = BINDING_IRIDESCENCE_TEXTURE) uniform sampler2D uIridescenceTexture;
-layout(binding = BINDING_IRIDESCENCE_THICKNESS_TEXTURE) uniform sampler2D uIridescenceThicknessTexture;
-// The transmission extensions' factors and textures.
-uniform float uTransmissionFactor;          // KHR_materials_transmission
-uniform float uThicknessFactor;             // KHR_materials_volume (object space)
-uniform vec3 uAttenuationColor;
-uniform float uAttenuationDistance;         // <= 0: infinite (none)
-uniform float uDispersion;                  // KHR_materials_dispersion
-uniform float uDiffuseTransmissionFactor;   // KHR_materials_diffuse_transmission
-uniform vec3 uDiffuseTransmissionColorFactor;
-uniform vec3 uModelScale;                   // the model matrix's column lengths
-layout(binding = BINDING_TRANSMISSION_TEXTURE) uniform sampler2D uTransmissionTexture;
-layout(binding = BINDING_THICKNESS_TEXTURE) uniform sampler2D uThicknessTexture;
-layout(binding = BINDING_DIFFUSE_TRANSMISSION_TEXTURE) uniform sampler2D uDiffuseTransmissionTexture;
-layout(binding = BINDING_DIFFUSE_TRANSMISSION_COLOR_TEXTURE) uniform sampler2D uDiffuseTransmissionColorTexture;
+uniform vec3 uModelScale;  // the model matrix's column lengths
 // The opaque frame with its mip chain (renderer.cpp's transmission pass), and its size.
 layout(binding = BINDING_TRANSMISSION_FRAME) uniform sampler2D uTransmissionFrame;
 uniform vec2 uTransmissionFrameSize;
@@ -156,8 +98,6 @@ uniform mat4 uInverseViewProjection;
 // Model.
 layout(binding = BINDING_ENERGY_DIRECT) uniform sampler2D uEnergyDirect;  // EnergyTable of the direct G
 layout(binding = BINDING_ENERGY_IBL) uniform sampler2D uEnergyIBL;     // EnergyTable of the IBL G (the LUT)
-uniform float uMetallicOverride;   // < 0: none
-uniform float uRoughnessOverride;  // < 0: none
 layout(binding = BINDING_ENERGY_COAT) uniform sampler2D uEnergyCoat;  // EnergyTable of the reference G (the coat's)
 // The sheen's tables (core/sheen.h's SheenTable: E, E_max_avg and the lobe's moments;
 // gl/energy_texture.h). The baker's Charlie-prefiltered cube is still bound but no longer
@@ -201,26 +141,6 @@ uniform float uIblScale;
 layout(binding = BINDING_SPECULAR_CUBE) uniform samplerCube uSpecularCube;
 layout(binding = BINDING_IRRADIANCE_CUBE) uniform samplerCube uIrradianceCube;
 
-vec2 texcoord(int i) {
-  vec2 uv = uTexcoordSet[i] == 1 ? vTexcoord1 : vTexcoord0;
-  return (uTextureTransform[i] * vec3(uv, 1.0)).xy;
-}
-
-// pt/shading.cpp's map_normal: the tangent-space normal map `tex` around `n` (scale on x, y),
-// the tangent re-orthogonalised against n; n without tangents or when degenerate.
-vec3 map_normal(sampler2D tex, int slot, float scale, vec3 n) {
-  vec3 t = vTangent.xyz - n * dot(n, vTangent.xyz);
-  float tl = length(t);
-  if (!(tl > 0.0)) return n;
-  t /= tl;
-  vec3 b = cross(n, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
-  vec3 c = texture(tex, texcoord(slot)).xyz * 2.0 - 1.0;
-  c.xy *= scale;
-  vec3 mapped = t * c.x + b * c.y + n * c.z;
-  float ml = length(mapped);
-  return ml > 0.0 ? mapped / ml : n;
-}
-
 // The sheen's image-based lighting: sheenColor times the sheen's directional albedo E(n.v)
 // (the split sum's DG term for the README's Charlie visibility, ibl/sheen_lut.h) times the
 // environment's order-2 SH averaged over the Charlie lobe itself (sheen.glsl's
@@ -243,210 +163,93 @@ float range_attenuation(float d, float range) {
   return clamp(1.0 - r * r * r * r, 0.0, 1.0) / (d * d);
 }
 
-void main() {
-  vec4 base_color = uBaseColorFactor;
-#if HAS_COLOR_0
-  base_color *= vColor;
+// The shading: what the lights, the environment and the frame behind the surface see of the
+// material at this fragment, bound to the view direction once.
+struct Shading {
+  vec3 v;   // towards the viewer, world space
+  vec3 wo;  // v in the material's local frame
+  // Bound to wo once: the lights below share its albedo lookups (BoundBrdf / BoundBsdf).
+  Brdf brdf;
+#if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
+  Bsdf bsdf;
 #endif
-#if HAS_BASE_COLOR_TEXTURE
-  base_color *= texture(uBaseColorTexture, texcoord(SLOT_BASE_COLOR_TEXTURE));
-#endif
-#if ALPHA_MODE == 1
-  if (base_color.a < uAlphaCutoff) discard;
-#endif
-  vec3 emissive = uEmissive;
-#if HAS_EMISSIVE_TEXTURE
-  emissive *= texture(uEmissiveTexture, texcoord(SLOT_EMISSIVE_TEXTURE)).rgb;
-#endif
-#if MATERIAL_UNLIT
-  // KHR_materials_unlit: the base colour as is, from every direction (the path tracer's
-  // integrator adds it to the emission and reflects nothing).
-  outColor = vec4(base_color.rgb + emissive, ALPHA_MODE == 2 ? base_color.a : 1.0);
-#if DEBUG_CHANNEL != DEBUG_NONE
-  outColor.rgb = debug_channel(lobe(DEBUG_EMISSIVE, outColor.rgb), base_color.rgb, 0.0, 0.0,
-                               normalize(vNormal), 1.0, emissive);
-#endif
-#else
-  float metallic = uMetallicFactor, roughness = uRoughnessFactor;
-#if HAS_METALLIC_ROUGHNESS_TEXTURE
-  vec4 mr = texture(uMetallicRoughnessTexture, texcoord(SLOT_METALLIC_ROUGHNESS_TEXTURE));
-  roughness *= mr.g;
-  metallic *= mr.b;
-#endif
-  if (uMetallicOverride >= 0.0) metallic = uMetallicOverride;
-  if (uRoughnessOverride >= 0.0) roughness = uRoughnessOverride;
-
-  vec3 v = normalize(uCameraPosition - vPosition);
-  // The shading normal goes to the viewer's side of the triangle (the back of a
-  // double-sided surface, or vertex normals against the winding), the whole normal-mapped
-  // normal reversed as the glTF spec and the Khronos sample viewer do: the same rule as
-  // the path tracer's shade_inputs. The triangle's normal comes from the derivatives of
-  // the (planar) position, turned towards the viewer.
-  vec3 ng = cross(dFdx(vPosition), dFdy(vPosition));
-  if (dot(ng, v) < 0.0) ng = -ng;
-  vec3 n_geom = normalize(vNormal);  // the interpolated normal (the PT's hit.ns)
-  float side = dot(n_geom, ng) < 0.0 ? -1.0 : 1.0;
-  vec3 n = n_geom;
-#if HAS_NORMAL_TEXTURE
-  if (dot(vTangent.xyz, vTangent.xyz) > 0.0) n = map_normal(uNormalTexture, SLOT_NORMAL_TEXTURE, uNormalScale, n_geom);
-#endif
-  n *= side;
-
-  BaseLayer layer = base_layer(base_color.rgb, metallic, roughness);
-#if MATERIAL_SPECULAR
-  layer.ior = uIor;
-  layer.specular = uSpecularFactor;
-  layer.specular_color = uSpecularColorFactor;
-#if HAS_SPECULAR_TEXTURE
-  layer.specular *= texture(uSpecularTexture, texcoord(SLOT_SPECULAR_TEXTURE)).a;
-#endif
-#if HAS_SPECULAR_COLOR_TEXTURE
-  layer.specular_color *= texture(uSpecularColorTexture, texcoord(SLOT_SPECULAR_COLOR_TEXTURE)).rgb;
-#endif
-#endif
-  mat3 frame = frame_from_normal(n);
-#if MATERIAL_ANISOTROPY
-  // pt/shading.cpp's anisotropy_direction: the texture's RG direction ((1, 0) without it)
-  // rotated by anisotropyRotation in the tangent frame, made normal to the shading normal;
-  // the local frame's +X.
-  vec3 aniso_t = vec3(0.0);
-  if (vTangent != vec4(0.0)) {
-    vec2 d = vec2(1.0, 0.0);
-    float strength = uAnisotropyStrength;
-#if HAS_ANISOTROPY_TEXTURE
-    vec3 at = texture(uAnisotropyTexture, texcoord(SLOT_ANISOTROPY_TEXTURE)).rgb;
-    d = at.rg * 2.0 - 1.0;
-    strength *= at.b;
-#endif
-    vec2 cs = vec2(cos(uAnisotropyRotation), sin(uAnisotropyRotation));
-    d = vec2(cs.x * d.x - cs.y * d.y, cs.y * d.x + cs.x * d.y);
-    vec3 t = vTangent.xyz;
-    vec3 b = cross(n_geom, t) * (vTangent.w < 0.0 ? -1.0 : 1.0);
-    vec3 dir = t * d.x + b * d.y;
-    dir -= n * dot(n, dir);
-    float l = length(dir);
-    if (l > 1e-6) {
-      aniso_t = dir / l;
-      frame = mat3(aniso_t, cross(n, aniso_t), n);
-      layer.anisotropy = strength;
-    }
-  }
-#endif
-#if MATERIAL_IRIDESCENCE
-  layer.iridescence = uIridescenceFactor;
-  layer.iridescence_ior = uIridescenceIor;
-#if HAS_IRIDESCENCE_TEXTURE
-  layer.iridescence *= texture(uIridescenceTexture, texcoord(SLOT_IRIDESCENCE_TEXTURE)).r;
-#endif
-  float thickness_g = 1.0;  // without a thickness texture the film is the maximum thick
-#if HAS_IRIDESCENCE_THICKNESS_TEXTURE
-  thickness_g = texture(uIridescenceThicknessTexture, texcoord(SLOT_IRIDESCENCE_THICKNESS_TEXTURE)).g;
-#endif
-  layer.iridescence_thickness = mix(uIridescenceThicknessMinimum, uIridescenceThicknessMaximum, thickness_g);
-#endif
-  vec3 wo = to_local(frame, v);
-
-#if MATERIAL_SHEEN
-  vec3 sheen_color = uSheenColorFactor;
-  float sheen_roughness = uSheenRoughnessFactor;
-#if HAS_SHEEN_COLOR_TEXTURE
-  sheen_color *= texture(uSheenColorTexture, texcoord(SLOT_SHEEN_COLOR_TEXTURE)).rgb;
-#endif
-#if HAS_SHEEN_ROUGHNESS_TEXTURE
-  sheen_roughness *= texture(uSheenRoughnessTexture, texcoord(SLOT_SHEEN_ROUGHNESS_TEXTURE)).a;
-#endif
-#else
-  vec3 sheen_color = vec3(0.0);
-  float sheen_roughness = 0.0;
-#endif
-#if MATERIAL_CLEARCOAT
-  float coat_weight = uClearcoatFactor;
-  float coat_roughness = uClearcoatRoughnessFactor;
-#if HAS_CLEARCOAT_TEXTURE
-  coat_weight *= texture(uClearcoatTexture, texcoord(SLOT_CLEARCOAT_TEXTURE)).r;
-#endif
-#if HAS_CLEARCOAT_ROUGHNESS_TEXTURE
-  coat_roughness *= texture(uClearcoatRoughnessTexture, texcoord(SLOT_CLEARCOAT_ROUGHNESS_TEXTURE)).g;
-#endif
-  // The coat's own normal map; none means the interpolated normal, not the base's map.
-  vec3 n_coat = n_geom;
-#if HAS_CLEARCOAT_NORMAL_TEXTURE
-  if (coat_weight > 0.0) n_coat = map_normal(uClearcoatNormalTexture, SLOT_CLEARCOAT_NORMAL_TEXTURE, uClearcoatNormalScale, n_geom);
-#endif
-  n_coat *= side;
-#else
-  float coat_weight = 0.0, coat_roughness = 0.0;
-  vec3 n_coat = n;
-#endif
-
-#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
-  float transmission = 0.0;
-#if MATERIAL_TRANSMISSION
-  transmission = uTransmissionFactor;
-#if HAS_TRANSMISSION_TEXTURE
-  transmission *= texture(uTransmissionTexture, texcoord(SLOT_TRANSMISSION_TEXTURE)).r;
-#endif
-#endif
-  float diffuse_transmission = 0.0;
-  vec3 dt_color = vec3(1.0);
-#if MATERIAL_DIFFUSE_TRANSMISSION
-  diffuse_transmission = uDiffuseTransmissionFactor;
-#if HAS_DIFFUSE_TRANSMISSION_TEXTURE
-  diffuse_transmission *= texture(uDiffuseTransmissionTexture, texcoord(SLOT_DIFFUSE_TRANSMISSION_TEXTURE)).a;
-#endif
-  dt_color = uDiffuseTransmissionColorFactor;
-#if HAS_DIFFUSE_TRANSMISSION_COLOR_TEXTURE
-  dt_color *= texture(uDiffuseTransmissionColorTexture, texcoord(SLOT_DIFFUSE_TRANSMISSION_COLOR_TEXTURE)).rgb;
-#endif
-#endif
-  float thickness = 0.0;
-#if MATERIAL_VOLUME
-  thickness = uThicknessFactor;
-#if HAS_THICKNESS_TEXTURE
-  thickness *= texture(uThicknessTexture, texcoord(SLOT_THICKNESS_TEXTURE)).g;
-#endif
-#endif
-  transmission = saturate(transmission);
-  diffuse_transmission = saturate(diffuse_transmission);
   // The diffuse lobe becomes mix(mix(diffuse, diffuse BTDF, DT), specular BTDF, T) (the
   // transmission and diffuse_transmission READMEs): `through` of it goes through, and the
   // diffuse BTDF's light crosses the medium (attenuated over the thickness, as the Sample
-  // Viewer's diffuse transmission does). The diffuse BTDF's colour is
+  // Viewer's diffuse transmission does), `dt_weight` of it. The diffuse BTDF's colour is
   // diffuseTransmissionColor alone (the README's normative diffuse_btdf(color =
-  // diffuseTransmissionColor), no baseColor): the diffuse lobe's functions below read it
-  // from a copy of the Brdf whose base colour it is.
-  float through = transmission + (1.0 - transmission) * diffuse_transmission;
-  float mean_scale = (uModelScale.x + uModelScale.y + uModelScale.z) / 3.0;
-  vec3 dt_weight = (1.0 - transmission) * diffuse_transmission *
-                   volume_attenuation(thickness * mean_scale, uAttenuationColor, uAttenuationDistance);
-  dt_color = clamp(dt_color, 0.0, 1.0);
-#endif
+  // diffuseTransmissionColor), no baseColor): the diffuse lobe's functions read it from a
+  // copy of the Brdf whose base colour it is.
+  float through;
+  vec3 dt_weight;
+};
 
-  // Bound to wo once: the lights below share its albedo lookups (BoundBrdf / BoundBsdf).
-  Brdf brdf = brdf_at(make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyDirect),
-                      uEnergyDirect, wo);
-#if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
-  Bsdf bsdf = bsdf_at(make_bsdf(brdf, coat_weight, coat_roughness, to_local(frame, n_coat),
-                                sheen_color, sheen_roughness, uEnergyCoat),
-                      uSheenLut, wo);
+// KHR_materials_unlit: the base colour as is, from every direction (the path tracer's
+// integrator adds it to the emission and reflects nothing).
+vec4 unlit_output(vec4 base_color, vec3 emissive) {
+  vec4 color = vec4(base_color.rgb + emissive, ALPHA_MODE == 2 ? base_color.a : 1.0);
+#if DEBUG_CHANNEL != DEBUG_NONE
+  color.rgb = debug_channel(lobe(DEBUG_EMISSIVE, color.rgb), base_color.rgb, 0.0, 0.0,
+                            normalize(vNormal), 1.0, emissive);
 #endif
-  vec3 color = vec3(0.0);
+  return color;
+}
+
+// The material bound to the viewer `v`; the transmission weights clamped to [0, 1] in `m`.
+Shading shading_at(inout MaterialInputs m, vec3 v) {
+  Shading s;
+  s.v = v;
+  s.wo = to_local(m.frame, v);
+#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
+  m.transmission = saturate(m.transmission);
+  m.diffuse_transmission = saturate(m.diffuse_transmission);
+  s.through = m.transmission + (1.0 - m.transmission) * m.diffuse_transmission;
+  float mean_scale = (uModelScale.x + uModelScale.y + uModelScale.z) / 3.0;
+  s.dt_weight = (1.0 - m.transmission) * m.diffuse_transmission *
+                volume_attenuation(m.thickness * mean_scale, uAttenuationColor, uAttenuationDistance);
+  m.dt_color = clamp(m.dt_color, 0.0, 1.0);
+#endif
+  s.brdf = brdf_at(make_brdf(m.layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyDirect),
+                   uEnergyDirect, s.wo);
+#if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
+  s.bsdf = bsdf_at(make_bsdf(s.brdf, m.coat_weight, m.coat_roughness, to_local(m.frame, m.n_coat),
+                             m.sheen_color, m.sheen_roughness, uEnergyCoat),
+                   uSheenLut, s.wo);
+#endif
+  return s;
+}
+
+// The number of punctual lights this fragment shades and, with LIGHTS 2, its cluster's
+// (first index, count) in uLightIndex (with LIGHT_COUNT >= 0, punctual_lights' loop has
+// the constant count instead).
+int light_count(out uvec2 cluster) {
+  cluster = uvec2(0u);
 #if LIGHTS == 2
   // The fragment's cluster: a slice of its own view depth, the tile of its pixel centre.
   float depth = max(dot(uViewDepth.xyz, vPosition) + uViewDepth.w, uClusterDepth.x);
   ivec3 cell = ivec3(ivec2(gl_FragCoord.xy / uClusterTile),
                      int(floor(log(depth / uClusterDepth.x) * uClusterDepth.y)));
   cell = clamp(cell, ivec3(0), uClusterGrid - 1);
-  uvec2 cluster = uClusterRange[cell.x + uClusterGrid.x * (cell.y + uClusterGrid.y * cell.z)];
-  int light_count = uGlobalLightCount + int(cluster.y);
-#elif LIGHTS == 1 && LIGHT_COUNT >= 0
-  const int light_count = LIGHT_COUNT;
+  cluster = uClusterRange[cell.x + uClusterGrid.x * (cell.y + uClusterGrid.y * cell.z)];
+  return uGlobalLightCount + int(cluster.y);
 #elif LIGHTS == 1
-  int light_count = uLightCount;
+  return uLightCount;
 #else
-  int light_count = 0;
+  return 0;
 #endif
-  for (int k = 0; k < light_count; ++k) {
+}
+
+// The punctual lights (KHR_lights_punctual) reflected, and with the transmission
+// extensions transmitted, towards the viewer.
+vec3 punctual_lights(MaterialInputs m, Shading s) {
+  vec3 color = vec3(0.0);
+  uvec2 cluster;
+#if LIGHTS == 1 && LIGHT_COUNT >= 0
+  const int count = LIGHT_COUNT;
+#else
+  int count = light_count(cluster);
+#endif
+  for (int k = 0; k < count; ++k) {
 #if LIGHTS == 2
     // The global lights, then the cluster's (both ascending: the unclustered loop's order).
     PunctualLight light = uLights[uLightIndex[k < uGlobalLightCount
@@ -476,167 +279,190 @@ void main() {
         radiance *= a * a;
       }
     }
-    vec3 wi = to_local(frame, l);
+    vec3 wi = to_local(m.frame, l);
 #if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
     if (wi.z < 0.0) {
       // A light behind the surface reaches the viewer through the diffuse BTDF: the
       // diffuse lobe mirrored to the other side (KHR_materials_diffuse_transmission).
       vec3 wi_m = vec3(wi.xy, -wi.z);
-      Brdf brdf_dt = brdf;
-      brdf_dt.base_color = dt_color;
-      color += lobe(DEBUG_DIFFUSE, dt_weight * brdf_eval_diffuse(brdf_dt, uEnergyDirect, wo, wi_m) * radiance * wi_m.z);
+      Brdf brdf_dt = s.brdf;
+      brdf_dt.base_color = m.dt_color;
+      color += lobe(DEBUG_DIFFUSE, s.dt_weight * brdf_eval_diffuse(brdf_dt, uEnergyDirect, s.wo, wi_m) * radiance * wi_m.z);
 #if MATERIAL_TRANSMISSION
       // The specular BTDF (transmission.glsl's punctual_transmission), attenuated through
       // the medium along the refracted ray (the Sample Viewer's applyVolumeAttenuation).
-      vec3 ray = volume_transmission_ray(n, v, thickness, uIor, uModelScale);
+      vec3 ray = volume_transmission_ray(m.n, s.v, m.thickness, uIor, uModelScale);
       color += lobe(DEBUG_TRANSMISSION,
-                    transmission * punctual_transmission(brdf, wo, wi_m, uIor) * radiance * wi_m.z *
+                    m.transmission * punctual_transmission(s.brdf, s.wo, wi_m, uIor) * radiance * wi_m.z *
                         volume_attenuation(length(ray), uAttenuationColor, uAttenuationDistance));
 #endif
       continue;
     }
-    if (wi.z > 0.0) color -= lobe(DEBUG_DIFFUSE, through * brdf_eval_diffuse(brdf, uEnergyDirect, wo, wi) * radiance * wi.z);
+    if (wi.z > 0.0) color -= lobe(DEBUG_DIFFUSE, s.through * brdf_eval_diffuse(s.brdf, uEnergyDirect, s.wo, wi) * radiance * wi.z);
 #endif
     if (wi.z <= 0.0) continue;
 #if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
-    color += bsdf_lobes(bsdf, uEnergyDirect, uEnergyCoat, uSheenLut, wo, wi) * radiance * wi.z;
+    color += bsdf_lobes(s.bsdf, uEnergyDirect, uEnergyCoat, uSheenLut, s.wo, wi) * radiance * wi.z;
 #else
-    color += brdf_lobes(brdf, uEnergyDirect, wo, wi) * radiance * wi.z;
+    color += brdf_lobes(s.brdf, uEnergyDirect, s.wo, wi) * radiance * wi.z;
 #endif
   }
+  return color;
+}
 
-#if IBL
-  {
-    float ao = 1.0;
-#if HAS_OCCLUSION_TEXTURE
-    ao = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(SLOT_OCCLUSION_TEXTURE)).r - 1.0);
-#endif
-    vec3 prefiltered;
+// The environment's light reflected (and with diffuse transmission, transmitted) towards
+// the viewer: the split sum's lobes under the sheen and the coat, times the occlusion.
+vec3 image_based_light(MaterialInputs m, Shading s) {
+  vec3 n = m.n, v = s.v, wo = s.wo;
+  float ao = material_occlusion();
+  vec3 prefiltered;
 #if MATERIAL_ANISOTROPY
-    // The anisotropic lobe's own radiance (anisotropy_ibl.glsl: taps along the stretched
-    // lobe), divided by the isotropic table's albedo E = A + B that ibl_shading multiplies
-    // back (through F0 A + B), so the single scattering is the lobe's and the
-    // multiple-scattering and diffuse terms keep the table's, as in the path tracer.
-    if (layer.anisotropy > 0.0) {
-      vec2 ab_aniso = energy_AB(uEnergyIBL, max(wo.z, 1e-4), brdf.table_roughness);
-      prefiltered = anisotropic_ibl_radiance(uSpecularCube, uSpecularLevels, frame, uIblRotation, wo,
-                                             brdf.alpha_x, brdf.alpha_y) /
-                    max(ab_aniso.x + ab_aniso.y, 1e-4);
-    } else
+  // The anisotropic lobe's own radiance (anisotropy_ibl.glsl: taps along the stretched
+  // lobe), divided by the isotropic table's albedo E = A + B that ibl_shading multiplies
+  // back (through F0 A + B), so the single scattering is the lobe's and the
+  // multiple-scattering and diffuse terms keep the table's, as in the path tracer.
+  if (m.layer.anisotropy > 0.0) {
+    vec2 ab_aniso = energy_AB(uEnergyIBL, max(wo.z, 1e-4), s.brdf.table_roughness);
+    prefiltered = anisotropic_ibl_radiance(uSpecularCube, uSpecularLevels, m.frame, uIblRotation, wo,
+                                           s.brdf.alpha_x, s.brdf.alpha_y) /
+                  max(ab_aniso.x + ab_aniso.y, 1e-4);
+  } else
 #endif
-      prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, n), uIblRotation),
-                               roughness_lod(brdf.roughness, uSpecularLevels)).rgb;
-    vec3 n_env = world_to_env(n, uIblRotation);
+    prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, n), uIblRotation),
+                             roughness_lod(s.brdf.roughness, uSpecularLevels)).rgb;
+  vec3 n_env = world_to_env(n, uIblRotation);
 #if IRRADIANCE_SH
-    vec3 irradiance = max(eval_sh_irradiance(uSH, n_env), vec3(0.0));
+  vec3 irradiance = max(eval_sh_irradiance(uSH, n_env), vec3(0.0));
 #else
-    vec3 irradiance = textureLod(uIrradianceCube, n_env, 0.0).rgb;
+  vec3 irradiance = textureLod(uIrradianceCube, n_env, 0.0).rgb;
 #endif
 #if GEOMETRY == 0 && MULTISCATTER
-    // reference: the IBL's energy table is the punctual lights' (both height-correlated
-    // Smith), so the bound Brdf is the IBL's too and brdf_at has looked up (A, B) at n.v
-    // already (two of the compensation's fetches and a make_brdf fewer per fragment).
-    Brdf ibl = brdf;
-    vec3 indirect = wo.z >= 1e-4 ? ibl_shading_ab(ibl, uEnergyIBL, wo.z, ibl.ab_o, prefiltered, irradiance)
-                                 : ibl_shading(ibl, uEnergyIBL, wo.z, prefiltered, irradiance);
+  // reference: the IBL's energy table is the punctual lights' (both height-correlated
+  // Smith), so the bound Brdf is the IBL's too and brdf_at has looked up (A, B) at n.v
+  // already (two of the compensation's fetches and a make_brdf fewer per fragment).
+  Brdf ibl = s.brdf;
+  vec3 indirect = wo.z >= 1e-4 ? ibl_shading_ab(ibl, uEnergyIBL, wo.z, ibl.ab_o, prefiltered, irradiance)
+                               : ibl_shading(ibl, uEnergyIBL, wo.z, prefiltered, irradiance);
 #else
-    Brdf ibl = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
-    vec3 indirect = ibl_shading(ibl, uEnergyIBL, dot(n, v), prefiltered, irradiance);
+  Brdf ibl = make_brdf(m.layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
+  vec3 indirect = ibl_shading(ibl, uEnergyIBL, dot(n, v), prefiltered, irradiance);
 #endif
-    indirect = ibl_lobes(indirect, ibl, uEnergyIBL, dot(n, v), irradiance);
+  indirect = ibl_lobes(indirect, ibl, uEnergyIBL, dot(n, v), irradiance);
 #if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
-    {
-      // The diffuse lobe's environment light: E(n) for the part that stays, dt E(-n) for the
-      // diffuse BTDF; the specular BTDF's light is the frame's, added after the IBL.
+  {
+    // The diffuse lobe's environment light: E(n) for the part that stays, dt E(-n) for the
+    // diffuse BTDF; the specular BTDF's light is the frame's (transmitted_light).
 #if IRRADIANCE_SH
-      vec3 irradiance_back = max(eval_sh_irradiance(uSH, -n_env), vec3(0.0));
+    vec3 irradiance_back = max(eval_sh_irradiance(uSH, -n_env), vec3(0.0));
 #else
-      vec3 irradiance_back = textureLod(uIrradianceCube, -n_env, 0.0).rgb;
+    vec3 irradiance_back = textureLod(uIrradianceCube, -n_env, 0.0).rgb;
 #endif
-      Brdf ibl_dt = ibl;
-      ibl_dt.base_color = dt_color;
-      indirect += lobe(DEBUG_DIFFUSE, ibl_diffuse(ibl_dt, uEnergyIBL, dot(n, v), dt_weight * irradiance_back) -
-                                          ibl_diffuse(ibl, uEnergyIBL, dot(n, v), through * irradiance));
-    }
-#endif
-#if MATERIAL_SHEEN
-    {
-      // The base under the sheen, scaled as bsdf.h's min(1 - c E(n.v), 1 - c E(n.l)) scales
-      // it under a uniform environment: by 1 - c E_max_avg(n.v), the light's side averaged
-      // over a cosine lobe (core/sheen.h; the README's one-sided 1 - c E(n.v) left the base
-      // up to 20% brighter than the path tracer's at normal incidence).
-      float sr = clamp(sheen_roughness, kMinSheenRoughness, 1.0);
-      vec3 sc = clamp(sheen_color, 0.0, 1.0);
-      indirect = lobe(DEBUG_SHEEN, sheen_ibl(n, v, sc, sr)) +
-                 (1.0 - max3(sc) * sheen_E_max_avg(uSheenLut, dot(n, v), sr)) * indirect;
-    }
-#endif
-#if MATERIAL_CLEARCOAT
-    {
-      float cw = saturate(coat_weight);
-      float ncv = dot(n_coat, v);
-      float cr = clamp(coat_roughness, kMinRoughness, 1.0);
-      vec3 coat_prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, n_coat), uIblRotation),
-                                         roughness_lod(cr, uSpecularLevels)).rgb;
-      indirect = lobe(DEBUG_CLEARCOAT, coat_ibl(cw, cr, uEnergyCoat, ncv, coat_prefiltered)) +
-                 (1.0 - cw * coat_fresnel(abs(ncv))) * indirect;
-    }
-#endif
-    color += ao * uIblScale * indirect;
+    Brdf ibl_dt = ibl;
+    ibl_dt.base_color = m.dt_color;
+    indirect += lobe(DEBUG_DIFFUSE, ibl_diffuse(ibl_dt, uEnergyIBL, dot(n, v), s.dt_weight * irradiance_back) -
+                                        ibl_diffuse(ibl, uEnergyIBL, dot(n, v), s.through * irradiance));
   }
 #endif
+#if MATERIAL_SHEEN
+  {
+    // The base under the sheen, scaled as bsdf.h's min(1 - c E(n.v), 1 - c E(n.l)) scales
+    // it under a uniform environment: by 1 - c E_max_avg(n.v), the light's side averaged
+    // over a cosine lobe (core/sheen.h; the README's one-sided 1 - c E(n.v) left the base
+    // up to 20% brighter than the path tracer's at normal incidence).
+    float sr = clamp(m.sheen_roughness, kMinSheenRoughness, 1.0);
+    vec3 sc = clamp(m.sheen_color, 0.0, 1.0);
+    indirect = lobe(DEBUG_SHEEN, sheen_ibl(n, v, sc, sr)) +
+               (1.0 - max3(sc) * sheen_E_max_avg(uSheenLut, dot(n, v), sr)) * indirect;
+  }
+#endif
+#if MATERIAL_CLEARCOAT
+  {
+    float cw = saturate(m.coat_weight);
+    float ncv = dot(m.n_coat, v);
+    float cr = clamp(m.coat_roughness, kMinRoughness, 1.0);
+    vec3 coat_prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, m.n_coat), uIblRotation),
+                                       roughness_lod(cr, uSpecularLevels)).rgb;
+    indirect = lobe(DEBUG_CLEARCOAT, coat_ibl(cw, cr, uEnergyCoat, ncv, coat_prefiltered)) +
+               (1.0 - cw * coat_fresnel(abs(ncv))) * indirect;
+  }
+#endif
+  return ao * uIblScale * indirect;
+}
 
 #if MATERIAL_TRANSMISSION
-  {
-    // KHR_materials_transmission: the specular BTDF's light is what the opaque frame shows
-    // through the surface (transmission.glsl), through the diffuse lobe's slot under the
-    // dielectric's specular and base colour, then under the sheen and the coat.
-    TransmissionInputs t;
-    t.position = vPosition;
-    t.n = n;
-    t.v = v;
-    t.roughness = brdf.roughness;
+// KHR_materials_transmission: the specular BTDF's light is what the opaque frame shows
+// through the surface (transmission.glsl), through the diffuse lobe's slot under the
+// dielectric's specular and base colour, then under the sheen and the coat.
+vec3 transmitted_light(MaterialInputs m, Shading s) {
+  vec3 n = m.n, v = s.v;
+  TransmissionInputs t;
+  t.position = vPosition;
+  t.n = n;
+  t.v = v;
+  t.roughness = s.brdf.roughness;
 #if MATERIAL_DISPERSION
-    t.iors = dispersion_iors(uIor, uDispersion);
+  t.iors = dispersion_iors(uIor, uDispersion);
 #else
-    t.iors = vec3(uIor);
+  t.iors = vec3(uIor);
 #endif
-    t.thickness = thickness;
-    t.model_scale = uModelScale;
-    t.attenuation_color = uAttenuationColor;
-    t.attenuation_distance = uAttenuationDistance;
+  t.thickness = m.thickness;
+  t.model_scale = uModelScale;
+  t.attenuation_color = uAttenuationColor;
+  t.attenuation_distance = uAttenuationDistance;
 #if MATERIAL_VOLUME
-    vec3 seen = thick_refracted_radiance(
-        t, uBackFaces != 0, uTransmissionFrame, uTransmissionDepth, uTransmissionFrameSize,
-        uBackPosition, uBackNormal, uBackFaceRect, gl_FragCoord.xy / uTransmissionFrameSize,
-        uViewProjection, uInverseViewProjection, uCameraPosition, uSpecularCube, uIblRotation,
-        uSpecularLevels, IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
+  vec3 seen = thick_refracted_radiance(
+      t, uBackFaces != 0, uTransmissionFrame, uTransmissionDepth, uTransmissionFrameSize,
+      uBackPosition, uBackNormal, uBackFaceRect, gl_FragCoord.xy / uTransmissionFrameSize,
+      uViewProjection, uInverseViewProjection, uCameraPosition, uSpecularCube, uIblRotation,
+      uSpecularLevels, IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
 #else
-    vec3 seen = refracted_radiance(t, uTransmissionFrame, uTransmissionFrameSize, uViewProjection,
-                                   uCameraPosition, uSpecularCube, uIblRotation, uSpecularLevels,
-                                   IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
+  vec3 seen = refracted_radiance(t, uTransmissionFrame, uTransmissionFrameSize, uViewProjection,
+                                 uCameraPosition, uSpecularCube, uIblRotation, uSpecularLevels,
+                                 IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
 #endif
-    Brdf tb = make_brdf(layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
-    vec3 transmitted = ibl_diffuse(tb, uEnergyIBL, dot(n, v), kPi * transmission * seen);
+  Brdf tb = make_brdf(m.layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
+  vec3 transmitted = ibl_diffuse(tb, uEnergyIBL, dot(n, v), kPi * m.transmission * seen);
 #if MATERIAL_SHEEN
-    transmitted *= 1.0 - max3(clamp(sheen_color, 0.0, 1.0)) *
-                             sheen_E(uSheenLut, dot(n, v), clamp(sheen_roughness, kMinSheenRoughness, 1.0));
+  transmitted *= 1.0 - max3(clamp(m.sheen_color, 0.0, 1.0)) *
+                           sheen_E(uSheenLut, dot(n, v), clamp(m.sheen_roughness, kMinSheenRoughness, 1.0));
 #endif
 #if MATERIAL_CLEARCOAT
-    transmitted *= 1.0 - saturate(coat_weight) * coat_fresnel(abs(dot(n_coat, v)));
+  transmitted *= 1.0 - saturate(m.coat_weight) * coat_fresnel(abs(dot(m.n_coat, v)));
 #endif
-    color += lobe(DEBUG_TRANSMISSION, transmitted);
-  }
+  return lobe(DEBUG_TRANSMISSION, transmitted);
+}
 #endif
 
-  color += lobe(DEBUG_EMISSIVE, emissive);
+// The fragment's colour: the light reflected and transmitted plus the emission, or with
+// DEBUG_CHANNEL the selected input or lobe; the alpha for BLEND.
+vec4 surface_output(MaterialInputs m, vec3 color) {
+  color += lobe(DEBUG_EMISSIVE, m.emissive);
 #if DEBUG_CHANNEL != DEBUG_NONE
-  float occlusion = 1.0;
-#if HAS_OCCLUSION_TEXTURE
-  occlusion = 1.0 + uOcclusionStrength * (texture(uOcclusionTexture, texcoord(SLOT_OCCLUSION_TEXTURE)).r - 1.0);
+  color = debug_channel(color, m.base_color.rgb, m.metallic, m.roughness, m.n, material_occlusion(),
+                        m.emissive);
 #endif
-  color = debug_channel(color, base_color.rgb, metallic, roughness, n, occlusion, emissive);
+  return vec4(color, ALPHA_MODE == 2 ? m.base_color.a : 1.0);
+}
+
+void main() {
+  vec4 base_color = material_base_color();
+#if ALPHA_MODE == 1
+  if (base_color.a < uAlphaCutoff) discard;
 #endif
-  outColor = vec4(color, ALPHA_MODE == 2 ? base_color.a : 1.0);
+  vec3 emissive = material_emission();
+#if MATERIAL_UNLIT
+  outColor = unlit_output(base_color, emissive);
+#else
+  vec3 v = normalize(uCameraPosition - vPosition);
+  MaterialInputs m = material_inputs(base_color, emissive, v);
+  Shading s = shading_at(m, v);
+  vec3 color = punctual_lights(m, s);
+#if IBL
+  color += image_based_light(m, s);
+#endif
+#if MATERIAL_TRANSMISSION
+  color += transmitted_light(m, s);
+#endif
+  outColor = surface_output(m, color);
 #endif
 }
