@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <epoxy/gl.h>
 #include <fmt/format.h>
@@ -171,6 +173,34 @@ glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuSce
   return glm::vec4(glm::vec2(p0) / size, glm::vec2(p1) / size);
 }
 
+// What render() knows of the frame it draws: the camera's matrices, the lights and their
+// clusters, the features every surface permutation of the frame shares, and the state its
+// passes hand on to each other.
+struct Frame {
+  const Camera* camera = nullptr;
+  const RenderSettings* settings = nullptr;
+  int width = 0, height = 0;
+  glm::mat4 view{1.0f}, projection{1.0f}, view_projection{1.0f}, inverse_view_projection{1.0f};
+  float rotation_delta = 0.0f;  // the environment's rotation minus the baked IBL's
+  float ibl_scale = 1.0f;       // the environment's intensity over the baked IBL's
+  std::vector<const Light*> lights;
+  LightClusters clusters;
+  bool clustered = false;  // some light binned into clusters (LIGHTS 2)
+  // The view depth of a world point, dot(view_depth.xyz, p) + view_depth.w.
+  glm::vec4 view_depth{0.0f};
+  SurfaceFeatures features;        // the frame's: per draw, the material's are added
+  std::vector<GLuint> prepared;    // the programs whose frame uniforms are set
+  bool back_faces_drawn = false;   // the back-face target holds the instance drawn next
+  glm::vec4 back_face_rect{0.0f};  // over this rectangle (texture coordinates)
+};
+
+// The draws the opaque pass leaves for later passes.
+struct QueuedDraws {
+  std::vector<TransmissiveDraw> transmissive;          // surfaces that read the opaque frame
+  std::vector<std::pair<float, std::size_t>> blended;  // (view-space z, instance)
+  bool frame_read = false;                             // a blended surface reads the frame too
+};
+
 }  // namespace
 
 // The parts a frame is made of, each in its own file; the members are made in this order
@@ -193,7 +223,318 @@ struct Renderer::State {
   // The back-face pass's program (pbr_vertex.glsl, back_face_fragment.glsl), made on the
   // first frame with a thick transmissive object.
   Program back_faces;
+
+  // render()'s steps, in the order it takes them.
+  Frame begin_frame(const Camera& camera, int width, int height, const RenderSettings& settings);
+  QueuedDraws draw_opaque(Frame& f);
+  void draw_background(const Frame& f);
+  void draw_transmissive(Frame& f, QueuedDraws& queued);
+  void draw_blended(Frame& f, std::vector<std::pair<float, std::size_t>>& blended);
+  // Sets the frame's uniforms on `p` the first time the frame uses it.
+  void prepare(Frame& f, const Program& p);
+  // Instance `index` and the `count` - 1 after it in slot order (one run: the same mesh and
+  // winding), in one glDrawElementsInstanced. `cull`: the faces to cull (GL_BACK,
+  // GL_FRONT), or 0 for the material's choice.
+  void draw(Frame& f, std::size_t index, GLenum cull = 0, std::size_t count = 1);
 };
+
+Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
+                                   const RenderSettings& settings) {
+  Frame f;
+  f.camera = &camera;
+  f.settings = &settings;
+  f.width = width;
+  f.height = height;
+  GLint max_samples = 1;
+  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+  targets.ensure(width, height, std::clamp(settings.msaa, 1, std::max(1, int(max_samples))));
+  const float aspect = float(width) / float(height);
+  f.view = view_matrix(camera);
+  f.projection = projection_matrix(camera, aspect);
+  f.view_projection = f.projection * f.view;
+
+  timer.begin();
+  glBindFramebuffer(GL_FRAMEBUFFER, targets.msaa_fbo);
+  glViewport(0, 0, width, height);
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glDepthMask(GL_TRUE);
+  glClearColor(0, 0, 0, 1);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+
+  f.rotation_delta = settings.env_rotation_deg - environment.ibl_params.rotation_deg;
+  f.ibl_scale = settings.env_intensity / std::max(environment.ibl_params.intensity, 1e-30f);
+
+  // The punctual lights of this frame, uploaded with their clusters (light_clusters.h).
+  for (std::size_t i = 0; i < scene.lights.size() && settings.lights; ++i) {
+    if (i < settings.light_enabled.size() && !settings.light_enabled[i]) continue;
+    f.lights.push_back(&scene.lights[i]);
+  }
+  if (settings.clustered_lights && !f.lights.empty())
+    f.clusters = bin_lights(f.lights,
+                            ClusterView{f.view, f.projection, width, height, camera.znear,
+                                        camera.type == Camera::Type::kOrthographic
+                                            ? camera.zfar.value_or(camera.znear + 1e6f)
+                                            : camera.zfar},
+                            settings.light_clusters);
+  // No light binned (every light global, or none reaching the view): the plain loop, without
+  // the cluster lookup.
+  f.clustered = settings.clustered_lights && !f.lights.empty() && !f.clusters.indices.empty();
+  light_buffers.upload(f.lights, f.clustered ? &f.clusters : nullptr);
+  // Minus the view matrix's third row (view space looks down -Z).
+  f.view_depth = -glm::vec4(f.view[0][2], f.view[1][2], f.view[2][2], f.view[3][2]);
+  const GeometryModel direct = direct_geometry(settings.brdf.model);
+  const GeometryModel ibl = ibl_geometry(settings.brdf.model);
+  f.features.ibl = settings.ibl && environment.has_ibl;
+  f.features.irradiance_sh = settings.irradiance == IrradianceMode::kSH;
+  f.features.multiscatter = settings.brdf.multiscatter;
+  f.features.geometry = int(direct);
+  f.features.fresnel = settings.fresnel == FresnelMode::kSchlick ? 0 : 1;
+  f.features.lights = f.lights.empty() ? 0 : f.clustered ? 2 : 1;
+  if (f.features.lights == 1 && int(f.lights.size()) <= kCompiledLightCount)
+    f.features.light_count = int(f.lights.size());
+  set_debug_features(settings, f.features);
+  glBindTextureUnit(kEnergyDirectUnit, energy[std::size_t(direct)]);
+  glBindTextureUnit(kEnergyIblUnit, energy[std::size_t(ibl)]);
+  glBindTextureUnit(kSpecularCubeUnit, environment.specular_cube);
+  glBindTextureUnit(kIrradianceCubeUnit, environment.irradiance_cube);
+  glBindTextureUnit(kCoatEnergyUnit, energy[std::size_t(GeometryModel::kReference)]);
+  glBindTextureUnit(kSheenCubeUnit, environment.sheen_cube);
+  glBindTextureUnit(kSheenLutUnit, sheen_lut);
+  f.inverse_view_projection = glm::inverse(f.view_projection);
+  return f;
+}
+
+void Renderer::State::prepare(Frame& f, const Program& p) {
+  if (std::find(f.prepared.begin(), f.prepared.end(), p.id()) != f.prepared.end()) return;
+  f.prepared.push_back(p.id());
+  const RenderSettings& settings = *f.settings;
+  p.set("uViewProjection", f.view_projection);
+  p.set("uCameraPosition", f.camera->position());
+  p.set("uMetallicOverride", settings.metallic_override);
+  p.set("uRoughnessOverride", settings.roughness_override);
+  glProgramUniform3fv(p.id(), p.location("uSH"), 9, &environment.ibl_params.sh[0].x);
+  p.set("uSpecularLevels", environment.specular_levels);
+  p.set("uSheenLevels", environment.sheen_levels);
+  p.set("uIblRotation", env_rotation_cs(f.rotation_delta));
+  p.set("uIblScale", f.ibl_scale);
+  p.set("uTransmissionFrameSize", glm::vec2(float(f.width), float(f.height)));
+  p.set("uLightCount", GLint(f.lights.size()));
+  if (f.clustered) {
+    const LightClusters& clusters = f.clusters;
+    p.set("uViewDepth", f.view_depth);
+    p.set("uGlobalLightCount", GLint(clusters.global.size()));
+    p.set("uClusterGrid", clusters.grid);
+    p.set("uClusterTile", float(clusters.tile_pixels));
+    // slice = floor(log(depth / z_lo) * slices / log(z_hi / z_lo)) (light_clusters.h).
+    p.set("uClusterDepth", glm::vec2(clusters.z_lo, float(clusters.grid.z) /
+                                                        std::log(clusters.z_hi / clusters.z_lo)));
+  }
+}
+
+void Renderer::State::draw(Frame& f, std::size_t index, GLenum cull, std::size_t count) {
+  const Instance& inst = scene.instances[index];
+  const GpuMesh& mesh = scene.meshes[std::size_t(inst.mesh)];
+  const Material& m = scene.material_of(mesh);
+  const auto refs = m.textures();
+  SurfaceFeatures features = f.features;
+  features.alpha_mode = mesh.alpha_mode;
+  features.colors = mesh.has_colors;
+  for (int t = 0; t < kTextureSlotCount; ++t) {
+    const TextureRef& ref = *refs[std::size_t(t)];
+    if (ref.valid() && std::size_t(ref.texture) < scene.textures.size())
+      features.textures |= 1u << t;
+  }
+  features.unlit = m.unlit;
+  features.specular = m.specular.has_value() || m.ior != 1.5f;
+  features.anisotropy = m.anisotropy.has_value();
+  features.iridescence = m.iridescence.has_value() && m.iridescence->factor > 0.0f;
+  features.clearcoat = m.clearcoat.has_value() && m.clearcoat->factor > 0.0f;
+  features.sheen = m.sheen.has_value() && max3(m.sheen->color_factor) > 0.0f;
+  set_transmission_features(m, mesh.closed, features);
+  const Program& p = programs.surface(features);
+  prepare(f, p);
+  p.use();
+  p.set("uInstanceBase", GLint(scene.slot_of[index]));
+  p.set("uBaseColorFactor", m.base_color_factor);
+  p.set("uMetallicFactor", m.metallic_factor);
+  p.set("uRoughnessFactor", m.roughness_factor);
+  p.set("uEmissive", m.emissive_factor * m.emissive_strength);
+  p.set("uNormalScale", m.normal_scale);
+  p.set("uOcclusionStrength", m.occlusion_strength);
+  p.set("uAlphaCutoff", m.alpha_cutoff);
+  set_extension_uniforms(p, m);
+  if (features.transmission && features.volume) {
+    p.set("uBackFaces", GLint(f.back_faces_drawn));
+    p.set("uBackFaceRect", f.back_face_rect);
+    p.set("uInverseViewProjection", f.inverse_view_projection);
+  }
+  if (features.transmission || features.diffuse_transmission)
+    p.set("uModelScale", glm::vec3(glm::length(glm::vec3(inst.transform[0])),
+                                   glm::length(glm::vec3(inst.transform[1])),
+                                   glm::length(glm::vec3(inst.transform[2]))));
+  for (int t = 0; t < kTextureSlotCount; ++t) {
+    const TextureRef& ref = *refs[std::size_t(t)];
+    const bool valid = (features.textures >> t) & 1u;
+    if (t >= int(kFirstExtensionTextureSlot) && !valid)
+      continue;  // an extension's unused slot is not sampled
+    p.set(indexed("uTexcoordSet", t).c_str(), ref.texcoord);
+    p.set(indexed("uTextureTransform", t).c_str(),
+          ref.transform ? ref.transform->matrix() : glm::mat3(1.0f));
+    glBindTextureUnit(texture_unit(TextureSlot(t)),
+                      valid ? scene.textures[std::size_t(ref.texture)] : white_texture);
+  }
+  // glTF: single-sided materials cull back faces; a mirroring transform flips winding.
+  if (cull == 0 && m.double_sided) {
+    glDisable(GL_CULL_FACE);
+  } else {
+    glEnable(GL_CULL_FACE);
+    glCullFace(cull == 0 ? GL_BACK : cull);
+  }
+  glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
+  glBindVertexArray(mesh.vao);
+  glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, GLsizei(count));
+}
+
+// Opaque and masked instances a run at a time (GpuScene::runs: one mesh, one winding); the
+// transmissive and blended ones are queued for their passes.
+QueuedDraws Renderer::State::draw_opaque(Frame& f) {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBufferBinding, scene.instance_buffer);
+  QueuedDraws queued;
+  for (const InstanceRun& run : scene.runs) {
+    const GpuMesh& mesh =
+        scene.meshes[std::size_t(scene.instances[scene.at_slot[run.first_slot]].mesh)];
+    const Material& m = scene.material_of(mesh);
+    // Surfaces with KHR_materials_transmission read the opaque frame: they wait for it.
+    const bool transmits = m.transmission.has_value() && m.transmission->factor > 0.0f;
+    if (mesh.alpha_mode != 2 && !transmits) {
+      draw(f, scene.at_slot[run.first_slot], 0, run.count);
+      continue;
+    }
+    for (std::size_t slot = run.first_slot; slot < run.first_slot + run.count; ++slot) {
+      const std::size_t i = scene.at_slot[slot];
+      const Instance& inst = scene.instances[i];
+      const glm::vec4 c = f.view * inst.transform * glm::vec4(mesh.center, 1.0f);
+      if (mesh.alpha_mode == 2) {
+        queued.blended.emplace_back(c.z, i);  // view space looks down -Z: most negative is farthest
+        queued.frame_read = queued.frame_read || transmits;
+      } else {
+        queued.transmissive.push_back(transmissive_draw(i, inst.transform, mesh.bounds_min,
+                                                        mesh.bounds_max, f.view, f.projection));
+      }
+    }
+  }
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  return queued;
+}
+
+// Background: a full-screen triangle at the far plane, shaded only where no opaque surface
+// is (depth still 1.0), without writing depth.
+void Renderer::State::draw_background(const Frame& f) {
+  const RenderSettings& settings = *f.settings;
+  int mode = 2;
+  glm::vec3 color = settings.background.color;
+  if (settings.background.mode == Background::Mode::kEnvironment && environment.has_env) mode = 0;
+  if (settings.background.mode == Background::Mode::kBlurred && environment.has_ibl) mode = 1;
+  if (settings.background.mode != Background::Mode::kColor && mode == 2) color = glm::vec3(0.0f);
+  const Program& p = programs.background(mode);
+  p.use();
+  p.set("uColor", color);
+  p.set("uInverseProjection", glm::inverse(f.projection));
+  p.set("uCameraToWorld", glm::mat3(f.camera->camera_to_world));
+  p.set("uEnvRotation", env_rotation_cs(settings.env_rotation_deg));
+  p.set("uEnvScale", settings.env_intensity / std::max(environment.env_intensity, 1e-30f));
+  p.set("uIblRotation", env_rotation_cs(f.rotation_delta));
+  p.set("uIblScale", f.ibl_scale);
+  p.set("uBlurLod", settings.background.blur_lod);
+  glBindTextureUnit(kBackgroundEnvironmentUnit,
+                    environment.env_texture ? environment.env_texture : white_texture);
+  glBindTextureUnit(kBackgroundSpecularCubeUnit, environment.specular_cube);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glBindVertexArray(empty_vao);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+}
+
+// The transmission pass (the Sample Viewer's and Filament's screen-space refraction): the
+// opaque frame and background, resolved into a mip-mapped colour target, then the
+// transmissive surfaces, far to near, each reading it through transmission.glsl. The
+// Sample Viewer reads only the opaque frame, so glass behind glass (a liquid in its
+// glass) is invisible; here the frame is captured again before a surface that covers one
+// drawn since the last capture (at most kMaxTransmissionCaptures in all). A frame
+// without transmissive surfaces pays nothing: no copy, no mip chain.
+void Renderer::State::draw_transmissive(Frame& f, QueuedDraws& queued) {
+  std::vector<TransmissiveDraw>& transmissive = queued.transmissive;
+  if (transmissive.empty() && !queued.frame_read) return;
+  const bool thick = std::any_of(transmissive.begin(), transmissive.end(), [&](const auto& t) {
+    const GpuMesh& mesh = scene.meshes[std::size_t(scene.instances[t.index].mesh)];
+    return refracts_thick(scene.material_of(mesh), mesh.closed);
+  });
+  targets.capture_frame(thick);
+  if (thick) glBindTextureUnit(kFrameDepthUnit, targets.transmission_depth);
+  int captures = 1;
+  glBindTextureUnit(kTransmissionFrameUnit, targets.transmission_color);
+  std::sort(
+      transmissive.begin(), transmissive.end(),
+      [](const TransmissiveDraw& a, const TransmissiveDraw& b) { return a.nearest < b.nearest; });
+  std::vector<const TransmissiveDraw*> since_capture;
+  for (const TransmissiveDraw& t : transmissive) {
+    const bool covers = std::any_of(since_capture.begin(), since_capture.end(),
+                                    [&](const TransmissiveDraw* o) { return t.overlaps(*o); });
+    if (covers && captures < kMaxTransmissionCaptures) {
+      targets.capture_frame(thick);
+      ++captures;
+      since_capture.clear();
+    } else if (covers && !capture_limit_warned) {
+      // This surface reads a capture without the glass it covers (drawn since the last one).
+      warn(
+          "OpenGL renderer: glass seen through glass needs more than {} captures of the frame "
+          "(the limit); a deeper layer shows what is behind it without the glass in between",
+          kMaxTransmissionCaptures);
+      capture_limit_warned = true;
+    }
+    since_capture.push_back(&t);
+    const GpuMesh& mesh = scene.meshes[std::size_t(scene.instances[t.index].mesh)];
+    f.back_faces_drawn = refracts_thick(scene.material_of(mesh), mesh.closed);
+    if (f.back_faces_drawn)
+      f.back_face_rect =
+          draw_back_faces(back_faces, targets, scene, t.index, t.lo, t.hi, f.view_projection);
+    draw(f, t.index);
+    f.back_faces_drawn = false;
+  }
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+}
+
+// Blended surfaces back to front (sorted by view depth), without writing depth.
+void Renderer::State::draw_blended(Frame& f, std::vector<std::pair<float, std::size_t>>& blended) {
+  if (blended.empty()) return;
+  std::sort(blended.begin(), blended.end());
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glDepthMask(GL_FALSE);
+  // A double-sided blended mesh is drawn back faces first, then front faces: the far
+  // side of a closed (convex) surface is composited before the near one whatever the
+  // triangle order. Layers within one side are drawn in index order (no per-triangle
+  // sorting): concave meshes can still show the wrong layer on top.
+  for (const auto& b : blended) {
+    const GpuMesh& mesh = scene.meshes[std::size_t(scene.instances[b.second].mesh)];
+    if (scene.material_of(mesh).double_sided) {
+      draw(f, b.second, GL_FRONT);
+      draw(f, b.second, GL_BACK);
+    } else {
+      draw(f, b.second);
+    }
+  }
+  glDepthMask(GL_TRUE);
+  glDisable(GL_BLEND);
+}
 
 Renderer::Renderer() : state_(std::make_unique<State>()) {
   State& s = *state_;
@@ -244,301 +585,13 @@ void Renderer::set_ibl(const IblMaps* maps) {
 void Renderer::render(const Camera& camera, int width, int height, const RenderSettings& settings) {
   State& s = *state_;
   if (width < 1 || height < 1) fail("OpenGL: image size {}x{} is empty", width, height);
-  GLint max_samples = 1;
-  glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
-  s.targets.ensure(width, height, std::clamp(settings.msaa, 1, std::max(1, int(max_samples))));
-  const float aspect = float(width) / float(height);
-  const glm::mat4 view = view_matrix(camera);
-  const glm::mat4 projection = projection_matrix(camera, aspect);
-  const glm::mat4 view_projection = projection * view;
-
-  s.timer.begin();
-  glBindFramebuffer(GL_FRAMEBUFFER, s.targets.msaa_fbo);
-  glViewport(0, 0, width, height);
-  glDisable(GL_BLEND);
-  glDisable(GL_CULL_FACE);
-  glDepthMask(GL_TRUE);
-  glClearColor(0, 0, 0, 1);
-  glClearDepth(1.0);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-
-  const float rotation_delta = settings.env_rotation_deg - s.environment.ibl_params.rotation_deg;
-  const float ibl_scale =
-      settings.env_intensity / std::max(s.environment.ibl_params.intensity, 1e-30f);
-
-  // The punctual lights of this frame, uploaded with their clusters (light_clusters.h).
-  std::vector<const Light*> lights;
-  for (std::size_t i = 0; i < s.scene.lights.size() && settings.lights; ++i) {
-    if (i < settings.light_enabled.size() && !settings.light_enabled[i]) continue;
-    lights.push_back(&s.scene.lights[i]);
-  }
-  const bool clustered = settings.clustered_lights && !lights.empty();
-  LightClusters clusters;
-  if (clustered)
-    clusters = bin_lights(lights,
-                          ClusterView{view, projection, width, height, camera.znear,
-                                      camera.type == Camera::Type::kOrthographic
-                                          ? camera.zfar.value_or(camera.znear + 1e6f)
-                                          : camera.zfar},
-                          settings.light_clusters);
-  // No light binned (every light global, or none reaching the view): the plain loop, without
-  // the cluster lookup.
-  const bool clustered_frame = clustered && !clusters.indices.empty();
-  s.light_buffers.upload(lights, clustered_frame ? &clusters : nullptr);
-  // The view depth of a world point, dot(uViewDepth.xyz, p) + uViewDepth.w: minus the view
-  // matrix's third row (view space looks down -Z).
-  const glm::vec4 view_depth = -glm::vec4(view[0][2], view[1][2], view[2][2], view[3][2]);
-  SurfaceFeatures frame;
-  const GeometryModel direct = direct_geometry(settings.brdf.model);
-  const GeometryModel ibl = ibl_geometry(settings.brdf.model);
-  frame.ibl = settings.ibl && s.environment.has_ibl;
-  frame.irradiance_sh = settings.irradiance == IrradianceMode::kSH;
-  frame.multiscatter = settings.brdf.multiscatter;
-  frame.geometry = int(direct);
-  frame.fresnel = settings.fresnel == FresnelMode::kSchlick ? 0 : 1;
-  frame.lights = lights.empty() ? 0 : clustered_frame ? 2 : 1;
-  if (frame.lights == 1 && int(lights.size()) <= kCompiledLightCount)
-    frame.light_count = int(lights.size());
-  set_debug_features(settings, frame);
-  glBindTextureUnit(kEnergyDirectUnit, s.energy[std::size_t(direct)]);
-  glBindTextureUnit(kEnergyIblUnit, s.energy[std::size_t(ibl)]);
-  glBindTextureUnit(kSpecularCubeUnit, s.environment.specular_cube);
-  glBindTextureUnit(kIrradianceCubeUnit, s.environment.irradiance_cube);
-  glBindTextureUnit(kCoatEnergyUnit, s.energy[std::size_t(GeometryModel::kReference)]);
-  glBindTextureUnit(kSheenCubeUnit, s.environment.sheen_cube);
-  glBindTextureUnit(kSheenLutUnit, s.sheen_lut);
-
-  // The frame's uniforms, set once per frame on each program the frame uses.
-  std::vector<GLuint> prepared;
-  auto prepare = [&](const Program& p) {
-    if (std::find(prepared.begin(), prepared.end(), p.id()) != prepared.end()) return;
-    prepared.push_back(p.id());
-    p.set("uViewProjection", view_projection);
-    p.set("uCameraPosition", camera.position());
-    p.set("uMetallicOverride", settings.metallic_override);
-    p.set("uRoughnessOverride", settings.roughness_override);
-    glProgramUniform3fv(p.id(), p.location("uSH"), 9, &s.environment.ibl_params.sh[0].x);
-    p.set("uSpecularLevels", s.environment.specular_levels);
-    p.set("uSheenLevels", s.environment.sheen_levels);
-    p.set("uIblRotation", env_rotation_cs(rotation_delta));
-    p.set("uIblScale", ibl_scale);
-    p.set("uTransmissionFrameSize", glm::vec2(float(width), float(height)));
-    p.set("uLightCount", GLint(lights.size()));
-    if (clustered_frame) {
-      p.set("uViewDepth", view_depth);
-      p.set("uGlobalLightCount", GLint(clusters.global.size()));
-      p.set("uClusterGrid", clusters.grid);
-      p.set("uClusterTile", float(clusters.tile_pixels));
-      // slice = floor(log(depth / z_lo) * slices / log(z_hi / z_lo)) (light_clusters.h).
-      p.set("uClusterDepth", glm::vec2(clusters.z_lo, float(clusters.grid.z) /
-                                                          std::log(clusters.z_hi / clusters.z_lo)));
-    }
-  };
-
-  // Opaque and masked first, then the background where they left the far plane, then
-  // blended surfaces back to front (sorted by view depth).
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  std::vector<std::pair<float, std::size_t>> blended;
-  // Instance `index` and the `count` - 1 after it in slot order (one run: the same mesh and
-  // winding), in one glDrawElementsInstanced. `cull`: the faces to cull (GL_BACK,
-  // GL_FRONT), or 0 for the material's choice.
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBufferBinding, s.scene.instance_buffer);
-  bool back_faces_drawn = false;   // the back-face target holds the instance drawn next
-  glm::vec4 back_face_rect(0.0f);  // over this rectangle (texture coordinates)
-  const glm::mat4 inverse_view_projection = glm::inverse(view_projection);
-  auto draw = [&](std::size_t index, GLenum cull = 0, std::size_t count = 1) {
-    const Instance& inst = s.scene.instances[index];
-    const GpuMesh& mesh = s.scene.meshes[std::size_t(inst.mesh)];
-    const Material& m = s.scene.material_of(mesh);
-    const auto refs = m.textures();
-    SurfaceFeatures features = frame;
-    features.alpha_mode = mesh.alpha_mode;
-    features.colors = mesh.has_colors;
-    for (int t = 0; t < kTextureSlotCount; ++t) {
-      const TextureRef& ref = *refs[std::size_t(t)];
-      if (ref.valid() && std::size_t(ref.texture) < s.scene.textures.size())
-        features.textures |= 1u << t;
-    }
-    features.unlit = m.unlit;
-    features.specular = m.specular.has_value() || m.ior != 1.5f;
-    features.anisotropy = m.anisotropy.has_value();
-    features.iridescence = m.iridescence.has_value() && m.iridescence->factor > 0.0f;
-    features.clearcoat = m.clearcoat.has_value() && m.clearcoat->factor > 0.0f;
-    features.sheen = m.sheen.has_value() && max3(m.sheen->color_factor) > 0.0f;
-    set_transmission_features(m, mesh.closed, features);
-    const Program& p = s.programs.surface(features);
-    prepare(p);
-    p.use();
-    p.set("uInstanceBase", GLint(s.scene.slot_of[index]));
-    p.set("uBaseColorFactor", m.base_color_factor);
-    p.set("uMetallicFactor", m.metallic_factor);
-    p.set("uRoughnessFactor", m.roughness_factor);
-    p.set("uEmissive", m.emissive_factor * m.emissive_strength);
-    p.set("uNormalScale", m.normal_scale);
-    p.set("uOcclusionStrength", m.occlusion_strength);
-    p.set("uAlphaCutoff", m.alpha_cutoff);
-    set_extension_uniforms(p, m);
-    if (features.transmission && features.volume) {
-      p.set("uBackFaces", GLint(back_faces_drawn));
-      p.set("uBackFaceRect", back_face_rect);
-      p.set("uInverseViewProjection", inverse_view_projection);
-    }
-    if (features.transmission || features.diffuse_transmission)
-      p.set("uModelScale", glm::vec3(glm::length(glm::vec3(inst.transform[0])),
-                                     glm::length(glm::vec3(inst.transform[1])),
-                                     glm::length(glm::vec3(inst.transform[2]))));
-    for (int t = 0; t < kTextureSlotCount; ++t) {
-      const TextureRef& ref = *refs[std::size_t(t)];
-      const bool valid = (features.textures >> t) & 1u;
-      if (t >= int(kFirstExtensionTextureSlot) && !valid)
-        continue;  // an extension's unused slot is not sampled
-      p.set(indexed("uTexcoordSet", t).c_str(), ref.texcoord);
-      p.set(indexed("uTextureTransform", t).c_str(),
-            ref.transform ? ref.transform->matrix() : glm::mat3(1.0f));
-      glBindTextureUnit(texture_unit(TextureSlot(t)),
-                        valid ? s.scene.textures[std::size_t(ref.texture)] : s.white_texture);
-    }
-    // glTF: single-sided materials cull back faces; a mirroring transform flips winding.
-    if (cull == 0 && m.double_sided) {
-      glDisable(GL_CULL_FACE);
-    } else {
-      glEnable(GL_CULL_FACE);
-      glCullFace(cull == 0 ? GL_BACK : cull);
-    }
-    glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
-    glBindVertexArray(mesh.vao);
-    glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr,
-                            GLsizei(count));
-  };
-  // Surfaces with KHR_materials_transmission read the opaque frame: they wait for it.
-  std::vector<TransmissiveDraw> transmissive;
-  bool frame_read = false;  // a blended surface reads the frame too
-  // Opaque and masked instances a run at a time (GpuScene::runs: one mesh, one winding),
-  // the others one by one, in their passes.
-  for (const InstanceRun& run : s.scene.runs) {
-    const GpuMesh& mesh =
-        s.scene.meshes[std::size_t(s.scene.instances[s.scene.at_slot[run.first_slot]].mesh)];
-    const Material& m = s.scene.material_of(mesh);
-    const bool transmits = m.transmission.has_value() && m.transmission->factor > 0.0f;
-    if (mesh.alpha_mode != 2 && !transmits) {
-      draw(s.scene.at_slot[run.first_slot], 0, run.count);
-      continue;
-    }
-    for (std::size_t slot = run.first_slot; slot < run.first_slot + run.count; ++slot) {
-      const std::size_t i = s.scene.at_slot[slot];
-      const Instance& inst = s.scene.instances[i];
-      const glm::vec4 c = view * inst.transform * glm::vec4(mesh.center, 1.0f);
-      if (mesh.alpha_mode == 2) {
-        blended.emplace_back(c.z, i);  // view space looks down -Z: most negative is farthest
-        frame_read = frame_read || transmits;
-      } else {
-        transmissive.push_back(transmissive_draw(i, inst.transform, mesh.bounds_min,
-                                                 mesh.bounds_max, view, projection));
-      }
-    }
-  }
-  glDisable(GL_CULL_FACE);
-  glFrontFace(GL_CCW);
-
-  // Background: a full-screen triangle at the far plane, shaded only where no opaque
-  // surface is (depth still 1.0), without writing depth.
-  {
-    int mode = 2;
-    glm::vec3 color = settings.background.color;
-    if (settings.background.mode == Background::Mode::kEnvironment && s.environment.has_env)
-      mode = 0;
-    if (settings.background.mode == Background::Mode::kBlurred && s.environment.has_ibl) mode = 1;
-    if (settings.background.mode != Background::Mode::kColor && mode == 2) color = glm::vec3(0.0f);
-    const Program& p = s.programs.background(mode);
-    p.use();
-    p.set("uColor", color);
-    p.set("uInverseProjection", glm::inverse(projection));
-    p.set("uCameraToWorld", glm::mat3(camera.camera_to_world));
-    p.set("uEnvRotation", env_rotation_cs(settings.env_rotation_deg));
-    p.set("uEnvScale", settings.env_intensity / std::max(s.environment.env_intensity, 1e-30f));
-    p.set("uIblRotation", env_rotation_cs(rotation_delta));
-    p.set("uIblScale", ibl_scale);
-    p.set("uBlurLod", settings.background.blur_lod);
-    glBindTextureUnit(0, s.environment.env_texture ? s.environment.env_texture : s.white_texture);
-    glBindTextureUnit(1, s.environment.specular_cube);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    glBindVertexArray(s.empty_vao);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDepthMask(GL_TRUE);
-    glDepthFunc(GL_LESS);
-  }
-
-  // The transmission pass (the Sample Viewer's and Filament's screen-space refraction): the
-  // opaque frame and background, resolved into a mip-mapped colour target, then the
-  // transmissive surfaces, far to near, each reading it through transmission.glsl. The
-  // Sample Viewer reads only the opaque frame, so glass behind glass (a liquid in its
-  // glass) is invisible; here the frame is captured again before a surface that covers one
-  // drawn since the last capture (at most kMaxTransmissionCaptures in all). A frame
-  // without transmissive surfaces pays nothing: no copy, no mip chain.
-  if (!transmissive.empty() || frame_read) {
-    const bool thick = std::any_of(transmissive.begin(), transmissive.end(), [&](const auto& t) {
-      const GpuMesh& mesh = s.scene.meshes[std::size_t(s.scene.instances[t.index].mesh)];
-      return refracts_thick(s.scene.material_of(mesh), mesh.closed);
-    });
-    s.targets.capture_frame(thick);
-    if (thick) glBindTextureUnit(kFrameDepthUnit, s.targets.transmission_depth);
-    int captures = 1;
-    glBindTextureUnit(kTransmissionFrameUnit, s.targets.transmission_color);
-    std::sort(
-        transmissive.begin(), transmissive.end(),
-        [](const TransmissiveDraw& a, const TransmissiveDraw& b) { return a.nearest < b.nearest; });
-    std::vector<const TransmissiveDraw*> since_capture;
-    for (const TransmissiveDraw& t : transmissive) {
-      const bool covers = std::any_of(since_capture.begin(), since_capture.end(),
-                                      [&](const TransmissiveDraw* o) { return t.overlaps(*o); });
-      if (covers && captures < kMaxTransmissionCaptures) {
-        s.targets.capture_frame(thick);
-        ++captures;
-        since_capture.clear();
-      } else if (covers && !s.capture_limit_warned) {
-        // This surface reads a capture without the glass it covers (drawn since the last one).
-        warn(
-            "OpenGL renderer: glass seen through glass needs more than {} captures of the frame "
-            "(the limit); a deeper layer shows what is behind it without the glass in between",
-            kMaxTransmissionCaptures);
-        s.capture_limit_warned = true;
-      }
-      since_capture.push_back(&t);
-      const GpuMesh& mesh = s.scene.meshes[std::size_t(s.scene.instances[t.index].mesh)];
-      back_faces_drawn = refracts_thick(s.scene.material_of(mesh), mesh.closed);
-      if (back_faces_drawn)
-        back_face_rect =
-            draw_back_faces(s.back_faces, s.targets, s.scene, t.index, t.lo, t.hi, view_projection);
-      draw(t.index);
-      back_faces_drawn = false;
-    }
-    glDisable(GL_CULL_FACE);
-    glFrontFace(GL_CCW);
-  }
-
-  if (!blended.empty()) {
-    std::sort(blended.begin(), blended.end());
-    glEnable(GL_BLEND);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    glDepthMask(GL_FALSE);
-    // A double-sided blended mesh is drawn back faces first, then front faces: the far
-    // side of a closed (convex) surface is composited before the near one whatever the
-    // triangle order. Layers within one side are drawn in index order (no per-triangle
-    // sorting): concave meshes can still show the wrong layer on top.
-    for (const auto& b : blended) {
-      const GpuMesh& mesh = s.scene.meshes[std::size_t(s.scene.instances[b.second].mesh)];
-      if (s.scene.material_of(mesh).double_sided) {
-        draw(b.second, GL_FRONT);
-        draw(b.second, GL_BACK);
-      } else {
-        draw(b.second);
-      }
-    }
-    glDepthMask(GL_TRUE);
-    glDisable(GL_BLEND);
-  }
+  Frame frame = s.begin_frame(camera, width, height, settings);
+  // Opaque and masked first, then the background where they left the far plane, then the
+  // transmissive surfaces over a capture of that, then blended surfaces back to front.
+  QueuedDraws queued = s.draw_opaque(frame);
+  s.draw_background(frame);
+  s.draw_transmissive(frame, queued);
+  s.draw_blended(frame, queued.blended);
   glDisable(GL_CULL_FACE);
   glFrontFace(GL_CCW);
   glBindVertexArray(0);
@@ -562,7 +615,7 @@ void Renderer::display(float exposure_ev, ToneMapper mapper) {
   glDisable(GL_FRAMEBUFFER_SRGB);  // display.glsl encodes sRGB itself
   p.use();
   p.set("uExposureScale", exposure_scale(exposure_ev));
-  glBindTextureUnit(0, s.targets.resolve_color);
+  glBindTextureUnit(kDisplayFrameUnit, s.targets.resolve_color);
   glBindVertexArray(s.empty_vao);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
