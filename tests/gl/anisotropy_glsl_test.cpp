@@ -12,7 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "gl_test_context.h"
-#include "pbrkit/gl/anisotropy_eval.h"
+#include "pbrkit/gl/testing/anisotropy_eval.h"
 #include "pbrkit/ibl/anisotropic_taps.h"
 
 namespace pbrkit::gl {

@@ -6,7 +6,7 @@
 
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/energy.h"
-#include "pbrkit/gl/brdf_eval.h"
+#include "pbrkit/gl/testing/brdf_eval.h"
 
 namespace pbrkit::gl::testing {
 

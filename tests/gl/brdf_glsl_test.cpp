@@ -13,7 +13,7 @@
 #include "brdf_conditioning.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/brdf.h"
-#include "pbrkit/gl/brdf_eval.h"
+#include "pbrkit/gl/testing/brdf_eval.h"
 
 namespace pbrkit::gl {
 namespace {

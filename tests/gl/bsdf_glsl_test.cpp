@@ -13,7 +13,7 @@
 #include "brdf_conditioning.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/bsdf.h"
-#include "pbrkit/gl/bsdf_eval.h"
+#include "pbrkit/gl/testing/bsdf_eval.h"
 
 namespace pbrkit::gl {
 namespace {

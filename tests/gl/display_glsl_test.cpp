@@ -14,8 +14,8 @@
 
 #include "gl_test_context.h"
 #include "pbrkit/core/color.h"
-#include "pbrkit/gl/display_eval.h"
 #include "pbrkit/gl/renderer.h"
+#include "pbrkit/gl/testing/display_eval.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
 

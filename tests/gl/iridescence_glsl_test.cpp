@@ -12,7 +12,7 @@
 
 #include "gl_test_context.h"
 #include "pbrkit/core/iridescence.h"
-#include "pbrkit/gl/iridescence_eval.h"
+#include "pbrkit/gl/testing/iridescence_eval.h"
 
 namespace pbrkit::gl {
 namespace {

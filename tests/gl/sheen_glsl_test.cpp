@@ -11,7 +11,7 @@
 
 #include "gl_test_context.h"
 #include "pbrkit/core/sheen.h"
-#include "pbrkit/gl/sheen_eval.h"
+#include "pbrkit/gl/testing/sheen_eval.h"
 #include "pbrkit/ibl/sheen_sh.h"
 
 namespace pbrkit::gl {

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "gl_test_context.h"
-#include "pbrkit/gl/transmission_eval.h"
+#include "pbrkit/gl/testing/transmission_eval.h"
 
 namespace pbrkit::gl {
 namespace {

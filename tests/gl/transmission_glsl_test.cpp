@@ -20,7 +20,7 @@
 #include "pbrkit/core/dispersion.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/transmission.h"
-#include "pbrkit/gl/transmission_eval.h"
+#include "pbrkit/gl/testing/transmission_eval.h"
 
 namespace pbrkit::gl {
 namespace {

@@ -1,5 +1,6 @@
 #include "pbrkit/gl/shaders.h"
 
+#include <mutex>
 #include <set>
 #include <utility>
 
@@ -10,15 +11,40 @@ namespace detail {
 extern const std::pair<std::string_view, std::string_view> kShaders[];
 }  // namespace detail
 
+namespace {
+
+using ShaderTable = const std::pair<std::string_view, std::string_view>*;
+
+// The library's table first, then those add_shader_table() added.
+std::mutex& tables_mutex() {
+  static std::mutex m;
+  return m;
+}
+std::vector<ShaderTable>& tables() {
+  static std::vector<ShaderTable> t{detail::kShaders};
+  return t;
+}
+
+}  // namespace
+
+void add_shader_table(const std::pair<std::string_view, std::string_view>* table) {
+  const std::lock_guard lock(tables_mutex());
+  tables().push_back(table);
+}
+
 std::string_view shader_source(std::string_view name) {
-  for (const auto* s = detail::kShaders; !s->first.empty(); ++s)
-    if (s->first == name) return s->second;
+  const std::lock_guard lock(tables_mutex());
+  for (ShaderTable table : tables())
+    for (const auto* s = table; !s->first.empty(); ++s)
+      if (s->first == name) return s->second;
   fail("GL shader '{}' is not embedded in this build", name);
 }
 
 std::vector<std::string> shader_names() {
+  const std::lock_guard lock(tables_mutex());
   std::vector<std::string> names;
-  for (const auto* s = detail::kShaders; !s->first.empty(); ++s) names.emplace_back(s->first);
+  for (ShaderTable table : tables())
+    for (const auto* s = table; !s->first.empty(); ++s) names.emplace_back(s->first);
   return names;
 }
 

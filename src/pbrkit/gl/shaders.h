@@ -5,6 +5,7 @@
 // every program and the shader unit test share.
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace pbrkit::gl {
@@ -17,5 +18,10 @@ std::string expand_shader(std::string_view name);
 
 /// Names of every embedded shader file.
 std::vector<std::string> shader_names();
+
+/// Adds a table of further shader files, (name, text) pairs ending with an empty name, that
+/// shader_source() searches after the library's own (a test-support library's shader unit
+/// tests, which the installed library does not carry). The table must outlive every lookup.
+void add_shader_table(const std::pair<std::string_view, std::string_view>* table);
 
 }  // namespace pbrkit::gl

@@ -1,17 +1,17 @@
-#include "pbrkit/gl/bsdf_eval.h"
+#include "pbrkit/gl/testing/bsdf_eval.h"
 
 #include <epoxy/gl.h>
 
-#include "pbrkit/gl/compute_eval.h"
 #include "pbrkit/gl/energy_texture.h"
 #include "pbrkit/gl/program.h"
+#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 
 std::vector<glm::vec3> eval_bsdf_glsl(const std::vector<BsdfCase>& cases,
                                       const BrdfOptions& options) {
   if (cases.empty()) return {};
-  const Program program = Program::compute("bsdf_test.glsl");
+  const Program program = detail::test_program("bsdf_test.glsl");
   // bsdf_test.glsl's BsdfCase: brdf_test.glsl's six vec4, then three for the layers.
   std::vector<glm::vec4> input;
   input.reserve(cases.size() * 9);

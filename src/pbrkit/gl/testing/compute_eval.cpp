@@ -1,10 +1,25 @@
-#include "pbrkit/gl/compute_eval.h"
+#include "pbrkit/gl/testing/compute_eval.h"
 
 #include <epoxy/gl.h>
+
+#include <mutex>
+#include <string_view>
+#include <utility>
+
+#include "pbrkit/gl/shaders.h"
 
 namespace pbrkit::gl {
 
 namespace detail {
+
+// testing/shaders/*_test.glsl (embed_shaders.cmake, as the library's own shaders).
+extern const std::pair<std::string_view, std::string_view> kTestShaders[];
+
+Program test_program(std::string_view file) {
+  static std::once_flag added;
+  std::call_once(added, [] { add_shader_table(kTestShaders); });
+  return Program::compute(file);
+}
 
 std::vector<glm::vec4> dispatch_cases(const std::vector<glm::vec4>& input, std::size_t count) {
   GLuint buffers[2];

@@ -1,10 +1,10 @@
-#include "pbrkit/gl/brdf_eval.h"
+#include "pbrkit/gl/testing/brdf_eval.h"
 
 #include <epoxy/gl.h>
 
-#include "pbrkit/gl/compute_eval.h"
 #include "pbrkit/gl/energy_texture.h"
 #include "pbrkit/gl/program.h"
+#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 
@@ -20,7 +20,7 @@ void append_brdf_case(const BrdfCase& c, std::vector<glm::vec4>& out) {
 std::vector<glm::vec3> eval_brdf_glsl(const std::vector<BrdfCase>& cases,
                                       const BrdfOptions& options, FresnelMode fresnel) {
   if (cases.empty()) return {};
-  const Program program = Program::compute("brdf_test.glsl");
+  const Program program = detail::test_program("brdf_test.glsl");
   std::vector<glm::vec4> input;
   input.reserve(cases.size() * 6);
   for (const BrdfCase& c : cases) append_brdf_case(c, input);

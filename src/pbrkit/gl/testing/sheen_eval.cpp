@@ -1,16 +1,16 @@
-#include "pbrkit/gl/sheen_eval.h"
+#include "pbrkit/gl/testing/sheen_eval.h"
 
 #include <epoxy/gl.h>
 
-#include "pbrkit/gl/compute_eval.h"
 #include "pbrkit/gl/energy_texture.h"
 #include "pbrkit/gl/program.h"
+#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 
 std::vector<glm::vec4> sheen_sh_glsl(const std::vector<SheenLobeCase>& cases, const SH9& sh) {
   if (cases.empty()) return {};
-  const Program program = Program::compute("sheen_test.glsl");
+  const Program program = detail::test_program("sheen_test.glsl");
   // std430 layout of sheen_test.glsl's SheenLobeCase: two vec4.
   std::vector<glm::vec4> input;
   input.reserve(cases.size() * 2);

@@ -1,7 +1,7 @@
-#include "pbrkit/gl/transmission_eval.h"
+#include "pbrkit/gl/testing/transmission_eval.h"
 
-#include "pbrkit/gl/compute_eval.h"
 #include "pbrkit/gl/program.h"
+#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 
@@ -9,7 +9,7 @@ std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase
                                               TransmissionFunction function,
                                               const glm::mat4& view_projection) {
   if (cases.empty()) return {};
-  const Program program = Program::compute("transmission_test.glsl");
+  const Program program = detail::test_program("transmission_test.glsl");
   // std430 layout of transmission_test.glsl's TransmissionCase: eight vec4.
   std::vector<glm::vec4> input;
   input.reserve(cases.size() * 8);

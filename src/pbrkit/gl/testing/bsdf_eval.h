@@ -8,7 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "pbrkit/core/bsdf.h"
-#include "pbrkit/gl/brdf_eval.h"
+#include "pbrkit/gl/testing/brdf_eval.h"
 
 namespace pbrkit::gl {
 

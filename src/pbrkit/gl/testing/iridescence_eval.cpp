@@ -1,13 +1,13 @@
-#include "pbrkit/gl/iridescence_eval.h"
+#include "pbrkit/gl/testing/iridescence_eval.h"
 
-#include "pbrkit/gl/compute_eval.h"
 #include "pbrkit/gl/program.h"
+#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 
 std::vector<glm::vec3> iridescence_fresnel_glsl(const std::vector<IridescenceCase>& cases) {
   if (cases.empty()) return {};
-  const Program program = Program::compute("iridescence_test.glsl");
+  const Program program = detail::test_program("iridescence_test.glsl");
   // std430 layout of iridescence_test.glsl's IridescenceCase: two vec4.
   std::vector<glm::vec4> input;
   input.reserve(cases.size() * 2);

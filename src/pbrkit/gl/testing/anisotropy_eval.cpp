@@ -1,9 +1,9 @@
-#include "pbrkit/gl/anisotropy_eval.h"
+#include "pbrkit/gl/testing/anisotropy_eval.h"
 
 #include <epoxy/gl.h>
 
-#include "pbrkit/gl/compute_eval.h"
 #include "pbrkit/gl/program.h"
+#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 
@@ -12,7 +12,7 @@ std::vector<glm::vec4> eval_anisotropy_glsl(const std::vector<AnisotropyCase>& c
                                             const std::array<glm::vec3, 6>& face_colors,
                                             glm::vec2 rotation) {
   if (cases.empty()) return {};
-  const Program program = Program::compute("anisotropy_ibl_test.glsl");
+  const Program program = detail::test_program("anisotropy_ibl_test.glsl");
   // std430 layout of anisotropy_ibl_test.glsl's AnisotropyCase: five vec4.
   std::vector<glm::vec4> input;
   input.reserve(cases.size() * 5);

@@ -1,14 +1,14 @@
-#include "pbrkit/gl/display_eval.h"
+#include "pbrkit/gl/testing/display_eval.h"
 
-#include "pbrkit/gl/compute_eval.h"
 #include "pbrkit/gl/program.h"
+#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 
 std::vector<glm::vec3> display_transform_glsl(const std::vector<glm::vec3>& linear,
                                               float exposure_ev, ToneMapper mapper) {
   if (linear.empty()) return {};
-  const Program program = Program::compute("display_test.glsl");
+  const Program program = detail::test_program("display_test.glsl");
   std::vector<glm::vec4> input;
   input.reserve(linear.size());
   for (const glm::vec3& c : linear) input.emplace_back(c, 0.0f);
