@@ -93,9 +93,9 @@ struct MaterialInputs {
   float coat_weight;  // KHR_materials_clearcoat
   float coat_roughness;
   vec3 n_coat;  // the coat's shading normal
-  float transmission;  // KHR_materials_transmission
+  float transmission;  // KHR_materials_transmission (transmission_weights clamps both)
   float diffuse_transmission;  // KHR_materials_diffuse_transmission
-  vec3 dt_color;
+  vec3 dt_color;  // clamped to [0, 1]
   float thickness;  // KHR_materials_volume (object space; 0 thin-walled)
 };
 
@@ -266,6 +266,7 @@ void diffuse_transmission_inputs(inout MaterialInputs m) {
 #if HAS_DIFFUSE_TRANSMISSION_COLOR_TEXTURE
   m.dt_color *= texture(uDiffuseTransmissionColorTexture, texcoord(SLOT_DIFFUSE_TRANSMISSION_COLOR_TEXTURE)).rgb;
 #endif
+  m.dt_color = clamp(m.dt_color, 0.0, 1.0);
 }
 
 // KHR_materials_volume's thickness (its attenuation is read where the light crosses it).

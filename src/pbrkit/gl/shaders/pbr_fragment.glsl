@@ -30,8 +30,9 @@
 // (thick_refraction.glsl) where renderer.cpp has drawn the object's back faces.
 //
 // main() reads as the shading's steps: the material's inputs (material_inputs.glsl, one
-// function per extension), the material bound to the viewer (shading_at), the punctual
-// lights, the image-based light, the light transmitted from the frame behind, the output.
+// function per extension), the material bound to the viewer (shading_at) and the
+// transmission extensions' weights (transmission_weights), the punctual lights, the
+// image-based light, the light transmitted from the frame behind, the output.
 #ifndef MATERIAL_SPECULAR
 #define MATERIAL_SPECULAR 0
 #define MATERIAL_ANISOTROPY 0
@@ -173,16 +174,44 @@ struct Shading {
 #if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
   Bsdf bsdf;
 #endif
-  // The diffuse lobe becomes mix(mix(diffuse, diffuse BTDF, DT), specular BTDF, T) (the
-  // transmission and diffuse_transmission READMEs): `through` of it goes through, and the
-  // diffuse BTDF's light crosses the medium (attenuated over the thickness, as the Sample
-  // Viewer's diffuse transmission does), `dt_weight` of it. The diffuse BTDF's colour is
-  // diffuseTransmissionColor alone (the README's normative diffuse_btdf(color =
-  // diffuseTransmissionColor), no baseColor): the diffuse lobe's functions read it from a
-  // copy of the Brdf whose base colour it is.
-  float through;
-  vec3 dt_weight;
 };
+
+// The weights the transmission extensions give the lobes. The diffuse lobe becomes
+// mix(mix(diffuse, diffuse BTDF, DT), specular BTDF, T) (the transmission and
+// diffuse_transmission READMEs): `transmission` T of it is the specular BTDF, `through` of
+// it goes through, and the diffuse BTDF's light crosses the medium (attenuated over
+// `thickness`, as the Sample Viewer's diffuse transmission does), `dt_weight` of it. The
+// diffuse BTDF's colour is diffuseTransmissionColor alone (the README's normative
+// diffuse_btdf(color = diffuseTransmissionColor), no baseColor): the diffuse lobe's
+// functions read it from a copy of the Brdf whose base colour it is.
+//
+// Plain values (out parameters, not members of Shading), each the literal 0 where the
+// permutation leaves its extension out: Mesa's GLSL compiler folds the lobes they zero out
+// before its other rewrites only for a plain variable; the same value read back from a
+// struct member made it round the lights' diffuse lobes differently in the last bit.
+void transmission_weights(MaterialInputs m, out float transmission, out float thickness,
+                          out float through, out vec3 dt_weight) {
+  transmission = 0.0;
+  thickness = 0.0;
+  float diffuse_transmission = 0.0;
+#if MATERIAL_TRANSMISSION
+  transmission = saturate(m.transmission);
+#endif
+#if MATERIAL_DIFFUSE_TRANSMISSION
+  diffuse_transmission = saturate(m.diffuse_transmission);
+#endif
+#if MATERIAL_VOLUME
+  thickness = m.thickness;
+#endif
+  through = transmission + (1.0 - transmission) * diffuse_transmission;
+#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
+  float mean_scale = (uModelScale.x + uModelScale.y + uModelScale.z) / 3.0;
+  dt_weight = (1.0 - transmission) * diffuse_transmission *
+              volume_attenuation(thickness * mean_scale, uAttenuationColor, uAttenuationDistance);
+#else
+  dt_weight = vec3(0.0);
+#endif
+}
 
 // KHR_materials_unlit: the base colour as is, from every direction (the path tracer's
 // integrator adds it to the emission and reflects nothing).
@@ -195,20 +224,11 @@ vec4 unlit_output(vec4 base_color, vec3 emissive) {
   return color;
 }
 
-// The material bound to the viewer `v`; the transmission weights clamped to [0, 1] in `m`.
-Shading shading_at(inout MaterialInputs m, vec3 v) {
+// The material bound to the viewer `v`.
+Shading shading_at(MaterialInputs m, vec3 v) {
   Shading s;
   s.v = v;
   s.wo = to_local(m.frame, v);
-#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
-  m.transmission = saturate(m.transmission);
-  m.diffuse_transmission = saturate(m.diffuse_transmission);
-  s.through = m.transmission + (1.0 - m.transmission) * m.diffuse_transmission;
-  float mean_scale = (uModelScale.x + uModelScale.y + uModelScale.z) / 3.0;
-  s.dt_weight = (1.0 - m.transmission) * m.diffuse_transmission *
-                volume_attenuation(m.thickness * mean_scale, uAttenuationColor, uAttenuationDistance);
-  m.dt_color = clamp(m.dt_color, 0.0, 1.0);
-#endif
   s.brdf = brdf_at(make_brdf(m.layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyDirect),
                    uEnergyDirect, s.wo);
 #if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
@@ -240,8 +260,9 @@ int light_count(out uvec2 cluster) {
 }
 
 // The punctual lights (KHR_lights_punctual) reflected, and with the transmission
-// extensions transmitted, towards the viewer.
-vec3 punctual_lights(MaterialInputs m, Shading s) {
+// extensions transmitted (transmission_weights), towards the viewer.
+vec3 punctual_lights(MaterialInputs m, Shading s, float transmission, float thickness,
+                     float through, vec3 dt_weight) {
   vec3 color = vec3(0.0);
   uvec2 cluster;
 #if LIGHTS == 1 && LIGHT_COUNT >= 0
@@ -287,18 +308,18 @@ vec3 punctual_lights(MaterialInputs m, Shading s) {
       vec3 wi_m = vec3(wi.xy, -wi.z);
       Brdf brdf_dt = s.brdf;
       brdf_dt.base_color = m.dt_color;
-      color += lobe(DEBUG_DIFFUSE, s.dt_weight * brdf_eval_diffuse(brdf_dt, uEnergyDirect, s.wo, wi_m) * radiance * wi_m.z);
+      color += lobe(DEBUG_DIFFUSE, dt_weight * brdf_eval_diffuse(brdf_dt, uEnergyDirect, s.wo, wi_m) * radiance * wi_m.z);
 #if MATERIAL_TRANSMISSION
       // The specular BTDF (transmission.glsl's punctual_transmission), attenuated through
       // the medium along the refracted ray (the Sample Viewer's applyVolumeAttenuation).
-      vec3 ray = volume_transmission_ray(m.n, s.v, m.thickness, uIor, uModelScale);
+      vec3 ray = volume_transmission_ray(m.n, s.v, thickness, uIor, uModelScale);
       color += lobe(DEBUG_TRANSMISSION,
-                    m.transmission * punctual_transmission(s.brdf, s.wo, wi_m, uIor) * radiance * wi_m.z *
+                    transmission * punctual_transmission(s.brdf, s.wo, wi_m, uIor) * radiance * wi_m.z *
                         volume_attenuation(length(ray), uAttenuationColor, uAttenuationDistance));
 #endif
       continue;
     }
-    if (wi.z > 0.0) color -= lobe(DEBUG_DIFFUSE, s.through * brdf_eval_diffuse(s.brdf, uEnergyDirect, s.wo, wi) * radiance * wi.z);
+    if (wi.z > 0.0) color -= lobe(DEBUG_DIFFUSE, through * brdf_eval_diffuse(s.brdf, uEnergyDirect, s.wo, wi) * radiance * wi.z);
 #endif
     if (wi.z <= 0.0) continue;
 #if MATERIAL_CLEARCOAT || MATERIAL_SHEEN
@@ -311,8 +332,9 @@ vec3 punctual_lights(MaterialInputs m, Shading s) {
 }
 
 // The environment's light reflected (and with diffuse transmission, transmitted) towards
-// the viewer: the split sum's lobes under the sheen and the coat, times the occlusion.
-vec3 image_based_light(MaterialInputs m, Shading s) {
+// the viewer: the split sum's lobes under the sheen and the coat, times the occlusion
+// (`through`, `dt_weight`: transmission_weights).
+vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weight) {
   vec3 n = m.n, v = s.v, wo = s.wo;
   float ao = material_occlusion();
   vec3 prefiltered;
@@ -359,8 +381,8 @@ vec3 image_based_light(MaterialInputs m, Shading s) {
 #endif
     Brdf ibl_dt = ibl;
     ibl_dt.base_color = m.dt_color;
-    indirect += lobe(DEBUG_DIFFUSE, ibl_diffuse(ibl_dt, uEnergyIBL, dot(n, v), s.dt_weight * irradiance_back) -
-                                        ibl_diffuse(ibl, uEnergyIBL, dot(n, v), s.through * irradiance));
+    indirect += lobe(DEBUG_DIFFUSE, ibl_diffuse(ibl_dt, uEnergyIBL, dot(n, v), dt_weight * irradiance_back) -
+                                        ibl_diffuse(ibl, uEnergyIBL, dot(n, v), through * irradiance));
   }
 #endif
 #if MATERIAL_SHEEN
@@ -393,7 +415,7 @@ vec3 image_based_light(MaterialInputs m, Shading s) {
 // KHR_materials_transmission: the specular BTDF's light is what the opaque frame shows
 // through the surface (transmission.glsl), through the diffuse lobe's slot under the
 // dielectric's specular and base colour, then under the sheen and the coat.
-vec3 transmitted_light(MaterialInputs m, Shading s) {
+vec3 transmitted_light(MaterialInputs m, Shading s, float transmission, float thickness) {
   vec3 n = m.n, v = s.v;
   TransmissionInputs t;
   t.position = vPosition;
@@ -405,7 +427,7 @@ vec3 transmitted_light(MaterialInputs m, Shading s) {
 #else
   t.iors = vec3(uIor);
 #endif
-  t.thickness = m.thickness;
+  t.thickness = thickness;
   t.model_scale = uModelScale;
   t.attenuation_color = uAttenuationColor;
   t.attenuation_distance = uAttenuationDistance;
@@ -421,7 +443,7 @@ vec3 transmitted_light(MaterialInputs m, Shading s) {
                                  IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
 #endif
   Brdf tb = make_brdf(m.layer, GEOMETRY, MULTISCATTER != 0, FRESNEL, uEnergyIBL);
-  vec3 transmitted = ibl_diffuse(tb, uEnergyIBL, dot(n, v), kPi * m.transmission * seen);
+  vec3 transmitted = ibl_diffuse(tb, uEnergyIBL, dot(n, v), kPi * transmission * seen);
 #if MATERIAL_SHEEN
   transmitted *= 1.0 - max3(clamp(m.sheen_color, 0.0, 1.0)) *
                            sheen_E(uSheenLut, dot(n, v), clamp(m.sheen_roughness, kMinSheenRoughness, 1.0));
@@ -456,12 +478,15 @@ void main() {
   vec3 v = normalize(uCameraPosition - vPosition);
   MaterialInputs m = material_inputs(base_color, emissive, v);
   Shading s = shading_at(m, v);
-  vec3 color = punctual_lights(m, s);
+  float transmission, thickness, through;
+  vec3 dt_weight;
+  transmission_weights(m, transmission, thickness, through, dt_weight);
+  vec3 color = punctual_lights(m, s, transmission, thickness, through, dt_weight);
 #if IBL
-  color += image_based_light(m, s);
+  color += image_based_light(m, s, through, dt_weight);
 #endif
 #if MATERIAL_TRANSMISSION
-  color += transmitted_light(m, s);
+  color += transmitted_light(m, s, transmission, thickness);
 #endif
   outColor = surface_output(m, color);
 #endif
