@@ -186,9 +186,11 @@ struct Shading {
 // functions read it from a copy of the Brdf whose base colour it is.
 //
 // Plain values (out parameters, not members of Shading), each the literal 0 where the
-// permutation leaves its extension out: Mesa's GLSL compiler folds the lobes they zero out
-// before its other rewrites only for a plain variable; the same value read back from a
-// struct member made it round the lights' diffuse lobes differently in the last bit.
+// permutation leaves its extension out. Mesa's GLSL compiler reassociates a chain of
+// products such as `through * diffuse * radiance * cos` into (through diffuse)(radiance
+// cos) (opt_rebalance_tree.cpp), but skips any chain that reads a struct member, so the
+// same factor read from a struct is rounded otherwise in the last bit: keep the factors of
+// such products plain variables (llvmpipe's images are compared bit for bit).
 void transmission_weights(MaterialInputs m, out float transmission, out float thickness,
                           out float through, out vec3 dt_weight) {
   transmission = 0.0;
