@@ -3,7 +3,7 @@
 // and spot lights; directional lights): the probability of choosing each light sums to 1,
 // a light the BVH never chooses cannot reach the point, the frequencies of sample() match
 // the pmf (chi-square), and the pmf a BSDF-sampled hit on an emitter recomputes is the one
-// the light sample used (MIS); the BVH's paired (SSE) child evaluation is the scalar
+// the light sample used (MIS); the BVH's four-child (SSE) evaluation is the scalar
 // importance bit for bit. Then renders: with a lone light both samplers give the
 // same bits, and on many lights their images agree within the noise.
 #include <gtest/gtest.h>
@@ -275,39 +275,74 @@ TEST(LightSampler, SampleFrequenciesMatchPmf) {
 // bit; and for an emissive triangle, the solid-angle pdf of the light sample is the one
 // triangle_pdf() computes when a ray from the point hits that triangle (what the
 // integrator does when a BSDF-sampled ray finds an emitter).
-// The traversal evaluates a node's two children together (one SSE vector); each must be
-// the scalar light_importance() bit for bit, so that the choice does not depend on which
-// path computed it. With two lights the tree is a root over two leaves and pmf(k) is
-// i_k / (i_0 + i_1) of the scalar importances. Boxes, cones (narrow to the whole sphere,
-// one- and two-sided, spreads from 0), points inside and outside the boxes, normals and
-// none.
-TEST(LightSampler, BvhChildPairImportanceIsTheScalarOne) {
+// Random bounds for the importance tests: boxes from 1 mm to 4 m, cones from a direction to
+// the whole sphere, one- and two-sided, emission spreads from 0, powers over six decades.
+LightBounds random_bounds(Pcg32& rng) {
+  LightBounds l;
+  const glm::vec3 c(rng.next_float() * 8.0f - 4.0f, rng.next_float() * 8.0f - 4.0f,
+                    rng.next_float() * 8.0f - 4.0f);
+  const glm::vec3 half(log_uniform(rng, 1e-3f, 2.0f), log_uniform(rng, 1e-3f, 2.0f),
+                       log_uniform(rng, 1e-3f, 2.0f));
+  l.lo = c - half;
+  l.hi = c + half;
+  l.w = random_unit(rng);
+  l.phi = log_uniform(rng, 1e-3f, 1e3f);
+  l.cos_theta_o = rng.next_float() < 0.3f ? 1.0f : 2.0f * rng.next_float() - 1.0f;
+  l.cos_theta_e = rng.next_float() < 0.3f ? 0.0f : rng.next_float();
+  l.two_sided = rng.next_float() < 0.3f;
+  return l;
+}
+
+// Half the points near the box of `near` (often inside its bounding sphere), half anywhere;
+// a fifth of them without a normal.
+void random_point(Pcg32& rng, const LightBounds& near, glm::vec3& p, glm::vec3& n) {
+  p = rng.next_float() < 0.5f
+          ? 0.5f * (near.lo + near.hi) + 0.5f * random_unit(rng)
+          : glm::vec3(rng.next_float() * 16.0f - 8.0f, rng.next_float() * 16.0f - 8.0f,
+                      rng.next_float() * 16.0f - 8.0f);
+  n = rng.next_float() < 0.2f ? glm::vec3(0.0f) : random_unit(rng);
+}
+
+// The traversal evaluates a node's four children together (one SSE vector); each lane must
+// be the scalar light_importance() of its child bit for bit, so that the choice does not
+// depend on which path computed it; a lane not in use must be 0.
+TEST(LightSampler, BvhFourChildImportanceIsTheScalarOne) {
+  Pcg32 rng(41);
+  int nonzero = 0, culled = 0;
+  for (int t = 0; t < 4000; ++t) {
+    const int count = 1 + int(rng.next_u32() % 4);
+    LightBounds b[4];
+    LightBvh::WideNode node{};
+    for (int k = 0; k < count; ++k) {
+      b[k] = random_bounds(rng);
+      node.set(k, LightBvh::Node::of(b[k]));
+    }
+    glm::vec3 p, n;
+    random_point(rng, b[t % count], p, n);
+    float out[4];
+    LightBvh::importance4(node, p, n, out);
+    for (int k = 0; k < 4; ++k) {
+      const float expected = k < count ? light_importance(b[k], p, n) : 0.0f;
+      ASSERT_EQ(out[k], expected) << "trial " << t << " lane " << k;
+      if (k < count) (expected > 0.0f ? nonzero : culled) += 1;
+    }
+  }
+  EXPECT_GT(nonzero, 5000);
+  EXPECT_GT(culled, 100);  // the emission-spread cut-off was exercised
+}
+
+// With two lights the tree is one node over two lights and pmf(k) is i_k / (i_0 + i_1) of
+// the scalar importances.
+TEST(LightSampler, BvhOfTwoLightsChoosesByTheirImportance) {
   Pcg32 rng(29);
   int compared = 0, culled = 0;
   for (int t = 0; t < 4000; ++t) {
-    LightBounds b[2];
-    for (LightBounds& l : b) {
-      const glm::vec3 c(rng.next_float() * 8.0f - 4.0f, rng.next_float() * 8.0f - 4.0f,
-                        rng.next_float() * 8.0f - 4.0f);
-      const glm::vec3 half(log_uniform(rng, 1e-3f, 2.0f), log_uniform(rng, 1e-3f, 2.0f),
-                           log_uniform(rng, 1e-3f, 2.0f));
-      l.lo = c - half;
-      l.hi = c + half;
-      l.w = random_unit(rng);
-      l.phi = log_uniform(rng, 1e-3f, 1e3f);
-      l.cos_theta_o = rng.next_float() < 0.3f ? 1.0f : 2.0f * rng.next_float() - 1.0f;
-      l.cos_theta_e = rng.next_float() < 0.3f ? 0.0f : rng.next_float();
-      l.two_sided = rng.next_float() < 0.3f;
-    }
+    const LightBounds b[2] = {random_bounds(rng), random_bounds(rng)};
     const LightBvh bvh({b[0], b[1]});
-    ASSERT_EQ(bvh.node_count(), 3u);
-    // Half the points near a box (often inside its bounding sphere).
-    const glm::vec3 p =
-        rng.next_float() < 0.5f
-            ? 0.5f * (b[t % 2].lo + b[t % 2].hi) + 0.5f * random_unit(rng)
-            : glm::vec3(rng.next_float() * 16.0f - 8.0f, rng.next_float() * 16.0f - 8.0f,
-                        rng.next_float() * 16.0f - 8.0f);
-    const glm::vec3 n = rng.next_float() < 0.2f ? glm::vec3(0.0f) : random_unit(rng);
+    ASSERT_EQ(bvh.node_count(), 1u);
+    ASSERT_EQ(bvh.depth(), 1);
+    glm::vec3 p, n;
+    random_point(rng, b[t % 2], p, n);
     const float i0 = light_importance(b[0], p, n), i1 = light_importance(b[1], p, n);
     const float sum = i0 + i1;
     if (!(sum > 0.0f)) {
@@ -370,7 +405,8 @@ TEST(LightSampler, CoincidentLightsAreChosenByPower) {
     total += double(b.phi);
   }
   const LightBvh bvh(lights);
-  EXPECT_LE(bvh.depth(), 13);  // ceil(log2(3000)) = 12 levels below the root, and slack
+  // ceil(log2(3000)) = 12 binary levels below the root, two per node of four: 6, and slack.
+  EXPECT_LE(bvh.depth(), 7);
   for (const Query& q : queries(10, 37)) {
     double sum = 0.0;
     for (std::uint32_t i = 0; i < lights.size(); ++i) {

@@ -217,7 +217,9 @@ LightClusters bin_lights(std::span<const Light* const> lights, const ClusterView
 GpuLight gpu_light(const Light& l) {
   GpuLight g;
   g.position = l.position;
-  g.range = l.range.value_or(0.0f);
+  // A directional light has no range (KHR_lights_punctual defines it for point and spot
+  // lights only): 0, which the shader's range test passes wherever the light's position.
+  g.range = l.type == Light::Type::kDirectional ? 0.0f : l.range.value_or(0.0f);
   g.direction = glm::normalize(l.direction);
   g.type = l.type == Light::Type::kPoint ? 0 : l.type == Light::Type::kSpot ? 1 : 2;
   g.radiance = l.color * l.intensity;
@@ -232,12 +234,14 @@ GpuLightBuffers::GpuLightBuffers() {
   glCreateBuffers(1, &lights_);
   glCreateBuffers(1, &ranges_);
   glCreateBuffers(1, &indices_);
+  glCreateBuffers(1, &spheres_);
 }
 
 GpuLightBuffers::~GpuLightBuffers() {
   glDeleteBuffers(1, &lights_);
   glDeleteBuffers(1, &ranges_);
   glDeleteBuffers(1, &indices_);
+  glDeleteBuffers(1, &spheres_);
 }
 
 void GpuLightBuffers::upload(std::span<const Light* const> lights, const LightClusters* clusters) {
@@ -254,6 +258,9 @@ void GpuLightBuffers::upload(std::span<const Light* const> lights, const LightCl
     for (glm::uvec2& r : ranges) r.x += global;
   }
   if (indices.empty()) indices.push_back(0);
+  std::vector<glm::vec4> spheres(indices.size());
+  for (std::size_t i = 0; i < indices.size(); ++i)
+    spheres[i] = glm::vec4(gpu[indices[i]].position, gpu[indices[i]].range);
   glNamedBufferData(lights_, GLsizeiptr(gpu.size() * sizeof(GpuLight)), gpu.data(), GL_STREAM_DRAW);
   glNamedBufferData(ranges_, GLsizeiptr(ranges.size() * sizeof(glm::uvec2)), ranges.data(),
                     GL_STREAM_DRAW);
@@ -261,7 +268,10 @@ void GpuLightBuffers::upload(std::span<const Light* const> lights, const LightCl
                     GL_STREAM_DRAW);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightBufferBinding, lights_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClusterRangeBufferBinding, ranges_);
+  glNamedBufferData(spheres_, GLsizeiptr(spheres.size() * sizeof(glm::vec4)), spheres.data(),
+                    GL_STREAM_DRAW);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClusterIndexBufferBinding, indices_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClusterSphereBufferBinding, spheres_);
 }
 
 }  // namespace pbrkit::gl

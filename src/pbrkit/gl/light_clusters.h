@@ -26,10 +26,11 @@
 namespace pbrkit::gl {
 
 /// The binding points of the light buffers (pbr_fragment.glsl's PunctualLights,
-/// LightClusterRanges and LightClusterIndices).
+/// LightClusterRanges, LightClusterIndices and LightClusterSpheres).
 inline constexpr GLuint kLightBufferBinding = 4;
 inline constexpr GLuint kClusterRangeBufferBinding = 5;
 inline constexpr GLuint kClusterIndexBufferBinding = 6;
+inline constexpr GLuint kClusterSphereBufferBinding = 7;
 
 /// A light's sphere of influence in world space; none for a light that reaches everything
 /// (directional, or no `range`).
@@ -105,9 +106,11 @@ struct GpuLight {
 static_assert(sizeof(GpuLight) == 64);
 GpuLight gpu_light(const Light& light);
 
-/// The frame's light buffers on the GPU: the lights, the cluster ranges, and one index
-/// list holding the global lights first and then the clusters' lists (whose offsets are
-/// past the global ones). Needs the current GL context for its whole life.
+/// The frame's light buffers on the GPU: the lights, the cluster ranges, one index list
+/// holding the global lights first and then the clusters' lists (whose offsets are past
+/// the global ones), and beside it each entry's light's (position, range), which the
+/// shader's range test reads without waiting on the index. Needs the current GL context for its
+/// whole life.
 class GpuLightBuffers {
  public:
   GpuLightBuffers();
@@ -119,7 +122,7 @@ class GpuLightBuffers {
   void upload(std::span<const Light* const> lights, const LightClusters* clusters);
 
  private:
-  GLuint lights_ = 0, ranges_ = 0, indices_ = 0;
+  GLuint lights_ = 0, ranges_ = 0, indices_ = 0, spheres_ = 0;
 };
 
 }  // namespace pbrkit::gl

@@ -58,6 +58,7 @@ std::vector<SurfaceBinding> surface_bindings() {
   b.push_back({"PUNCTUAL_LIGHTS", kLightBufferBinding, true});
   b.push_back({"LIGHT_CLUSTER_RANGES", kClusterRangeBufferBinding, true});
   b.push_back({"LIGHT_CLUSTER_INDICES", kClusterIndexBufferBinding, true});
+  b.push_back({"LIGHT_CLUSTER_SPHERES", kClusterSphereBufferBinding, true});
   return b;
 }
 

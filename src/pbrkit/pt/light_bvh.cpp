@@ -156,34 +156,52 @@ float LightBvh::importance(const Node& b, glm::vec3 p, glm::vec3 n) {
 namespace {
 
 #if defined(__SSE2__)
-// LightBvh::importance() of two nodes at once, one per SSE lane (lanes 2 and 3 repeat them):
-// the traversal evaluates both children of every node it passes, and its time goes to the
-// four square roots and the division of each evaluation, which the divider does for four
-// lanes at the cost of one. The same operations in the same order as the scalar function
-// (the build does not contract a * b + c), and SSE's min/max/compare/sqrt are IEEE's, so
-// each lane is bit-identical to importance() of its node. Always inlined, as its caller:
-// out of line, a call clobbers every vector register and the traversal's live values are
-// spilled around it at each level.
-inline __m128 pair(float a, float b) {
-  return _mm_setr_ps(a, b, a, b);
-}
 inline __m128 select(__m128 mask, __m128 if_true, __m128 if_false) {
   return _mm_or_ps(_mm_and_ps(mask, if_true), _mm_andnot_ps(mask, if_false));
 }
+#endif
 
-[[gnu::always_inline]] inline void importance_pair(const LightBvh::Node& a, const LightBvh::Node& b,
-                                                   glm::vec3 p, glm::vec3 n, float& ia, float& ib) {
+}  // namespace
+
+void LightBvh::WideNode::set(int k, const Node& b) {
+  cx[k] = b.center.x;
+  cy[k] = b.center.y;
+  cz[k] = b.center.z;
+  radius[k] = b.radius;
+  wx[k] = b.w.x;
+  wy[k] = b.w.y;
+  wz[k] = b.w.z;
+  phi[k] = b.phi;
+  cos_theta_o[k] = b.cos_theta_o;
+  sin_theta_o[k] = b.sin_theta_o;
+  cos_theta_e[k] = b.cos_theta_e;
+  two_sided[k] = b.two_sided ? -1 : 0;
+}
+
+namespace {
+
+#if defined(__SSE2__)
+// importance() of a node's four children at once, one per SSE lane: the traversal
+// evaluates every child of every node it passes, and its time goes to the four square
+// roots and the division of each evaluation, which the vector units do for four lanes at
+// the cost of one. The same operations in the same order as the scalar function (the build
+// does not contract a * b + c), and SSE's min/max/compare/sqrt are IEEE's, so each lane is
+// bit-identical to importance() of its child. Always inlined, as are its callers: out of
+// line, a call clobbers every vector register and the traversal's live values are spilled
+// around it at each level.
+[[gnu::always_inline]] inline void children_importance(const LightBvh::WideNode& b, glm::vec3 p,
+                                                       glm::vec3 n, float out[4]) {
   const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
   const __m128 max_importance = _mm_set1_ps(kMaxImportance);
   const __m128 min_distance2 = _mm_set1_ps(kMinDistance2);
-  const __m128 dx = _mm_sub_ps(_mm_set1_ps(p.x), pair(a.center.x, b.center.x));
-  const __m128 dy = _mm_sub_ps(_mm_set1_ps(p.y), pair(a.center.y, b.center.y));
-  const __m128 dz = _mm_sub_ps(_mm_set1_ps(p.z), pair(a.center.z, b.center.z));
+  const __m128 dx = _mm_sub_ps(_mm_set1_ps(p.x), _mm_load_ps(b.cx));
+  const __m128 dy = _mm_sub_ps(_mm_set1_ps(p.y), _mm_load_ps(b.cy));
+  const __m128 dz = _mm_sub_ps(_mm_set1_ps(p.z), _mm_load_ps(b.cz));
   const __m128 d2 =
       _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
-  const __m128 radius = pair(a.radius, b.radius);
+  const __m128 radius = _mm_load_ps(b.radius);
   const __m128 r2 = _mm_mul_ps(radius, radius);
-  const __m128 phi = pair(a.phi, b.phi);
+  const __m128 phi = _mm_load_ps(b.phi);
   const __m128 inside = _mm_cmple_ps(d2, r2);
   const __m128 inside_result =
       _mm_min_ps(max_importance, _mm_div_ps(phi, _mm_max_ps(min_distance2, r2)));
@@ -193,16 +211,16 @@ inline __m128 select(__m128 mask, __m128 if_true, __m128 if_false) {
   const __m128 cos_b = _mm_mul_ps(_mm_sqrt_ps(_mm_max_ps(zero, _mm_sub_ps(d2, r2))), inv_d);
   const __m128 sign = _mm_set1_ps(-0.0f);
   __m128 dw =
-      _mm_add_ps(_mm_add_ps(_mm_mul_ps(pair(a.w.x, b.w.x), dx), _mm_mul_ps(pair(a.w.y, b.w.y), dy)),
-                 _mm_mul_ps(pair(a.w.z, b.w.z), dz));
-  const __m128 two_sided = _mm_castsi128_ps(
-      _mm_setr_epi32(-int(a.two_sided), -int(b.two_sided), -int(a.two_sided), -int(b.two_sided)));
+      _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_load_ps(b.wx), dx), _mm_mul_ps(_mm_load_ps(b.wy), dy)),
+                 _mm_mul_ps(_mm_load_ps(b.wz), dz));
+  const __m128 two_sided =
+      _mm_castsi128_ps(_mm_load_si128(reinterpret_cast<const __m128i*>(b.two_sided)));
   dw = select(two_sided, _mm_andnot_ps(sign, dw), dw);
   const __m128 cos_w = _mm_mul_ps(dw, inv_d);
   const __m128 sin_w =
       _mm_mul_ps(_mm_sqrt_ps(_mm_max_ps(zero, _mm_sub_ps(d2, _mm_mul_ps(dw, dw)))), inv_d);
-  const __m128 cos_o = pair(a.cos_theta_o, b.cos_theta_o);
-  const __m128 sin_o = pair(a.sin_theta_o, b.sin_theta_o);
+  const __m128 cos_o = _mm_load_ps(b.cos_theta_o);
+  const __m128 sin_o = _mm_load_ps(b.sin_theta_o);
   const __m128 in_cone = _mm_cmpgt_ps(cos_w, cos_o);
   const __m128 cos_x =
       select(in_cone, one, _mm_add_ps(_mm_mul_ps(cos_w, cos_o), _mm_mul_ps(sin_w, sin_o)));
@@ -210,7 +228,7 @@ inline __m128 select(__m128 mask, __m128 if_true, __m128 if_false) {
       select(in_cone, zero, _mm_sub_ps(_mm_mul_ps(sin_w, cos_o), _mm_mul_ps(cos_w, sin_o)));
   const __m128 cos_p = select(_mm_cmpgt_ps(cos_x, cos_b), one,
                               _mm_add_ps(_mm_mul_ps(cos_x, cos_b), _mm_mul_ps(sin_x, sin_b)));
-  const __m128 unreached = _mm_cmplt_ps(cos_p, pair(a.cos_theta_e, b.cos_theta_e));
+  const __m128 unreached = _mm_cmplt_ps(cos_p, _mm_load_ps(b.cos_theta_e));
   __m128 result = _mm_mul_ps(_mm_mul_ps(phi, cos_p), _mm_mul_ps(inv_d, inv_d));
   if (n != glm::vec3(0.0f)) {
     const __m128 dn = _mm_andnot_ps(sign, _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, _mm_set1_ps(n.x)),
@@ -225,20 +243,31 @@ inline __m128 select(__m128 mask, __m128 if_true, __m128 if_false) {
   }
   result = _mm_min_ps(max_importance, _mm_max_ps(zero, result));
   result = select(inside, inside_result, select(unreached, zero, result));
-  alignas(16) float out[4];
-  _mm_store_ps(out, result);
-  ia = out[0];
-  ib = out[1];
+  _mm_storeu_ps(out, result);
 }
 #else
-[[gnu::always_inline]] inline void importance_pair(const LightBvh::Node& a, const LightBvh::Node& b,
-                                                   glm::vec3 p, glm::vec3 n, float& ia, float& ib) {
-  ia = LightBvh::importance(a, p, n);
-  ib = LightBvh::importance(b, p, n);
+inline void children_importance(const LightBvh::WideNode& b, glm::vec3 p, glm::vec3 n,
+                                float out[4]) {
+  for (int k = 0; k < 4; ++k) {
+    LightBvh::Node node;
+    node.center = {b.cx[k], b.cy[k], b.cz[k]};
+    node.radius = b.radius[k];
+    node.w = {b.wx[k], b.wy[k], b.wz[k]};
+    node.phi = b.phi[k];
+    node.cos_theta_o = b.cos_theta_o[k];
+    node.sin_theta_o = b.sin_theta_o[k];
+    node.cos_theta_e = b.cos_theta_e[k];
+    node.two_sided = b.two_sided[k] != 0;
+    out[k] = LightBvh::importance(node, p, n);
+  }
 }
 #endif
 
 }  // namespace
+
+void LightBvh::importance4(const WideNode& node, glm::vec3 p, glm::vec3 n, float out[4]) {
+  children_importance(node, p, n, out);
+}
 
 float light_importance(const LightBounds& b, glm::vec3 p, glm::vec3 n) {
   return LightBvh::importance(LightBvh::Node::of(b), p, n);
@@ -254,22 +283,28 @@ LightBvh::LightBvh(const std::vector<LightBounds>& lights) {
     total_power_ += double(b.phi);
   }
   if (items.empty()) return;
-  nodes_.reserve(2 * items.size() - 1);
-  build(items, 0, items.size(), 0, 0);
+  if (items.size() == 1) {
+    single_ = std::int64_t(items[0].light);
+    trails_[items[0].light] = 0;
+    return;
+  }
+  std::vector<BuildNode> tree;
+  tree.reserve(2 * items.size() - 1);
+  const std::uint32_t root = build(tree, items, 0, items.size(), 0);
+  nodes_.reserve(items.size() / 2 + 1);
+  collapse(tree, root, 0, 0);
 }
 
-void LightBvh::build(std::vector<Item>& items, std::size_t begin, std::size_t end, int depth,
-                     std::uint64_t trail) {
-  const std::size_t node_index = nodes_.size();
-  nodes_.emplace_back();
-  depth_ = std::max(depth_, depth);
+std::uint32_t LightBvh::build(std::vector<BuildNode>& tree, std::vector<Item>& items,
+                              std::size_t begin, std::size_t end, int depth) const {
+  const auto node_index = std::uint32_t(tree.size());
+  tree.emplace_back();
   if (end - begin == 1) {
-    Node& leaf = nodes_[node_index];
-    leaf = Node::of(items[begin].bounds);
+    BuildNode& leaf = tree[node_index];
+    leaf.bounds = items[begin].bounds;
     leaf.leaf = true;
-    leaf.index = items[begin].light;
-    trails_[items[begin].light] = trail;
-    return;
+    leaf.light = items[begin].light;
+    return node_index;
   }
   LightBounds all;
   glm::vec3 cmin(std::numeric_limits<float>::max()), cmax(-std::numeric_limits<float>::max());
@@ -278,11 +313,11 @@ void LightBvh::build(std::vector<Item>& items, std::size_t begin, std::size_t en
     cmin = glm::min(cmin, items[i].centroid);
     cmax = glm::max(cmax, items[i].centroid);
   }
-  nodes_[node_index] = Node::of(all);
+  tree[node_index].bounds = all;
 
   // The split of least cost over 12 buckets of the centroids along each axis (pbrt-v4's
-  // BVHLightSampler::buildBVH). The trail has 63 usable bits: past the depth at which
-  // halving would still fit, nodes are split at the median instead.
+  // BVHLightSampler::buildBVH). The trail has 64 bits, two per level of the collapsed tree:
+  // past the depth at which halving would still fit, nodes are split at the median instead.
   const std::size_t count = end - begin;
   int levels_left = 0;
   while ((std::size_t(1) << levels_left) < count) ++levels_left;
@@ -341,31 +376,59 @@ void LightBvh::build(std::vector<Item>& items, std::size_t begin, std::size_t en
                        return a.centroid[axis] < b.centroid[axis];
                      });
   }
-  build(items, begin, mid, depth + 1, trail);
-  const std::size_t second = nodes_.size();
-  nodes_[node_index].index = std::uint32_t(second);
-  build(items, mid, end, depth + 1, trail | (std::uint64_t(1) << depth));
+  const std::uint32_t first = build(tree, items, begin, mid, depth + 1);
+  const std::uint32_t second = build(tree, items, mid, end, depth + 1);
+  tree[node_index].first = first;
+  tree[node_index].second = second;
+  return node_index;
+}
+
+std::uint32_t LightBvh::collapse(const std::vector<BuildNode>& tree, std::uint32_t b, int depth,
+                                 std::uint64_t trail) {
+  // The children: each binary child's own two children, or the child itself where it is a
+  // light. (Two levels of the binary tree in one; its splits are kept.)
+  std::uint32_t children[4];
+  int count = 0;
+  for (const std::uint32_t c : {tree[b].first, tree[b].second}) {
+    if (tree[c].leaf) {
+      children[count++] = c;
+    } else {
+      children[count++] = tree[c].first;
+      children[count++] = tree[c].second;
+    }
+  }
+  const auto index = std::uint32_t(nodes_.size());
+  nodes_.emplace_back();
+  WideNode node{};  // unused lanes: phi 0, so importance 0
+  node.count = std::uint8_t(count);
+  for (int k = 0; k < count; ++k) {
+    const BuildNode& c = tree[children[k]];
+    node.set(k, Node::of(c.bounds));
+    const std::uint64_t child_trail = trail | (std::uint64_t(k) << (2 * depth));
+    if (c.leaf) {
+      node.leaf_mask = std::uint8_t(node.leaf_mask | (1u << k));
+      node.child[k] = c.light;
+      trails_[c.light] = child_trail;
+      depth_ = std::max(depth_, depth + 1);
+    } else {
+      node.child[k] = collapse(tree, children[k], depth + 1, child_trail);
+    }
+  }
+  nodes_[index] = node;
+  return index;
 }
 
 namespace {
 
-// The probabilities of going to either child of interior node `node` (at `node_index` in
-// `nodes`): each child's share of their importance; false when neither child's lights reach
-// p. Inlined into the traversals: out of line, the call clobbers every vector register and
-// the traversal's live values (p, n, u, the product) are spilled around it at each level.
-[[gnu::always_inline]] inline bool child_probabilities(const LightBvh::Node* nodes,
-                                                       const LightBvh::Node& node,
-                                                       std::size_t node_index, glm::vec3 p,
-                                                       glm::vec3 n, float& p1, float& p2) {
-  float i1 = 0.0f, i2 = 0.0f;
-  importance_pair(nodes[node_index + 1], nodes[node.index], p, n, i1, i2);
-  const float sum = i1 + i2;
+// The importances of `node`'s children (lane k: child k) and 1 / their sum (((i0 + i1) +
+// (i2 + i3)), the order sample() and pmf() share); false when none of them reaches p.
+// Inlined into the traversals (see importance4).
+[[gnu::always_inline]] inline bool child_importances(const LightBvh::WideNode& node, glm::vec3 p,
+                                                     glm::vec3 n, float imp[4], float& inv_sum) {
+  children_importance(node, p, n, imp);
+  const float sum = (imp[0] + imp[1]) + (imp[2] + imp[3]);
   if (!(sum > 0.0f)) return false;  // no light below reaches p
-  // Each from its own importance: 1 - p1 would round a child far less important than its
-  // sibling (a relative 1e-8) to probability 0, and a light that reaches p to never.
-  const float inv_sum = 1.0f / sum;
-  p1 = i1 * inv_sum;
-  p2 = i2 * inv_sum;
+  inv_sum = 1.0f / sum;
   return true;
 }
 
@@ -373,48 +436,65 @@ namespace {
 
 std::int64_t LightBvh::sample(glm::vec3 p, glm::vec3 n, float u, float& pmf) const {
   pmf = 0.0f;
-  if (nodes_.empty()) return -1;
-  std::size_t i = 0;
-  float prob = 1.0f;
-  while (!nodes_[i].leaf) {
-    const Node& node = nodes_[i];
-    float p1 = 0.0f, p2 = 0.0f;
-    if (!child_probabilities(nodes_.data(), node, i, p, n, p1, p2)) return -1;
-    // The random number, rescaled to [0, 1) within the branch taken, decides the next step.
-    // (GCC makes this choice a jump. Forcing selects (the outcomes looked up by the choice)
-    // measured slower: a predicted jump starts on the next node before this one's importance
-    // is known, where selects wait for it at every level.)
-    const bool first = u < p1;
-    const float q = first ? p1 : p2;
-    u = std::min((first ? u : u - p1) / q, kOneMinusEpsilon);
-    prob *= q;
-    i = first ? i + 1 : node.index;
+  if (single_ >= 0) {
+    pmf = 1.0f;
+    return single_;
   }
-  if (!(prob > 0.0f)) return -1;
-  pmf = prob;
-  return std::int64_t(nodes_[i].index);
+  if (nodes_.empty()) return -1;
+  std::uint32_t i = 0;
+  float prob = 1.0f;
+  for (;;) {
+    const WideNode& node = nodes_[i];
+    alignas(16) float imp[4];
+    float inv_sum = 0.0f;
+    if (!child_importances(node, p, n, imp, inv_sum)) return -1;
+    // The child whose interval of the cumulative probabilities holds u. Each probability is
+    // its own importance's share (1 minus the others' would round a child far less
+    // important than its siblings, a relative 1e-8, to 0, and a light that reaches p to
+    // never); where rounding leaves u past the last interval, the last child with a
+    // probability is taken.
+    int k = 0;
+    float lo = 0.0f, q = imp[0] * inv_sum;
+    while (!(u < lo + q) && k + 1 < node.count) {
+      lo += q;
+      ++k;
+      q = imp[k] * inv_sum;
+    }
+    while (!(q > 0.0f) && k > 0) {
+      --k;
+      q = imp[k] * inv_sum;
+      lo -= q;
+    }
+    // The random number, rescaled to [0, 1) within the child taken, decides the next step.
+    u = std::clamp((u - lo) / q, 0.0f, kOneMinusEpsilon);
+    prob *= q;
+    if (node.leaf_mask & (1u << k)) {
+      if (!(prob > 0.0f)) return -1;
+      pmf = prob;
+      return std::int64_t(node.child[k]);
+    }
+    i = node.child[k];
+  }
 }
 
 float LightBvh::pmf(glm::vec3 p, glm::vec3 n, std::uint32_t light) const {
   if (light >= trails_.size() || trails_[light] == kNotInTree) return 0.0f;
+  if (single_ >= 0) return 1.0f;
   std::uint64_t trail = trails_[light];
-  std::size_t i = 0;
+  std::uint32_t i = 0;
   float prob = 1.0f;
   // The same decisions as sample(), in the same order, so the product is the same float.
-  while (!nodes_[i].leaf) {
-    const Node& node = nodes_[i];
-    float p1 = 0.0f, p2 = 0.0f;
-    if (!child_probabilities(nodes_.data(), node, i, p, n, p1, p2)) return 0.0f;
-    if ((trail & 1u) == 0) {
-      prob *= p1;
-      i = i + 1;
-    } else {
-      prob *= p2;
-      i = node.index;
-    }
-    trail >>= 1;
+  for (;;) {
+    const WideNode& node = nodes_[i];
+    alignas(16) float imp[4];
+    float inv_sum = 0.0f;
+    if (!child_importances(node, p, n, imp, inv_sum)) return 0.0f;
+    const auto k = unsigned(trail & 3u);
+    prob *= imp[k] * inv_sum;
+    if (node.leaf_mask & (1u << k)) return prob;
+    i = node.child[k];
+    trail >>= 2;
   }
-  return prob;
 }
 
 }  // namespace pbrkit

@@ -128,6 +128,8 @@ uniform int uLightCount;
 // dot(uViewDepth.xyz, p) + uViewDepth.w.
 layout(std430, binding = BINDING_LIGHT_CLUSTER_RANGES) readonly buffer LightClusterRanges { uvec2 uClusterRange[]; };
 layout(std430, binding = BINDING_LIGHT_CLUSTER_INDICES) readonly buffer LightClusterIndices { uint uLightIndex[]; };
+// Beside each entry of uLightIndex, its light's (position, range).
+layout(std430, binding = BINDING_LIGHT_CLUSTER_SPHERES) readonly buffer LightClusterSpheres { vec4 uLightSphere[]; };
 uniform int uGlobalLightCount;
 uniform ivec3 uClusterGrid;
 uniform float uClusterTile;
@@ -272,27 +274,46 @@ vec3 punctual_lights(MaterialInputs m, Shading s, float transmission, float thic
 #else
   int count = light_count(cluster);
 #endif
-  for (int k = 0; k < count; ++k) {
 #if LIGHTS == 2
-    // The global lights, then the cluster's (both ascending: the unclustered loop's order).
-    PunctualLight light = uLights[uLightIndex[k < uGlobalLightCount
-                                                  ? uint(k)
-                                                  : cluster.x + uint(k - uGlobalLightCount)]];
+  int next = 0;
+  for (;;) {
+    // The next light of the cluster that reaches this fragment: lights beyond their range
+    // are passed over in this inner loop, which reads only their (position, range), kept
+    // beside the cluster's indices; the whole light is read and its BRDF evaluated only for
+    // the lights that reach the fragment. (A GPU skips a branch's body where a whole warp
+    // is beyond a light either way; llvmpipe masks the lanes of a branch and runs its body
+    // all the same, so there the loop over the listed lights cost a whole light's read and
+    // BRDF per listed light, where it now costs one per light the SIMD group's fragments
+    // need: BENCHMARKS.md "Many punctual lights".) The order is unchanged: the global
+    // lights, then the cluster's (both ascending: the unclustered loop's order).
+    int index = -1;  // none found yet
+    float d = 0.0;
+    vec3 to_light = vec3(0.0);
+    while (index < 0 && next < count) {
+      uint entry = next < uGlobalLightCount ? uint(next) : cluster.x + uint(next - uGlobalLightCount);
+      vec4 sphere = uLightSphere[entry];
+      to_light = sphere.xyz - vPosition;
+      d = length(to_light);
+      // Beyond its range a light adds exactly 0 (the window below); a directional light has
+      // no range (0), so it always passes.
+      if (!(sphere.w > 0.0 && d >= sphere.w)) index = int(uLightIndex[entry]);
+      ++next;
+    }
+    if (index < 0) break;
+    PunctualLight light = uLights[index];
 #else
+  for (int k = 0; k < count; ++k) {
     PunctualLight light = uLights[k];
+    vec3 to_light = light.position - vPosition;
+    float d = length(to_light);
+    // Beyond its range a light adds exactly 0 (the window below): move on.
+    if (light.type != 2 && light.range > 0.0 && d >= light.range) continue;
 #endif
     vec3 l;
     vec3 radiance = light.radiance;
     if (light.type == 2) {
       l = -light.direction;
     } else {
-      vec3 to_light = light.position - vPosition;
-      float d = length(to_light);
-      // Beyond its range a light adds exactly 0 (the window below): move on. A GPU skips the
-      // BRDF where a whole warp is beyond (most of a cluster's lights miss most of its
-      // fragments: its box is larger than the spheres' overlap with it); llvmpipe masks the
-      // lanes and evaluates it all the same. The unclustered loop skips the same lights.
-      if (light.range > 0.0 && d >= light.range) continue;
       l = to_light / d;
       radiance *= range_attenuation(d, light.range);
       if (light.type == 1) {
