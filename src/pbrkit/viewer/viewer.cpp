@@ -14,6 +14,7 @@
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <fmt/format.h>
 #include <imgui.h>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -29,6 +30,7 @@
 #include "pbrkit/pt/progressive_render.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/material_schema.h"
 #include "pbrkit/util/data_dir.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -76,6 +78,24 @@ struct Orbit {
   }
 };
 
+// The override panel's state of one extension of the material schema: whether it overrides
+// every material, and its factors' components in the schema's order.
+struct ExtensionOverride {
+  bool on = false;
+  std::vector<float> values;
+};
+
+// Every extension off, each factor at its control's start value.
+std::vector<ExtensionOverride> extension_overrides() {
+  std::vector<ExtensionOverride> out;
+  for (const MaterialExtension& x : material_schema()) {
+    ExtensionOverride& o = out.emplace_back();
+    for (const MaterialFactor& f : x.factors)
+      o.values.insert(o.values.end(), f.components, f.control.start);
+  }
+  return out;
+}
+
 struct ViewerState {
   ViewerOptions options;
   Scene scene;
@@ -88,28 +108,10 @@ struct ViewerState {
   DisplaySettings display;
   bool override_metallic = false, override_roughness = false;
   float metallic = 1.0f, roughness = 0.5f;
-  // The KHR_materials extensions' factors, each an override of every material when on;
-  // applied through Renderer::set_materials when a control changes.
-  struct Extensions {
-    bool ior_on = false, specular_on = false, clearcoat_on = false, sheen_on = false;
-    bool anisotropy_on = false, iridescence_on = false;
-    float ior = 1.5f, specular = 1.0f;
-    float clearcoat = 1.0f, clearcoat_roughness = 0.1f;
-    glm::vec3 sheen_color{0.5f};
-    float sheen_roughness = 0.5f;
-    float anisotropy = 0.5f, anisotropy_rotation_deg = 0.0f;
-    float iridescence = 1.0f, iridescence_thickness = 400.0f;
-    // Transmission, volume (thickness, attenuation), dispersion, diffuse
-    // transmission.
-    bool transmission_on = false, volume_on = false, dispersion_on = false;
-    bool diffuse_transmission_on = false;
-    float transmission = 1.0f;
-    float thickness = 0.5f, attenuation_distance = 1.0f;
-    glm::vec3 attenuation_color{1.0f};
-    float dispersion = 0.5f;
-    float diffuse_transmission = 1.0f;
-    glm::vec3 diffuse_transmission_color{1.0f};
-  } ext;
+  // The KHR_materials extensions' factors (material_schema() order), each extension an
+  // override of every material when on; applied through Renderer::set_materials when a
+  // control changes.
+  std::vector<ExtensionOverride> ext = extension_overrides();
   Orbit orbit;
   // Until the user moves the camera the view is exactly the one `pbrkit render` takes
   // (select_view at the framebuffer's size), so that screenshots equal renders.
@@ -141,104 +143,46 @@ struct ViewerState {
   std::string message;               // the last problem with a dropped file or a reload
 };
 
-// The scene's materials with the panel's extension overrides.
+// The scene's materials with the panel's extension overrides: an extension turned on is
+// added where a material lacks it and its factors set to the panel's.
 std::vector<Material> overridden_materials(const ViewerState& s) {
   std::vector<Material> materials = s.scene.materials;
-  const ViewerState::Extensions& e = s.ext;
-  for (Material& m : materials) {
-    if (e.ior_on) m.ior = e.ior;
-    if (e.specular_on) {
-      if (!m.specular) m.specular.emplace();
-      m.specular->factor = e.specular;
+  const auto schema = material_schema();
+  for (Material& m : materials)
+    for (std::size_t i = 0; i < schema.size(); ++i) {
+      const MaterialExtension& x = schema[i];
+      if (!s.ext[i].on) continue;
+      if (!x.present(m)) x.add(m);
+      const float* v = s.ext[i].values.data();
+      for (const MaterialFactor& f : x.factors) {
+        std::copy(v, v + f.components, f.values(m));
+        v += f.components;
+      }
     }
-    if (e.clearcoat_on) {
-      if (!m.clearcoat) m.clearcoat.emplace();
-      m.clearcoat->factor = e.clearcoat;
-      m.clearcoat->roughness_factor = e.clearcoat_roughness;
-    }
-    if (e.sheen_on) {
-      if (!m.sheen) m.sheen.emplace();
-      m.sheen->color_factor = e.sheen_color;
-      m.sheen->roughness_factor = e.sheen_roughness;
-    }
-    if (e.anisotropy_on) {
-      if (!m.anisotropy) m.anisotropy.emplace();
-      m.anisotropy->strength = e.anisotropy;
-      m.anisotropy->rotation = glm::radians(e.anisotropy_rotation_deg);
-    }
-    if (e.iridescence_on) {
-      if (!m.iridescence) m.iridescence.emplace();
-      m.iridescence->factor = e.iridescence;
-      m.iridescence->thickness_max = e.iridescence_thickness;
-    }
-    if (e.transmission_on) {
-      if (!m.transmission) m.transmission.emplace();
-      m.transmission->factor = e.transmission;
-    }
-    if (e.volume_on) {
-      if (!m.volume) m.volume.emplace();
-      m.volume->thickness_factor = e.thickness;
-      m.volume->attenuation_distance = e.attenuation_distance;
-      m.volume->attenuation_color = e.attenuation_color;
-    }
-    if (e.dispersion_on) {
-      if (!m.dispersion) m.dispersion.emplace();
-      m.dispersion->dispersion = e.dispersion;
-    }
-    if (e.diffuse_transmission_on) {
-      if (!m.diffuse_transmission) m.diffuse_transmission.emplace();
-      m.diffuse_transmission->factor = e.diffuse_transmission;
-      m.diffuse_transmission->color_factor = e.diffuse_transmission_color;
-    }
-  }
   return materials;
 }
 
-// The extension controls; true when one changed.
+// The extension controls, one checkbox per extension with factors and a slider (a colour
+// picker for a colour) per factor, from the material schema; true when one changed.
 bool draw_extension_controls(ViewerState& s) {
-  ViewerState::Extensions& e = s.ext;
   bool changed = false;
-  changed |= ImGui::Checkbox("override ior", &e.ior_on);
-  if (e.ior_on) changed |= ImGui::SliderFloat("ior", &e.ior, 1.0f, 3.0f);
-  changed |= ImGui::Checkbox("override specular", &e.specular_on);
-  if (e.specular_on) changed |= ImGui::SliderFloat("specular", &e.specular, 0.0f, 1.0f);
-  changed |= ImGui::Checkbox("override clearcoat", &e.clearcoat_on);
-  if (e.clearcoat_on) {
-    changed |= ImGui::SliderFloat("clearcoat", &e.clearcoat, 0.0f, 1.0f);
-    changed |= ImGui::SliderFloat("clearcoat roughness", &e.clearcoat_roughness, 0.0f, 1.0f);
-  }
-  changed |= ImGui::Checkbox("override sheen", &e.sheen_on);
-  if (e.sheen_on) {
-    changed |= ImGui::ColorEdit3("sheen colour", &e.sheen_color.x);
-    changed |= ImGui::SliderFloat("sheen roughness", &e.sheen_roughness, 0.0f, 1.0f);
-  }
-  changed |= ImGui::Checkbox("override anisotropy", &e.anisotropy_on);
-  if (e.anisotropy_on) {
-    changed |= ImGui::SliderFloat("anisotropy", &e.anisotropy, 0.0f, 1.0f);
-    changed |= ImGui::SliderFloat("anisotropy rotation", &e.anisotropy_rotation_deg, -180.0f,
-                                  180.0f, "%.0f deg");
-  }
-  changed |= ImGui::Checkbox("override iridescence", &e.iridescence_on);
-  if (e.iridescence_on) {
-    changed |= ImGui::SliderFloat("iridescence", &e.iridescence, 0.0f, 1.0f);
-    changed |=
-        ImGui::SliderFloat("film thickness", &e.iridescence_thickness, 0.0f, 1200.0f, "%.0f nm");
-  }
-  changed |= ImGui::Checkbox("override transmission", &e.transmission_on);
-  if (e.transmission_on) changed |= ImGui::SliderFloat("transmission", &e.transmission, 0.0f, 1.0f);
-  changed |= ImGui::Checkbox("override volume", &e.volume_on);
-  if (e.volume_on) {
-    changed |= ImGui::SliderFloat("thickness", &e.thickness, 0.0f, 5.0f);
-    changed |= ImGui::SliderFloat("attenuation distance", &e.attenuation_distance, 0.01f, 10.0f,
-                                  "%.2f", ImGuiSliderFlags_Logarithmic);
-    changed |= ImGui::ColorEdit3("attenuation colour", &e.attenuation_color.x);
-  }
-  changed |= ImGui::Checkbox("override dispersion", &e.dispersion_on);
-  if (e.dispersion_on) changed |= ImGui::SliderFloat("dispersion", &e.dispersion, 0.0f, 5.0f);
-  changed |= ImGui::Checkbox("override diffuse transmission", &e.diffuse_transmission_on);
-  if (e.diffuse_transmission_on) {
-    changed |= ImGui::SliderFloat("diffuse transmission", &e.diffuse_transmission, 0.0f, 1.0f);
-    changed |= ImGui::ColorEdit3("diffuse transmission colour", &e.diffuse_transmission_color.x);
+  const auto schema = material_schema();
+  for (std::size_t i = 0; i < schema.size(); ++i) {
+    const MaterialExtension& x = schema[i];
+    ExtensionOverride& o = s.ext[i];
+    if (x.factors.empty()) continue;  // KHR_materials_unlit: a shading mode, not a value
+    changed |= ImGui::Checkbox(fmt::format("override {}", x.summary).c_str(), &o.on);
+    if (!o.on) continue;
+    float* v = o.values.data();
+    for (const MaterialFactor& f : x.factors) {
+      const FactorControl& c = f.control;
+      if (f.components == 3)
+        changed |= ImGui::ColorEdit3(f.json_name, v);
+      else
+        changed |= ImGui::SliderFloat(f.json_name, v, c.min, c.max, "%.3g",
+                                      c.logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
+      v += f.components;
+    }
   }
   return changed;
 }
