@@ -168,8 +168,12 @@ void bind_scene(py::module_& m) {
       [](const std::string& path_or_name) {
         SceneHandle handle;
         run_interruptible(
-            [&](WorkControl&) {
-              handle.scene = std::make_shared<const Scene>(load_scene(path_or_name));
+            [&](WorkControl& control) {
+              // Ctrl-C stops a long node walk (the partial scene is dropped: the
+              // KeyboardInterrupt is raised once the load returns).
+              LoadOptions options;
+              options.progress = control.callback();
+              handle.scene = std::make_shared<const Scene>(load_scene(path_or_name, options));
             },
             py::none());
         return handle;
