@@ -110,38 +110,29 @@ std::string dispersion_note(const Material& m) {
 
 using S = TextureSlot;
 
+// A factor's control (the viewer's override panel): a slider over [min, max] from `start`.
+constexpr FactorControl slider(float min, float max, float start) {
+  return {min, max, start};
+}
+constexpr FactorControl log_slider(float min, float max, float start) {
+  return {min, max, start, true};
+}
+
 constexpr MaterialFactor kEmissiveStrengthFactors[] = {
-    {"emissiveStrength",
-     "{}",
-     1,
-     0.0f,
-     kInf,
-     {0.0f, 20.0f, 1.0f},
-     &own_member<&Material::emissive_strength>,
-     &check_emissive_strength,
-     true},
+    {"emissiveStrength", "{}", 1, 0.0f, kInf, slider(0.0f, 20.0f, 1.0f),
+     &own_member<&Material::emissive_strength>, &check_emissive_strength, true},
 };
 
 constexpr MaterialFactor kIorFactors[] = {
-    {"ior", "{}", 1, 1.0f, kInf, {1.0f, 3.0f, 1.5f}, &own_member<&Material::ior>, &check_ior},
+    {"ior", "{}", 1, 1.0f, kInf, slider(1.0f, 3.0f, 1.5f), &own_member<&Material::ior>, &check_ior},
 };
 
 // KHR_materials_specular: the schema bounds specularColorFactor below only; an F0 tint
 // above 1 is allowed (the README's "may be greater than 1").
 constexpr MaterialFactor kSpecularFactors[] = {
-    {"specularFactor",
-     "{}",
-     1,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 1.0f},
+    {"specularFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::specular, &SpecularExtension::factor>},
-    {"specularColorFactor",
-     "{}",
-     3,
-     0.0f,
-     kInf,
-     {0.0f, 1.0f, 1.0f},
+    {"specularColorFactor", "{}", 3, 0.0f, kInf, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::specular, &SpecularExtension::color_factor>},
 };
 constexpr MaterialTexture kSpecularTextures[] = {
@@ -150,19 +141,9 @@ constexpr MaterialTexture kSpecularTextures[] = {
 };
 
 constexpr MaterialFactor kClearcoatFactors[] = {
-    {"clearcoatFactor",
-     "{}",
-     1,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 1.0f},
+    {"clearcoatFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::clearcoat, &ClearcoatExtension::factor>},
-    {"clearcoatRoughnessFactor",
-     "roughness {}",
-     1,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 0.1f},
+    {"clearcoatRoughnessFactor", "roughness {}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 0.1f),
      &member<&Material::clearcoat, &ClearcoatExtension::roughness_factor>},
 };
 constexpr MaterialTexture kClearcoatTextures[] = {
@@ -173,19 +154,9 @@ constexpr MaterialTexture kClearcoatTextures[] = {
 };
 
 constexpr MaterialFactor kSheenFactors[] = {
-    {"sheenColorFactor",
-     "{}",
-     3,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 0.5f},
+    {"sheenColorFactor", "{}", 3, 0.0f, 1.0f, slider(0.0f, 1.0f, 0.5f),
      &member<&Material::sheen, &SheenExtension::color_factor>},
-    {"sheenRoughnessFactor",
-     "roughness {}",
-     1,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 0.5f},
+    {"sheenRoughnessFactor", "roughness {}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 0.5f),
      &member<&Material::sheen, &SheenExtension::roughness_factor>},
 };
 constexpr MaterialTexture kSheenTextures[] = {
@@ -195,19 +166,9 @@ constexpr MaterialTexture kSheenTextures[] = {
 
 // anisotropyRotation is an angle in radians: every number is valid.
 constexpr MaterialFactor kAnisotropyFactors[] = {
-    {"anisotropyStrength",
-     "{}",
-     1,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 0.5f},
+    {"anisotropyStrength", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 0.5f),
      &member<&Material::anisotropy, &AnisotropyExtension::strength>},
-    {"anisotropyRotation",
-     "rotation {}",
-     1,
-     -kInf,
-     kInf,
-     {-kPi, kPi, 0.0f},
+    {"anisotropyRotation", "rotation {}", 1, -kInf, kInf, slider(-kPi, kPi, 0.0f),
      &member<&Material::anisotropy, &AnisotropyExtension::rotation>},
 };
 constexpr MaterialTexture kAnisotropyTextures[] = {
@@ -217,33 +178,13 @@ constexpr MaterialTexture kAnisotropyTextures[] = {
 // The thickness minimum may exceed the maximum (the README allows it: the thickness
 // texture then interpolates downwards), so each is bounded on its own.
 constexpr MaterialFactor kIridescenceFactors[] = {
-    {"iridescenceFactor",
-     "{}",
-     1,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 1.0f},
+    {"iridescenceFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::iridescence, &IridescenceExtension::factor>},
-    {"iridescenceIor",
-     "ior {}",
-     1,
-     1.0f,
-     kInf,
-     {1.0f, 3.0f, 1.3f},
+    {"iridescenceIor", "ior {}", 1, 1.0f, kInf, slider(1.0f, 3.0f, 1.3f),
      &member<&Material::iridescence, &IridescenceExtension::ior>},
-    {"iridescenceThicknessMinimum",
-     "thickness {}",
-     1,
-     0.0f,
-     kInf,
-     {0.0f, 1200.0f, 100.0f},
+    {"iridescenceThicknessMinimum", "thickness {}", 1, 0.0f, kInf, slider(0.0f, 1200.0f, 100.0f),
      &member<&Material::iridescence, &IridescenceExtension::thickness_min>},
-    {"iridescenceThicknessMaximum",
-     "to {} nm",
-     1,
-     0.0f,
-     kInf,
-     {0.0f, 1200.0f, 400.0f},
+    {"iridescenceThicknessMaximum", "to {} nm", 1, 0.0f, kInf, slider(0.0f, 1200.0f, 400.0f),
      &member<&Material::iridescence, &IridescenceExtension::thickness_max>},
 };
 constexpr MaterialTexture kIridescenceTextures[] = {
@@ -252,12 +193,7 @@ constexpr MaterialTexture kIridescenceTextures[] = {
 };
 
 constexpr MaterialFactor kTransmissionFactors[] = {
-    {"transmissionFactor",
-     "{}",
-     1,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 1.0f},
+    {"transmissionFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::transmission, &TransmissionExtension::factor>},
 };
 constexpr MaterialTexture kTransmissionTextures[] = {
@@ -268,26 +204,11 @@ constexpr MaterialTexture kTransmissionTextures[] = {
 // c^(x / d) grows with the distance x travelled: the medium would make light. So it is
 // clamped to 1.
 constexpr MaterialFactor kVolumeFactors[] = {
-    {"thicknessFactor",
-     "thickness {}",
-     1,
-     0.0f,
-     kInf,
-     {0.0f, 5.0f, 0.5f},
+    {"thicknessFactor", "thickness {}", 1, 0.0f, kInf, slider(0.0f, 5.0f, 0.5f),
      &member<&Material::volume, &VolumeExtension::thickness_factor>},
-    {"attenuationColor",
-     "attenuation {}",
-     3,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 1.0f},
+    {"attenuationColor", "attenuation {}", 3, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::volume, &VolumeExtension::attenuation_color>},
-    {"attenuationDistance",
-     "at {}",
-     1,
-     0.0f,
-     kInf,
-     {0.01f, 10.0f, 1.0f, true},
+    {"attenuationDistance", "at {}", 1, 0.0f, kInf, log_slider(0.01f, 10.0f, 1.0f),
      &member<&Material::volume, &VolumeExtension::attenuation_distance>,
      &check_attenuation_distance},
 };
@@ -296,31 +217,16 @@ constexpr MaterialTexture kVolumeTextures[] = {
 };
 
 constexpr MaterialFactor kDispersionFactors[] = {
-    {"dispersion",
-     "{}",
-     1,
-     0.0f,
-     kInf,
-     {0.0f, 5.0f, 0.5f},
+    {"dispersion", "{}", 1, 0.0f, kInf, slider(0.0f, 5.0f, 0.5f),
      &member<&Material::dispersion, &DispersionExtension::dispersion>},
 };
 
 // diffuseTransmissionColorFactor: the schema bounds it below only; above 1 the surface
 // would transmit more light than reaches it, so it is clamped to 1.
 constexpr MaterialFactor kDiffuseTransmissionFactors[] = {
-    {"diffuseTransmissionFactor",
-     "{}",
-     1,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 1.0f},
+    {"diffuseTransmissionFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::diffuse_transmission, &DiffuseTransmissionExtension::factor>},
-    {"diffuseTransmissionColorFactor",
-     "{}",
-     3,
-     0.0f,
-     1.0f,
-     {0.0f, 1.0f, 1.0f},
+    {"diffuseTransmissionColorFactor", "{}", 3, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::diffuse_transmission, &DiffuseTransmissionExtension::color_factor>},
 };
 constexpr MaterialTexture kDiffuseTransmissionTextures[] = {
@@ -328,19 +234,16 @@ constexpr MaterialTexture kDiffuseTransmissionTextures[] = {
     {"diffuseTransmissionColorTexture", S::kDiffuseTransmissionColor, "RGB", true},
 };
 
+// Extensions without factors or textures.
+constexpr std::span<const MaterialFactor> kNoFactors;
+constexpr std::span<const MaterialTexture> kNoTextures;
+
 // The extensions that scale a core value come first (material_extensions() is the rest).
 constexpr std::size_t kScalesCoreCount = 1;
 constexpr MaterialExtension kExtensions[] = {
-    {"KHR_materials_emissive_strength",
-     "emissive strength",
-     &has_emissive_strength,
-     &add_emissive_strength,
-     kEmissiveStrengthFactors,
-     {},
-     nullptr,
-     false,
-     true},
-    {"KHR_materials_ior", "ior", &has_ior, &add_ior, kIorFactors, {}},
+    {"KHR_materials_emissive_strength", "emissive strength", &has_emissive_strength,
+     &add_emissive_strength, kEmissiveStrengthFactors, kNoTextures, nullptr, false, true},
+    {"KHR_materials_ior", "ior", &has_ior, &add_ior, kIorFactors, kNoTextures},
     {"KHR_materials_specular", "specular", &has<&Material::specular>, &add<&Material::specular>,
      kSpecularFactors, kSpecularTextures},
     {"KHR_materials_clearcoat", "clearcoat", &has<&Material::clearcoat>, &add<&Material::clearcoat>,
@@ -355,17 +258,13 @@ constexpr MaterialExtension kExtensions[] = {
      &add<&Material::transmission>, kTransmissionFactors, kTransmissionTextures},
     {"KHR_materials_volume", "volume", &has<&Material::volume>, &add<&Material::volume>,
      kVolumeFactors, kVolumeTextures, &volume_note},
-    {"KHR_materials_dispersion",
-     "dispersion",
-     &has<&Material::dispersion>,
-     &add<&Material::dispersion>,
-     kDispersionFactors,
-     {},
-     &dispersion_note},
+    {"KHR_materials_dispersion", "dispersion", &has<&Material::dispersion>,
+     &add<&Material::dispersion>, kDispersionFactors, kNoTextures, &dispersion_note},
     {"KHR_materials_diffuse_transmission", "diffuse transmission",
      &has<&Material::diffuse_transmission>, &add<&Material::diffuse_transmission>,
      kDiffuseTransmissionFactors, kDiffuseTransmissionTextures},
-    {"KHR_materials_unlit", "unlit", &has_unlit, &add_unlit, {}, {}, nullptr, true},
+    {"KHR_materials_unlit", "unlit", &has_unlit, &add_unlit, kNoFactors, kNoTextures, nullptr,
+     true},
 };
 
 }  // namespace
