@@ -31,6 +31,15 @@ Image mean_of(const Image& a, const Image& b) {
   return m;
 }
 
+// The library names the missing layers; the command adds the flag that writes them.
+DenoiseInput read_input(const std::string& path) {
+  try {
+    return read_denoise_input(path);
+  } catch (const MissingDenoiseLayers& e) {
+    throw Error(fmt::format("{} (render with '--aov denoise' to write them)", e.what()));
+  }
+}
+
 }  // namespace
 
 void register_denoise_command(CLI::App& app) {
@@ -52,7 +61,7 @@ void register_denoise_command(CLI::App& app) {
   cmd->add_flag("--float", o->full_float, "write the EXR as 32-bit floats (default half)");
   cmd->callback([o] {
     const ImageOutputs outputs = image_outputs(o->output);
-    const DenoiseInput input = read_denoise_input(o->input);
+    const DenoiseInput input = read_input(o->input);
     const std::optional<Image> denoised = run_denoiser(input);
     create_output_directory(outputs);
     const auto type = o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;

@@ -77,7 +77,7 @@ std::string factor_text(const Material& m, const MaterialFactor& f) {
 // property names.
 nlohmann::json material_extensions_json(const Material& m) {
   nlohmann::json out = nlohmann::json::object();
-  for (const MaterialExtension& x : material_extensions()) {
+  for (const MaterialExtension& x : material_schema()) {
     if (!x.present(m)) continue;
     nlohmann::json o = nlohmann::json::object();
     for (const MaterialFactor& f : x.factors) o[f.json_name] = factor_json(m, f);
@@ -96,7 +96,7 @@ nlohmann::json material_extensions_json(const Material& m) {
 // the schema's summary phrase, and its note.
 std::string material_extensions_text(const Material& m) {
   std::string s;
-  for (const MaterialExtension& x : material_extensions()) {
+  for (const MaterialExtension& x : material_schema()) {
     if (!x.present(m)) continue;
     s += fmt::format(", {}", x.summary);
     for (const MaterialFactor& f : x.factors)
@@ -148,7 +148,8 @@ SceneSummary summarise(const std::string& input) {
 
 // A material's factors, alpha, sides, textures, KHR_materials_* extensions and users.
 nlohmann::json material_json(const Material& m, std::size_t uses) {
-  const glm::vec3 e = m.emissive_factor * m.emissive_strength;
+  // The core emissiveFactor; a strength that scales it is listed with the extensions.
+  const glm::vec3 e = m.emissive_factor;
   nlohmann::json mj = {{"name", m.name},
                        {"base_color",
                         {m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b,
@@ -212,7 +213,7 @@ nlohmann::json summary_json(const SceneSummary& s) {
 // One line per material: its factors, then what differs from the defaults.
 void print_material(const Material& m, std::size_t index, std::size_t uses) {
   const glm::vec4 c = m.base_color_factor;
-  const glm::vec3 e = m.emissive_factor * m.emissive_strength;
+  const glm::vec3 e = m.emissive_factor;  // its strength follows with the extensions
   std::string extra;
   if (m.alpha_mode == AlphaMode::kMask)
     extra += fmt::format(", mask {:g}", m.alpha_cutoff);

@@ -11,24 +11,20 @@ std::optional<Image> run_denoiser(const DenoiseInput& input, const std::atomic<b
   ProgressBar bar("denoise");
   auto update = bar.callback();
   DenoiseStats stats;
-  try {
-    Image out = denoise(
-        input, {},
-        [&](double fraction, const std::string& detail) {
-          update(fraction, detail);
-          return !(stop && stop->load());
-        },
-        &stats);
-    bar.finish(fmt::format("{}x{} in {:.2f} s", input.color[0].width, input.color[0].height,
-                           stats.seconds));
-    return out;
-  } catch (const Error&) {
-    if (stop && stop->load()) {
-      bar.finish("interrupted");
-      return std::nullopt;
-    }
-    throw;
+  Image out = denoise(
+      input, {},
+      [&](double fraction, const std::string& detail) {
+        update(fraction, detail);
+        return !(stop && stop->load());
+      },
+      &stats);
+  if (stats.interrupted) {
+    bar.finish("interrupted");
+    return std::nullopt;
   }
+  bar.finish(
+      fmt::format("{}x{} in {:.2f} s", input.color[0].width, input.color[0].height, stats.seconds));
+  return out;
 }
 
 std::vector<std::string> with_denoise_aovs(std::vector<std::string> aovs) {

@@ -112,7 +112,8 @@ def denoise(color, albedo, normal, depth, *, progress=None):
     (H, W, 3), the shading normal (H, W, 3, XYZ in [-1, 1]) and the distance (H, W). A
     render's EXR written with ``--aov denoise`` has them as layers color_a, color_b, ...
     (``read_exr_layers``; its normals are encoded 0.5 n + 0.5). Returns the denoised
-    (H, W, 3) image.
+    (H, W, 3) image; when ``progress`` returns False, what it has: the halves' mean,
+    undenoised.
     """
     halves = []
     for name, pair in (("color", color), ("albedo", albedo), ("normal", normal),
@@ -130,8 +131,10 @@ def bake(env="builtin", *, rotation=0.0, intensity=1.0, face_size=256, samples=1
     "specular" (a list of GGX-prefiltered levels, each (6, S, S, 4), faces +X -X +Y -Y +Z
     -Z), "irradiance" ((6, S, S, 4)), "sh" ((9, 3) irradiance SH), "lut" ((N, N, 4): A, B,
     A+B, E_avg over n.v and roughness), "sheen" and "sheen_lut", and "environment" (the
-    source as a cube with its mip chain). With ``out_dir`` it also writes the usual KTX2,
-    EXR, PNG and manifest files there.
+    source as a cube with its mip chain), and "interrupted". With ``out_dir`` it also
+    writes the usual KTX2, EXR, PNG and manifest files there. When ``progress`` returns
+    False the bake stops early and returns what it has: "interrupted" is True, the chains
+    hold the levels finished, the stages not reached are left out, and no files are written.
     """
     if out_dir is not None:
         out_dir = _os.fspath(out_dir)

@@ -29,7 +29,12 @@ class Scene:
     @property
     def source(self) -> str: ...
     @property
-    def materials(self) -> list[dict[str, Any]]: ...
+    def materials(self) -> list[dict[str, Any]]:
+        """One dict per material: name, base_color, metallic, roughness, emissive (the
+        factor times KHR_materials_emissive_strength), ior, double_sided, extensions (the
+        KHR_materials_* surface extensions it uses) and extension_factors ({extension:
+        {JSON property name: a number, or a tuple for a colour}})."""
+        ...
     @property
     def cameras(self) -> list[Camera]: ...
     @property

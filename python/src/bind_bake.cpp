@@ -76,7 +76,9 @@ void bind_bake(py::module_& m) {
         run_interruptible(
             [&](WorkControl& control) {
               result = bake_environment(e, o, control.callback());
-              if (dir) {
+              // Stopped early: what the bake has goes back to Python, but no partial set
+              // of files is written.
+              if (dir && !result.interrupted) {
                 BakeRecord record;
                 record.environment = &e;
                 record.options = o;
@@ -91,16 +93,22 @@ void bind_bake(py::module_& m) {
             progress);
 
         py::dict d;
+        // A bake stopped early (progress returned False) has the stages it finished:
+        // the chains' finished levels, and the other entries only once computed.
+        d["interrupted"] = result.interrupted;
         d["specular"] = cube_levels(result.specular);
-        d["irradiance"] = cube_level(result.irradiance.mips.at(0));
         d["environment"] = cube_levels(result.environment);
         d["sheen"] = cube_levels(result.sheen);
-        py::array_t<float> sh({9, 3});
-        for (int i = 0; i < 9; ++i)
-          for (int c = 0; c < 3; ++c) sh.mutable_at(i, c) = result.sh[std::size_t(i)][c];
-        d["sh"] = sh;
-        d["lut"] = array_from_image(std::move(result.lut));
-        d["sheen_lut"] = array_from_image(std::move(result.sheen_lut));
+        if (!result.irradiance.mips.empty()) {
+          d["irradiance"] = cube_level(result.irradiance.mips.at(0));
+          py::array_t<float> sh({9, 3});
+          for (int i = 0; i < 9; ++i)
+            for (int c = 0; c < 3; ++c) sh.mutable_at(i, c) = result.sh[std::size_t(i)][c];
+          d["sh"] = sh;
+        }
+        if (!result.lut.data.empty()) d["lut"] = array_from_image(std::move(result.lut));
+        if (!result.sheen_lut.data.empty())
+          d["sheen_lut"] = array_from_image(std::move(result.sheen_lut));
         return d;
       },
       py::arg("env"), py::arg("rotation"), py::arg("intensity"), py::arg("face_size"),

@@ -169,8 +169,12 @@ py::object render_path_tracer(const Scene& scene, const std::optional<Environmen
       [&](WorkControl& control) {
         s.stop = &control.stop;
         result = render_path(scene, env ? &*env : nullptr, view.camera, s, control.callback());
-        if (denoising && !control.stop.load())
-          denoised = denoise(denoise_input(result->film), {}, control.callback());
+        if (denoising && !control.stop.load()) {
+          // Stopped while denoising: the raw image, as a stopped render returns its samples.
+          DenoiseStats stats;
+          denoised = denoise(denoise_input(result->film), {}, control.callback(), &stats);
+          if (stats.interrupted) denoised.reset();
+        }
       },
       progress);
 

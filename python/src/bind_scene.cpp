@@ -11,6 +11,7 @@
 #include "interrupt.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/material_schema.h"
 #include "pbrkit/scene/scene.h"
 #include "scene_handle.h"
 
@@ -41,18 +42,24 @@ py::dict material_dict(const Material& m) {
   d["emissive"] = vec3(m.emissive_factor * m.emissive_strength);
   d["ior"] = m.ior;
   d["double_sided"] = m.double_sided;
+  // The surface extensions the material uses (the material schema's, less
+  // KHR_materials_emissive_strength, which "emissive" already includes), and each one's
+  // factors under its README's property names: a number, or a tuple for a colour.
   py::list ext;
-  if (m.specular) ext.append("KHR_materials_specular");
-  if (m.clearcoat) ext.append("KHR_materials_clearcoat");
-  if (m.sheen) ext.append("KHR_materials_sheen");
-  if (m.anisotropy) ext.append("KHR_materials_anisotropy");
-  if (m.iridescence) ext.append("KHR_materials_iridescence");
-  if (m.unlit) ext.append("KHR_materials_unlit");
-  if (m.transmission) ext.append("KHR_materials_transmission");
-  if (m.volume) ext.append("KHR_materials_volume");
-  if (m.dispersion) ext.append("KHR_materials_dispersion");
-  if (m.diffuse_transmission) ext.append("KHR_materials_diffuse_transmission");
+  py::dict values;
+  for (const MaterialExtension& x : material_extensions()) {
+    if (!x.present(m)) continue;
+    ext.append(x.name);
+    py::dict factors;
+    for (const MaterialFactor& f : x.factors) {
+      const float* v = f.read(m);
+      factors[f.json_name] =
+          f.components == 3 ? py::object(vec3({v[0], v[1], v[2]})) : py::object(py::float_(v[0]));
+    }
+    values[x.name] = factors;
+  }
   d["extensions"] = ext;
+  d["extension_factors"] = values;
   return d;
 }
 
@@ -117,13 +124,18 @@ void bind_scene(py::module_& m) {
                           "A loaded scene (pbrkit.load). Read-only summary: materials, "
                           "cameras, lights, bounds and counts.")
       .def_property_readonly("source", [](const SceneHandle& s) { return s.scene->source; })
-      .def_property_readonly("materials",
-                             [](const SceneHandle& s) {
-                               py::list l;
-                               for (const Material& mat : s.scene->materials)
-                                 l.append(material_dict(mat));
-                               return l;
-                             })
+      .def_property_readonly(
+          "materials",
+          [](const SceneHandle& s) {
+            py::list l;
+            for (const Material& mat : s.scene->materials) l.append(material_dict(mat));
+            return l;
+          },
+          "One dict per material: name, base_color, metallic, roughness, "
+          "emissive (the factor times KHR_materials_emissive_strength), ior, "
+          "double_sided, extensions (the KHR_materials_* surface extensions "
+          "it uses) and extension_factors ({extension: {JSON property name: "
+          "a number, or a tuple for a colour}}).")
       .def_property_readonly("cameras", [](const SceneHandle& s) { return s.scene->cameras; })
       .def_property_readonly("lights",
                              [](const SceneHandle& s) {
@@ -156,8 +168,12 @@ void bind_scene(py::module_& m) {
       [](const std::string& path_or_name) {
         SceneHandle handle;
         run_interruptible(
-            [&](WorkControl&) {
-              handle.scene = std::make_shared<const Scene>(load_scene(path_or_name));
+            [&](WorkControl& control) {
+              // Ctrl-C stops a long node walk (the partial scene is dropped: the
+              // KeyboardInterrupt is raised once the load returns).
+              LoadOptions options;
+              options.progress = control.callback();
+              handle.scene = std::make_shared<const Scene>(load_scene(path_or_name, options));
             },
             py::none());
         return handle;

@@ -88,6 +88,36 @@ def test_bake_of_a_constant_environment_is_constant_and_writes_its_files(tmp_pat
     assert lut.shape == (16, 16, 4) and np.all(lut[..., 2] <= 1.0 + 1e-4)
     files = {p.name for p in (tmp_path / "bake").iterdir()}
     assert "manifest.json" in files and any(f.endswith(".ktx2") for f in files)
+    assert maps["interrupted"] is False
+
+
+# The progress callable runs on the waiting thread every 50 ms: the work below takes far
+# longer, so its first False stops it midway.
+def test_a_bake_stopped_by_progress_returns_the_stages_done_and_writes_nothing(tmp_path):
+    rng = np.random.default_rng(1)
+    env = rng.random((256, 512, 3), dtype=np.float32)
+    maps = pbrkit.bake(env, face_size=256, samples=4096, out_dir=tmp_path / "bake",
+                       progress=lambda f, d: False)
+    assert maps["interrupted"] is True
+    assert maps["environment"][0].shape == (6, 256, 256, 4)
+    # Stopped after the cube or in the specular stage (seconds of work): the specular
+    # levels done, if any, and no later stage.
+    for m, level in enumerate(maps["specular"]):
+        assert level.shape == (6, 256 >> m, 256 >> m, 4)
+    assert "irradiance" not in maps and "lut" not in maps and maps["sheen"] == []
+    assert not (tmp_path / "bake").exists() or not any((tmp_path / "bake").iterdir())
+
+
+def test_a_denoise_stopped_by_progress_returns_the_undenoised_mean():
+    rng = np.random.default_rng(2)
+    size = (512, 512)
+    color = tuple(rng.random(size + (3,), dtype=np.float32) for _ in range(2))
+    albedo = tuple(np.full(size + (3,), 0.5, np.float32) for _ in range(2))
+    normal = tuple(np.dstack([np.zeros(size), np.zeros(size), np.ones(size)]).astype(np.float32)
+                   for _ in range(2))
+    depth = tuple(np.full(size, 2.0, np.float32) for _ in range(2))
+    out = pbrkit.denoise(color, albedo, normal, depth, progress=lambda f, d: False)
+    assert np.array_equal(out, np.float32(0.5) * (color[0] + color[1]))
 
 
 def test_ggx_d_integrates_to_one_over_the_projected_hemisphere():

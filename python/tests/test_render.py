@@ -134,3 +134,19 @@ def test_scene_summary():
     lo, hi = s.bounds
     assert all(a < b for a, b in zip(lo, hi))
     assert "cornell" in pbrkit.builtin_scenes()
+
+
+def test_material_extension_factors():
+    # The built-in sheen scene: its first row raises a white sheen at roughness 0.5
+    # (builtin_scenes.cpp), its second row the sheen roughness under a white sheen.
+    s = pbrkit.load("sheen")
+    sheen = [m for m in s.materials if "KHR_materials_sheen" in m["extensions"]]
+    assert sheen
+    factors = [m["extension_factors"]["KHR_materials_sheen"] for m in sheen]
+    assert all(set(f) == {"sheenColorFactor", "sheenRoughnessFactor"} for f in factors)
+    assert any(f["sheenRoughnessFactor"] == 0.5 and f["sheenColorFactor"][0] < 1.0 for f in factors)
+    assert any(f["sheenColorFactor"] == (1.0, 1.0, 1.0) and f["sheenRoughnessFactor"] != 0.5
+               for f in factors)
+    # A material without extensions lists none.
+    plain = pbrkit.load("spheres").materials[0]
+    assert plain["extensions"] == [] and plain["extension_factors"] == {}

@@ -335,16 +335,45 @@ TEST(Denoiser, HugeValuesGiveFiniteOutput) {
   for (float v : out.data) ASSERT_TRUE(std::isfinite(v));
 }
 
-TEST(Denoiser, ProgressCanStopIt) {
-  const DenoiseInput in =
-      synthetic([](int, int) { return 0.5f; }, [](int, int) { return 0.5f; }, 0.1f);
-  EXPECT_THROW(denoise(in, {}, [](double, const std::string&) { return false; }), Error);
+// util/progress.h's rule: a callback that returns false stops the work, which returns
+// what it has (the halves' mean, undenoised) and says so; it never throws for it.
+TEST(Denoiser, ProgressCanStopItAndGetsTheUndenoisedMean) {
+  const DenoiseInput in = synthetic([](int x, int) { return x < 32 ? 0.25f : 1.0f; },
+                                    [](int, int) { return 0.5f; }, 0.1f);
+  Image mean(in.color[0].width, in.color[0].height, 3);
+  for (std::size_t i = 0; i < mean.data.size(); ++i)
+    mean.data[i] = 0.5f * (in.color[0].data[i] + in.color[1].data[i]);
+  // Stopped at the first report (after the variance) and at a later one (inside the cross
+  // filter, after its first strip).
+  for (const double stop_after : {0.0, 0.1}) {
+    SCOPED_TRACE(stop_after);
+    DenoiseStats stats;
+    int calls = 0;
+    Image out;
+    ASSERT_NO_THROW(out = denoise(
+                        in, {},
+                        [&](double f, const std::string&) {
+                          ++calls;
+                          return f <= stop_after;
+                        },
+                        &stats));
+    EXPECT_TRUE(stats.interrupted);
+    EXPECT_GE(calls, 1);
+    ASSERT_EQ(out.data.size(), mean.data.size());
+    EXPECT_EQ(out.data, mean.data);
+  }
+  DenoiseStats stats;
   double last = 0.0;
-  denoise(in, {}, [&](double f, const std::string&) {
-    last = f;
-    return true;
-  });
+  const Image out = denoise(
+      in, {},
+      [&](double f, const std::string&) {
+        last = f;
+        return true;
+      },
+      &stats);
   EXPECT_EQ(last, 1.0);
+  EXPECT_FALSE(stats.interrupted);
+  EXPECT_NE(out.data, mean.data);  // denoised: the noise of the halves' mean is gone
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "pbrkit/denoise/energy.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/image/environment.h"
+#include "pbrkit/image/image_io.h"
 #include "pbrkit/pt/camera_rays.h"
 #include "pbrkit/pt/geometry.h"
 #include "pbrkit/pt/path_tracer.h"
@@ -104,6 +105,29 @@ TEST(DenoiserRendered, HeavyTailedSpheresKeepEveryRegionsEnergy) {
       EXPECT_LT(std::abs(r.z), 2.0)
           << (regions == &report.blocks ? "block " : "object ") << r.id << " (" << r.pixels
           << " px): raw " << r.raw << ", denoised " << r.denoised << ", standard error " << r.error;
+}
+
+// An EXR without the half buffers: a typed error that names the file and each missing
+// layer, and no command-line flag (the library does not know them; `pbrkit denoise` adds
+// its own hint).
+TEST(DenoiserInputs, MissingLayersAreATypedErrorNamingThemAndNoFlag) {
+  const std::filesystem::path path = test::scratch_dir() / "colour_only.exr";
+  const Image grey(4, 4, 3, 0.5f);
+  write_exr_layers(path, {{"color_a", {"R", "G", "B"}, &grey, ExrPixelType::kFloat},
+                          {"color_b", {"R", "G", "B"}, &grey, ExrPixelType::kFloat}});
+  try {
+    read_denoise_input(path);
+    FAIL() << "read";
+  } catch (const MissingDenoiseLayers& e) {
+    EXPECT_EQ(e.layers, (std::vector<std::string>{"albedo_a", "albedo_b", "normal_a", "normal_b",
+                                                  "depth_a", "depth_b"}));
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path.string() + ": missing the layers the denoiser needs: albedo_a, "
+                                        "albedo_b, normal_a, normal_b, depth_a, depth_b"),
+              std::string::npos)
+        << what;
+    EXPECT_EQ(what.find("--"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -268,6 +268,42 @@ TEST(GpuInstancing, ManyNodesSharingAMeshLoadInSeconds) {
   EXPECT_LT(elapsed, 30.0);
 }
 
+// util/progress.h's rule for the load: a progress callback that returns false stops the
+// node walk, and the load returns the nodes set up so far, marked interrupted.
+TEST(GpuInstancing, AStoppedLoadReturnsTheNodesSetUpSoFar) {
+  constexpr int count = 3 * 4096;
+  test::GltfBuilder b;
+  const int mesh = b.mesh({b.primitive({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2})});
+  json nodes = json::array();
+  json roots = json::array();
+  for (int i = 0; i < count; ++i) {
+    nodes.push_back({{"mesh", mesh}, {"translation", {i, 0, 0}}});
+    roots.push_back(i);
+  }
+  b.gltf["nodes"] = std::move(nodes);
+  b.gltf["scenes"] = {{{"nodes", std::move(roots)}}};
+  b.gltf["scene"] = 0;
+  const auto path = b.write("stopped_nodes.glb");
+  // Stopped at the report after the first 4096 nodes: those, and no more.
+  LoadOptions options;
+  options.progress = [](double fraction, const std::string&) { return fraction <= 0.5; };
+  const Scene stopped = load_scene(path.string(), options);
+  EXPECT_TRUE(stopped.interrupted);
+  EXPECT_EQ(stopped.instances.size(), 4096u);
+  ASSERT_FALSE(stopped.warnings.empty());
+  EXPECT_NE(stopped.warnings.back().find("4096 of 12288 nodes"), std::string::npos)
+      << stopped.warnings.back();
+  // Stopped at the first report: no node.
+  options.progress = [](double, const std::string&) { return false; };
+  const Scene none = load_scene(path.string(), options);
+  EXPECT_TRUE(none.interrupted);
+  EXPECT_TRUE(none.instances.empty());
+  // Not stopped: every node.
+  const Scene all = load_scene(path.string());
+  EXPECT_FALSE(all.interrupted);
+  EXPECT_EQ(all.instances.size(), std::size_t(count));
+}
+
 // The JSON chunk of a GLB (glTF 2.0 section 4.4).
 json glb_json(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -57,6 +57,7 @@ struct ReadmeFactor {
   float min, max;
 };
 const ReadmeFactor kReadme[] = {
+    {"KHR_materials_emissive_strength", "emissiveStrength", 1, 1.0f, 0.0f, kInf},  // < 0: error
     {"KHR_materials_ior", "ior", 1, 1.5f, 1.0f, kInf},  // and 0, the special case
     {"KHR_materials_specular", "specularFactor", 1, 1.0f, 0.0f, 1.0f},
     {"KHR_materials_specular", "specularColorFactor", 3, 1.0f, 0.0f, kInf},
@@ -99,7 +100,7 @@ Found find(const ReadmeFactor& r) {
 
 TEST(MaterialSchema, DefaultsAndRangesAreTheReadmes) {
   std::size_t factors = 0;
-  for (const MaterialExtension& x : material_extensions()) factors += x.factors.size();
+  for (const MaterialExtension& x : material_schema()) factors += x.factors.size();
   EXPECT_EQ(factors, std::size(kReadme));  // no factor of the schema is missing below
   for (const ReadmeFactor& r : kReadme) {
     SCOPED_TRACE(std::string(r.extension) + "." + r.name);
@@ -115,7 +116,7 @@ TEST(MaterialSchema, DefaultsAndRangesAreTheReadmes) {
 
 TEST(MaterialSchema, TextureSlotsAreEachListedOnceWithTheReadmesColourSpace) {
   std::vector<int> seen(std::size_t(kTextureSlotCount), 0);
-  for (const MaterialExtension& x : material_extensions())
+  for (const MaterialExtension& x : material_schema())
     for (const MaterialTexture& t : x.textures) {
       SCOPED_TRACE(t.json_name);
       ++seen[std::size_t(t.slot)];
@@ -139,16 +140,23 @@ TEST(MaterialSchema, TextureSlotsAreEachListedOnceWithTheReadmesColourSpace) {
 TEST(MaterialSchema, CoversEveryMaterialExtensionTheLoaderAccepts) {
   for (const std::string& name : supported_gltf_extensions()) {
     if (name.rfind("KHR_materials_", 0) != 0) continue;
-    // emissive_strength scales the core emissiveFactor; it is read and written with it.
-    if (name == "KHR_materials_emissive_strength") continue;
     EXPECT_NE(find_material_extension(name), nullptr) << name;
   }
+  // The renderers' extensions are the schema less the ones that scale a core value.
+  const auto schema = material_schema();
+  EXPECT_EQ(std::size_t(std::count_if(schema.begin(), schema.end(),
+                                      [](const auto& x) { return !x.scales_core; })),
+            material_extensions().size());
+  for (const MaterialExtension& x : material_extensions()) EXPECT_FALSE(x.scales_core) << x.name;
+  EXPECT_TRUE(find_material_extension("KHR_materials_emissive_strength")->scales_core);
   // And each one the schema lists loads when a file requires it, and is present.
-  for (const MaterialExtension& x : material_extensions()) {
+  for (const MaterialExtension& x : material_schema()) {
     SCOPED_TRACE(x.name);
     test::GltfBuilder b;
     json ext = json::object();
-    if (std::string(x.name) == "KHR_materials_ior") ext["ior"] = 1.25;  // 1.5 is "absent"
+    // Neither has an optional: 1.5 and 1 are "absent".
+    if (std::string(x.name) == "KHR_materials_ior") ext["ior"] = 1.25;
+    if (std::string(x.name) == "KHR_materials_emissive_strength") ext["emissiveStrength"] = 2.5;
     b.gltf["materials"] = {{{"extensions", {{x.name, ext}}}}};
     b.gltf["extensionsUsed"] = {x.name};
     b.gltf["extensionsRequired"] = {x.name};
@@ -180,10 +188,12 @@ Scene scene_with_every_value() {
   s.source = "test";
   Material m;
   m.name = "every_value";
+  // A strength needs a factor to scale (the validator warns of one without).
+  m.emissive_factor = glm::vec3(0.5f, 0.25f, 1.0f);
   Material unlit;
   unlit.name = "unlit";
   unlit.unlit = true;
-  for (const MaterialExtension& x : material_extensions()) {
+  for (const MaterialExtension& x : material_schema()) {
     if (&x != find_material_extension("KHR_materials_unlit")) x.add(m);
     // Unlit excludes the others: the writer must leave them out.
     x.add(unlit);
@@ -227,7 +237,7 @@ TEST(MaterialSchema, EveryFactorAndTextureRoundTripsThroughTheWriterAndTheValida
   ASSERT_EQ(loaded.materials.size(), 2u);
   const Material& a = original.materials[0];
   const Material& b = loaded.materials[0];
-  for (const MaterialExtension& x : material_extensions()) {
+  for (const MaterialExtension& x : material_schema()) {
     SCOPED_TRACE(x.name);
     EXPECT_EQ(x.present(b), x.present(a));
     EXPECT_EQ(x.present(loaded.materials[1]), std::string(x.name) == "KHR_materials_unlit");
@@ -261,18 +271,20 @@ TEST(MaterialSchema, TheWriterLeavesOutEveryDefault) {
   const std::string name = m.name;
   m = Material{};
   m.name = name;
-  for (const MaterialExtension& x : material_extensions())
+  for (const MaterialExtension& x : material_schema())
     if (std::string(x.name) != "KHR_materials_unlit") x.add(m);
   const fs::path path = test::scratch_dir() / "defaults.glb";
   write_glb(s, path);
   EXPECT_EQ(test::validate_gltf(path), "");
   const json g = written_json(path);
   const json& written = g["materials"][0]["extensions"];
-  for (const MaterialExtension& x : material_extensions()) {
+  for (const MaterialExtension& x : material_schema()) {
     SCOPED_TRACE(x.name);
     const std::string n = x.name;
-    if (n == "KHR_materials_unlit" || n == "KHR_materials_ior") {
-      // Unlit is another material's; an ior of 1.5 is the absence of KHR_materials_ior.
+    if (n == "KHR_materials_unlit" || n == "KHR_materials_ior" ||
+        n == "KHR_materials_emissive_strength") {
+      // Unlit is another material's; an ior of 1.5 and a strength of 1 are the absence of
+      // their extensions.
       EXPECT_FALSE(written.contains(n));
       continue;
     }
@@ -285,7 +297,7 @@ TEST(MaterialSchema, TheWriterLeavesOutEveryDefault) {
   const json every = written_json(all)["materials"][0]["extensions"];
   for (const ReadmeFactor& r : kReadme)
     EXPECT_TRUE(every[r.extension].contains(r.name)) << r.extension << "." << r.name;
-  for (const MaterialExtension& x : material_extensions())
+  for (const MaterialExtension& x : material_schema())
     for (const MaterialTexture& t : x.textures)
       EXPECT_TRUE(every[x.name].contains(t.json_name)) << x.name << "." << t.json_name;
 }
@@ -294,9 +306,10 @@ TEST(MaterialSchema, OutOfRangeValuesAreClampedWithAWarningNamingTheJsonPath) {
   for (const ReadmeFactor& r : kReadme) {
     const Found f = find(r);
     const std::string path = std::string("materials[0].extensions.") + r.extension + "." + r.name;
-    // Below the minimum and above the maximum, where there is one.
+    // Below the minimum and above the maximum, where there is one (a negative strength is
+    // refused: the next test).
     for (const float bound : {r.min, r.max}) {
-      if (!std::isfinite(bound)) continue;
+      if (!std::isfinite(bound) || std::string(r.name) == "emissiveStrength") continue;
       const float bad = bound == r.min ? bound - 0.5f : bound + 0.5f;
       SCOPED_TRACE(path + " = " + std::to_string(bad));
       json value = bad;
@@ -327,6 +340,59 @@ TEST(MaterialSchema, OutOfRangeValuesAreClampedWithAWarningNamingTheJsonPath) {
       EXPECT_NE(std::string(e.what()).find(path + ":"), std::string::npos) << e.what();
     }
   }
+}
+
+TEST(MaterialSchema, ANegativeEmissiveStrengthIsAnErrorNamingTheJsonPath) {
+  test::GltfBuilder b;
+  b.gltf["materials"] = {
+      {{"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", -2.0}}}}}}};
+  b.node({{"mesh", b.mesh({b.primitive({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, 0)})}});
+  try {
+    CaptureLog log;
+    load_scene(b.write("negative_strength.glb").string());
+    ADD_FAILURE() << "loaded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "materials[0].extensions.KHR_materials_emissive_strength.emissiveStrength: "
+                  "must not be negative"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// KHR_materials_unlit excludes KHR_materials_emissive_strength as it does the others (the
+// validator reports the two together): an unlit material is written without its strength,
+// and a file that has both is read with a warning that says so.
+TEST(MaterialSchema, UnlitExcludesTheEmissionStrengthToo) {
+  Scene s;
+  s.source = "test";
+  Material m;
+  m.name = "glow";
+  m.unlit = true;
+  m.emissive_factor = glm::vec3(0.5f, 0.25f, 1.0f);
+  m.emissive_strength = 6.0f;
+  s.materials = {m};
+  add_mesh_instance(s, make_uv_sphere(0.5f, 8, 4), 0);
+  const fs::path path = test::scratch_dir() / "unlit_glow.glb";
+  write_glb(s, path);
+  EXPECT_EQ(test::validate_gltf(path), "");
+  EXPECT_EQ(written_json(path)["materials"][0]["extensions"],
+            json({{"KHR_materials_unlit", json::object()}}));
+
+  test::GltfBuilder b;
+  b.gltf["materials"] = {{{"extensions",
+                           {{"KHR_materials_unlit", json::object()},
+                            {"KHR_materials_emissive_strength", {{"emissiveStrength", 4.0}}}}}}};
+  b.node({{"mesh", b.mesh({b.primitive({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, 0)})}});
+  CaptureLog log;
+  const Scene both = load_scene(b.write("unlit_and_strength.glb").string());
+  ASSERT_EQ(both.materials.size(), 1u);
+  EXPECT_EQ(both.materials[0].emissive_strength, 4.0f);  // kept, as the file has it
+  ASSERT_EQ(both.warnings.size(), 1u);
+  EXPECT_NE(both.warnings[0].find("KHR_materials_unlit must not be combined with "
+                                  "KHR_materials_emissive_strength"),
+            std::string::npos)
+      << both.warnings[0];
 }
 
 }  // namespace

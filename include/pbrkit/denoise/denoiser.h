@@ -131,6 +131,9 @@ struct DenoiseStats {
   double seconds = 0.0;
   std::vector<double> candidate_share;  ///< fraction of the image each candidate won
   int outliers = 0;                     ///< half-buffer pixels the firefly treatment changed
+  /// The progress callback stopped it: the image returned is the input's mean (the two
+  /// halves' average, the undenoised image), and candidate_share is empty.
+  bool interrupted = false;
 };
 
 /// Checks `input`: eight images present, one size, the channel counts above, every value
@@ -142,8 +145,10 @@ void validate_denoise_input(const DenoiseInput& input);
 std::vector<std::string> denoise_layer_names();
 
 /// Denoises `input` (validated first). `progress` gets the fraction done; when it
-/// returns false the work stops and pbrkit::Error("denoising was interrupted") is thrown.
-/// Returns the denoised RGB image (every value finite and >= the smallest input value).
+/// returns false the work stops early and returns what it has (util/progress.h): the
+/// input's mean, undenoised, with DenoiseStats::interrupted set (pass `stats` to tell the
+/// two apart). Returns the denoised RGB image (every value finite and >= the smallest
+/// input value).
 Image denoise(const DenoiseInput& input, const DenoiseOptions& options = {},
               const ProgressCallback& progress = {}, DenoiseStats* stats = nullptr);
 

@@ -89,11 +89,17 @@ struct BakeResult {
   /// (ibl/sheen_lut.h), lut_size x lut_size.
   Image sheen_lut;
   BakeTimings timings;
+  /// The progress callback stopped the bake (util/progress.h): the stages finished before
+  /// the stop are filled (of the specular and sheen chains, the levels finished), the
+  /// others are empty.
+  bool interrupted = false;
 };
 
 /// Runs every stage on `env` (its rotation and intensity applied) with `options` (checked
 /// first: check_bake_options()) and times each. `progress` receives the fraction done and
-/// the stage's name; it may be empty. Throws pbrkit::Error for bad options or an empty map.
+/// the stage's name; it may be empty; when it returns false the bake stops early and
+/// returns what it has (BakeResult::interrupted). Throws pbrkit::Error for bad options or
+/// an empty map.
 BakeResult bake_environment(const Environment& env, const BakeOptions& options,
                             const ProgressCallback& progress = {});
 

@@ -20,7 +20,8 @@ struct SceneLimits {
 struct LoadOptions {
   SceneLimits limits;
   /// Called as a glTF file's nodes and instances are set up (a file of 10^5 nodes or 10^6
-  /// instances takes seconds); its return value is ignored. None: no reports.
+  /// instances takes seconds). When it returns false the load stops early and returns the
+  /// nodes set up so far (Scene::interrupted, and a warning). None: no reports.
   ProgressCallback progress;
 };
 

@@ -15,6 +15,14 @@
 
 namespace pbrkit {
 
+/// How an interactive control edits a factor (the viewer's override panel): a slider over
+/// [min, max] (inside the valid range, and finite where that is not) starting at `start`, a
+/// value that shows the extension's effect (its default may show none: a sheen colour of 0).
+struct FactorControl {
+  float min, max, start;
+  bool logarithmic = false;  ///< a slider over several decades
+};
+
 /// One number or RGB colour of an extension.
 struct MaterialFactor {
   const char* json_name;  ///< the property's name in the extension object
@@ -22,12 +30,16 @@ struct MaterialFactor {
   const char* summary;
   int components;  ///< 1: a number; 3: an RGB colour (linear), a JSON array of 3
   float min, max;  ///< the valid range (of each component); values outside are clamped
+  FactorControl control;
   /// The value's components in `m`, whose extension is present.
   float* (*values)(Material& m);
   /// For a value the range cannot describe (null for none): replaces an invalid `value`
   /// by the one to use and returns why it is invalid (the reader's warning), or returns
   /// null when `value` is valid. The range is then not applied.
   const char* (*check)(float& value) = nullptr;
+  /// Whether a value `check` rejects makes the file an error (the reason is the message)
+  /// rather than a warning: for a value that no replacement would make mean what was meant.
+  bool rejected_is_error = false;
 
   /// The components in a const material (which must hold the extension).
   const float* read(const Material& m) const { return values(const_cast<Material&>(m)); }
@@ -59,13 +71,22 @@ struct MaterialExtension {
   /// It excludes every other extension (KHR_materials_unlit: each other README lists it
   /// among its exclusions): the writer writes it alone, the reader warns of the others.
   bool exclusive = false;
+  /// It scales a value of the core material rather than adding a surface input
+  /// (KHR_materials_emissive_strength scales emissiveFactor): the renderers read the
+  /// product, not the extension (material_extensions() leaves it out).
+  bool scales_core = false;
 };
 
-/// Every KHR_materials_* extension the reader accepts but KHR_materials_emissive_strength,
-/// which scales the core emissiveFactor and is read and written with it.
+/// Every KHR_materials_* extension the reader accepts, in the order the reader, the writer
+/// and `pbrkit info` list them: the ones that scale a core value first, then
+/// material_extensions().
+std::span<const MaterialExtension> material_schema();
+
+/// The extensions that add inputs to the surface (material_schema() less the ones that
+/// scale a core value): what the renderers read per extension.
 std::span<const MaterialExtension> material_extensions();
 
-/// The extension `name` (nullptr when it is not in the schema).
+/// The extension `name` of material_schema() (nullptr when it is not in the schema).
 const MaterialExtension* find_material_extension(const std::string& name);
 
 /// The default of `factor`'s component `c` (the value of a freshly added `extension`).

@@ -327,6 +327,9 @@ struct Scene {
   std::vector<Camera> cameras;
   std::vector<Light> lights;
   std::vector<std::string> warnings;
+  /// LoadOptions::progress stopped the load (util/progress.h): the scene holds the nodes
+  /// set up until then only.
+  bool interrupted = false;
   // What the source file declared (empty for built-in scenes), for `pbrkit info`.
   std::size_t node_count = 0;
   std::vector<std::string> extensions_used;

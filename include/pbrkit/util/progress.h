@@ -13,7 +13,19 @@
 namespace pbrkit {
 
 /// fraction in [0,1]; `detail` is free text such as "1.9 M samples*px/s, noise 0.012".
-/// Return false to ask the computation to stop early (it then returns what it has).
+/// Return false to ask the computation to stop early.
+///
+/// The one rule of every library function that takes a ProgressCallback: asked to stop, it
+/// stops at its next report and returns normally with what it has (nothing is lost: a
+/// caller can write it), never throwing for the stop, and its result says it was stopped
+/// where a partial result could pass for a complete one:
+/// - render_path: the samples taken (PathTracerStats::stopped, ::complete);
+/// - denoise: the input's mean, undenoised (DenoiseStats::interrupted);
+/// - bake_environment: the stages finished, of the specular and sheen chains the levels
+///   finished (BakeResult::interrupted);
+/// - load_scene (LoadOptions::progress): the nodes set up so far (Scene::interrupted).
+/// ProgressiveRender (the viewer's) is stopped through its stop() and keeps its last
+/// snapshot, the same rule. Bad input is still an Error, stopped or not.
 using ProgressCallback = std::function<bool(double fraction, const std::string& detail)>;
 
 /// Time left from the recent rate of progress, not the average since the start: work

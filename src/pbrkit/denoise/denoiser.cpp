@@ -123,7 +123,20 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
       options.relative_variance
           ? half_variance_relative(color[0], color[1], options.variance_radius)
           : half_variance(color[0], color[1], options.variance_radius);
-  if (!report(0.1)) fail("denoising was interrupted");
+  // Stopped (progress.h's rule): what it has is the input's mean, the undenoised image.
+  auto interrupted = [&] {
+    if (stats) {
+      stats->seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      stats->outliers = outliers;
+      stats->interrupted = true;
+    }
+    Image mean(w, h, 3);
+    for (std::size_t i = 0; i < mean.data.size(); ++i)
+      mean.data[i] = 0.5f * (input.color[0].data[i] + input.color[1].data[i]);
+    return mean;
+  };
+  if (!report(0.1)) return interrupted();
 
   CrossFilterInput cf;
   cf.color[0] = &color[0];
@@ -143,6 +156,7 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   Candidates candidates = cross_filter(
       cf, options,
       [&] { return report(0.1 + 0.85 * double(++done) / double(std::max(1, strips))); }, &strips);
+  if (!keep_going) return interrupted();
   // The fits (and, with zero_order_energy_radius > 0, the other zero-order candidates)
   // keep the energy of the first zero-order candidate (the 7x7 weighted mean), each half
   // against its own (first_order.cpp, docs/DENOISER.md "Energy"); the raw half when there

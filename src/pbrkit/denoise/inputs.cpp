@@ -1,5 +1,7 @@
 #include "pbrkit/denoise/inputs.h"
 
+#include <fmt/ranges.h>
+
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/util/error.h"
 
@@ -34,17 +36,16 @@ DenoiseInput read_denoise_input(const std::filesystem::path& path) {
   // The normals are stored encoded as 0.5 n + 0.5 (write_render_exr).
   for (Image& n : in.normal)
     for (float& v : n.data) v = 2.0f * v - 1.0f;
-  std::string missing;
+  std::vector<std::string> missing;
   const Image* images[8] = {&in.color[0],  &in.color[1],  &in.albedo[0], &in.albedo[1],
                             &in.normal[0], &in.normal[1], &in.depth[0],  &in.depth[1]};
   const std::vector<std::string> names = denoise_layer_names();
   for (int i = 0; i < 8; ++i)
-    if (images[i]->empty()) missing += (missing.empty() ? "" : ", ") + names[std::size_t(i)];
+    if (images[i]->empty()) missing.push_back(names[std::size_t(i)]);
   if (!missing.empty())
-    fail(
-        "{}: missing the layers the denoiser needs: {} (render with '--aov denoise' to write "
-        "them)",
-        path.string(), missing);
+    throw MissingDenoiseLayers(fmt::format("{}: missing the layers the denoiser needs: {}",
+                                           path.string(), fmt::join(missing, ", ")),
+                               missing);
   try {
     validate_denoise_input(in);
   } catch (const Error& e) {

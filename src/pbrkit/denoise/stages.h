@@ -108,7 +108,8 @@ void restore_energy(Channels& fit, const Channels& reference, int radius, float 
 
 /// Filters each half with weights from the other half's colour and from the features
 /// (min of the two, Rousselle et al. 2013, eq. 10), once per candidate. `tick` is called
-/// once per finished strip of rows and returns false to stop.
+/// once per finished strip of rows and returns false to stop: the strips not started are
+/// then left unfiltered, and the caller, which knows it stopped, discards the result.
 Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& options,
                         const std::function<bool()>& tick, int* strips);
 

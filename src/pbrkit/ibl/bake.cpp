@@ -90,24 +90,37 @@ BakeResult bake_environment(const Environment& env, const BakeOptions& options,
   check_bake_options(options);
   if (env.map.empty()) fail("{}: the environment map is empty", env.source);
   BakeResult result;
+  // Stopped by `progress` (util/progress.h): the stages done are returned, the rest left
+  // empty, and `interrupted` set.
+  bool stopped = false;
+  auto report = [&](double f, const std::string& detail) {
+    if (progress && !stopped && !progress(f, detail)) stopped = true;
+    return !stopped;
+  };
   // Progress weights: the stages' typical share of the run time.
   auto stage = [&](double begin, double end) -> ProgressCallback {
     if (!progress) return {};
-    return [&progress, begin, end](double f, const std::string& detail) {
-      return progress(begin + (end - begin) * f, detail);
+    return [&report, begin, end](double f, const std::string& detail) {
+      return report(begin + (end - begin) * f, detail);
     };
   };
-
   const StageTimer all;
+  auto stop_here = [&] {
+    all.stop(result.timings.total_s, result.timings.total_cpu_s);
+    result.interrupted = true;
+    return result;
+  };
+
   StageTimer t;
   result.environment = resample_to_cube(env, options.face_size);
   build_mip_chain(result.environment, 1);
   t.stop(result.timings.cube_s, result.timings.cube_cpu_s);
-  if (progress) progress(0.1, "cube");
+  if (!report(0.1, "cube")) return stop_here();
 
   t = StageTimer();
   result.specular = prefilter_specular(result.environment, options, stage(0.1, 0.85));
   t.stop(result.timings.specular_s, result.timings.specular_cpu_s);
+  if (stopped) return stop_here();
 
   t = StageTimer();
   result.sh = project_sh_irradiance(result.environment, 0);
@@ -116,7 +129,7 @@ BakeResult bake_environment(const Environment& env, const BakeOptions& options,
   t = StageTimer();
   result.irradiance = irradiance_cube(result.environment, options.irradiance_size);
   t.stop(result.timings.irradiance_s, result.timings.irradiance_cpu_s);
-  if (progress) progress(0.9, "irradiance");
+  if (!report(0.9, "irradiance")) return stop_here();
 
   t = StageTimer();
   result.lut = compute_brdf_lut(options.model, options.lut_size);
@@ -124,9 +137,10 @@ BakeResult bake_environment(const Environment& env, const BakeOptions& options,
 
   t = StageTimer();
   result.sheen = prefilter_sheen(result.environment, options, stage(0.9, 1.0));
+  if (stopped) return stop_here();
   result.sheen_lut = compute_sheen_lut(options.lut_size);
   t.stop(result.timings.sheen_s, result.timings.sheen_cpu_s);
-  if (progress) progress(1.0, "done");
+  report(1.0, "done");
 
   all.stop(result.timings.total_s, result.timings.total_cpu_s);
   return result;

@@ -24,7 +24,8 @@ namespace pbrkit {
 namespace {
 
 // Reports progress from worker threads: `done` units out of `total`, forwarded to the
-// callback by whichever thread gets the lock (callers' callbacks need not be thread-safe).
+// callback by whichever thread gets the lock (callers' callbacks need not be thread-safe);
+// stopped() once the callback has returned false.
 class ProgressCounter {
  public:
   ProgressCounter(const ProgressCallback& callback, double total)
@@ -33,13 +34,15 @@ class ProgressCounter {
     if (!callback_) return;
     const double done = done_.fetch_add(units) + units;
     std::unique_lock lock(mutex_, std::try_to_lock);
-    if (lock.owns_lock()) callback_(std::min(1.0, done / total_), stage);
+    if (lock.owns_lock() && !callback_(std::min(1.0, done / total_), stage)) stopped_ = true;
   }
+  bool stopped() const { return stopped_.load(std::memory_order_relaxed); }
 
  private:
   const ProgressCallback& callback_;
   double total_;
   std::atomic<double> done_{0.0};
+  std::atomic<bool> stopped_{false};
   std::mutex mutex_;
 };
 
@@ -282,8 +285,10 @@ Cubemap prefilter_specular(const Cubemap& input, const BakeOptions& options,
     total_work += 6.0 * size * row_work[m];
   }
   ProgressCounter counter(progress, std::max(total_work, 1.0));
+  std::vector<std::atomic<int>> rows_done(static_cast<std::size_t>(levels));
   pbrkit::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size()), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      if (counter.stopped()) return;
       const Row row = rows[i];
       const int size = face_size >> row.level;
       Image& img = out.mips[row.level][row.face];
@@ -292,9 +297,17 @@ Cubemap prefilter_specular(const Cubemap& input, const BakeOptions& options,
             row.face, {(float(x) + 0.5f) / float(size), (float(row.y) + 0.5f) / float(size)});
         img.set_rgb(x, row.y, prefilter_planned(source, plans[row.level], R));
       }
+      rows_done[std::size_t(row.level)].fetch_add(1, std::memory_order_relaxed);
       counter.add(row_work[row.level], "specular");
     }
   });
+  // Stopped (util/progress.h): the levels done, the first ones (level 0 always).
+  if (counter.stopped())
+    for (int m = 1; m < levels; ++m)
+      if (rows_done[std::size_t(m)].load() < 6 * (face_size >> m)) {
+        out.mips.resize(std::size_t(m));
+        break;
+      }
   return out;
 }
 

@@ -64,6 +64,8 @@ bool use_quadrature(const Cubemap& source, const BakeOptions& options, float rou
 
 /// The specular chain: level 0 a copy of the source's level 0, level m prefiltered for
 /// roughness mip_roughness(m, levels, options.mapping). `source` needs its full chain.
+/// Stopped by `progress` (util/progress.h), it returns the levels finished before the stop
+/// (a prefix of the chain, at least level 0).
 Cubemap prefilter_specular(const Cubemap& source, const BakeOptions& options,
                            const ProgressCallback& progress = {});
 

@@ -93,8 +93,11 @@ Cubemap prefilter_sheen(const Cubemap& source, const BakeOptions& options,
   }
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
+  std::atomic<bool> stopped{false};
+  std::vector<std::atomic<int>> rows_done(static_cast<std::size_t>(levels));
   pbrkit::parallel_for(tbb::blocked_range<std::size_t>(0, rows.size()), [&](const auto& range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
+      if (stopped.load(std::memory_order_relaxed)) return;
       const Row row = rows[i];
       const int size = grid.size(row.level);
       const std::size_t m = std::size_t(row.level);
@@ -104,14 +107,24 @@ Cubemap prefilter_sheen(const Cubemap& source, const BakeOptions& options,
             row.face, {(float(x) + 0.5f) / float(size), (float(row.y) + 0.5f) / float(size)});
         img.set_rgb(x, row.y, sheen_quadrature(*texels[m], kernels[m], R));
       }
+      rows_done[m].fetch_add(1, std::memory_order_relaxed);
     }
     const std::size_t n = done.fetch_add(range.size()) + range.size();
     // The callback need not be thread-safe: whichever thread gets the lock reports.
     std::unique_lock lock(progress_mutex, std::try_to_lock);
-    if (progress && lock.owns_lock()) progress(double(n) / double(rows.size()), "sheen");
+    if (progress && lock.owns_lock() && !progress(double(n) / double(rows.size()), "sheen"))
+      stopped = true;
   });
+  // Stopped (util/progress.h): the levels done, the first ones.
+  int complete_levels = levels;
+  if (stopped.load())
+    for (int m = 0; m < levels; ++m)
+      if (rows_done[std::size_t(m)].load() < 6 * grid.size(m)) {
+        complete_levels = m;
+        break;
+      }
   Cubemap out;
-  for (int m = 0; m < levels; ++m) {
+  for (int m = 0; m < complete_levels; ++m) {
     const int size = options.face_size >> m;
     if (size == grid.size(m)) {
       out.mips.push_back(std::move(grid.mips[std::size_t(m)]));

@@ -49,6 +49,8 @@ glm::vec3 sheen_quadrature(const detail::QuadratureSource& q, const SheenKernel&
 /// sizes (specular_levels(face_size, min_face_size), face_size >> m px), level m for the
 /// sheen roughness mip_roughness(m, levels, options.mapping), by direct quadrature over
 /// sheen_source_level() on a sheen_grid_size() px grid, bilinearly upsampled to the level.
+/// Stopped by `progress` (util/progress.h), it returns the levels finished before the stop
+/// (a prefix of the chain, possibly empty).
 Cubemap prefilter_sheen(const Cubemap& source, const BakeOptions& options,
                         const ProgressCallback& progress = {});
 

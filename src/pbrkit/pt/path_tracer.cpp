@@ -59,47 +59,46 @@ std::uint32_t next_target(std::uint32_t target, std::uint32_t total, std::uint32
   return std::min(total, target + std::max(1u, target / 2));
 }
 
-}  // namespace
-
-PathTracerResult render_path(const Scene& scene, const Environment* env, const Camera& camera,
-                             const PathTracerSettings& settings, const ProgressCallback& progress) {
-  if (settings.width <= 0 || settings.height <= 0)
-    fail("render: image size {}x{} is not positive", settings.width, settings.height);
-  const std::uint32_t begin = settings.sample_begin;
-  const std::uint32_t end = settings.sample_end > 0 ? settings.sample_end : settings.spp;
-  if (end <= begin) fail("render: empty sample range {}:{}", begin, end);
-  const std::uint32_t total = end - begin;
-
-  PathTracerResult result;
-  const auto build_start = Clock::now();
-  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+// The set-up a render needs before its first sample, made in the render's arena: the
+// scene's geometry and BVH, its lights, and the BRDF's albedo tables; timed into `stats`.
+struct RenderSetup {
   std::unique_ptr<SceneGeometry> geometry;
   std::unique_ptr<LightSet> lights;
+};
+RenderSetup build_setup(const Scene& scene, const Environment* env,
+                        const PathTracerSettings& settings, tbb::task_arena& arena,
+                        PathTracerStats& stats) {
+  RenderSetup setup;
+  const auto build_start = Clock::now();
   arena.execute([&] {
     set_ftz_daz();
-    geometry = std::make_unique<SceneGeometry>(scene);
-    geometry->observe(settings.ray_observer);
-    result.stats.bvh_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
-    lights = std::make_unique<LightSet>(scene, *geometry, env, settings.light_sampler);
+    setup.geometry = std::make_unique<SceneGeometry>(scene);
+    setup.geometry->observe(settings.ray_observer);
+    stats.bvh_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
+    setup.lights = std::make_unique<LightSet>(scene, *setup.geometry, env, settings.light_sampler);
     // The BRDF's albedo tables are computed once per process on first use (about 0.15 s);
     // build them here, with the rest of the set-up, rather than inside the sampling loop,
     // where every render thread would wait for the first one to finish them.
     if (settings.max_bounces > 0) EnergyTable::get(direct_geometry(settings.brdf.model));
   });
-  result.stats.build_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
-  {
-    std::size_t texture_bytes = 0;
-    for (const Texture& t : scene.textures) texture_bytes += t.bytes();
-    const GeometryMemory& mem = geometry->memory();
-    // Where the memory goes: what decides how large a scene fits.
-    note(
-        "memory: geometry {:.1f} MB, BVH {:.1f} MB, textures {:.1f} MB ({} instances, {} of "
-        "them of {} shared meshes)",
-        double(mem.geometry) * 1e-6, double(mem.bvh) * 1e-6, double(texture_bytes) * 1e-6,
-        geometry->meshes().size(), geometry->instanced(), geometry->shared_meshes());
-  }
+  stats.build_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
+  return setup;
+}
 
-  Film& film = result.film;
+// Where the memory goes: what decides how large a scene fits.
+void note_memory(const Scene& scene, const SceneGeometry& geometry) {
+  std::size_t texture_bytes = 0;
+  for (const Texture& t : scene.textures) texture_bytes += t.bytes();
+  const GeometryMemory& mem = geometry.memory();
+  note(
+      "memory: geometry {:.1f} MB, BVH {:.1f} MB, textures {:.1f} MB ({} instances, {} of "
+      "them of {} shared meshes)",
+      double(mem.geometry) * 1e-6, double(mem.bvh) * 1e-6, double(texture_bytes) * 1e-6,
+      geometry.meshes().size(), geometry.instanced(), geometry.shared_meshes());
+}
+
+// The film the samples go to: the checkpoint to resume, or a new one.
+void start_film(Film& film, const PathTracerSettings& settings, std::uint32_t begin) {
   if (settings.resume) {
     film = *settings.resume;
     if (film.width != settings.width || film.height != settings.height)
@@ -110,220 +109,10 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
   }
   film.sample_begin = begin;
   film.seed = settings.seed;
+}
 
-  const CameraRays camera_rays(camera, float(settings.width) / float(settings.height));
-  const Integrator integrator(scene, *geometry, *lights, settings,
-                              camera_rays.pixel_cone(settings.height));
-  const OwenSobolSampler sampler(settings.seed);
-  const int tiles_x = (settings.width + kTileSize - 1) / kTileSize;
-  const int tiles_y = (settings.height + kTileSize - 1) / kTileSize;
-
-  const auto start = Clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(Clock::now() - start).count(); };
-  std::atomic<bool> stop{false};
-  auto should_stop = [&] {
-    if (stop.load(std::memory_order_relaxed)) return true;
-    if ((settings.stop && settings.stop->load(std::memory_order_relaxed)) ||
-        (settings.time_limit > 0.0 && elapsed() >= settings.time_limit)) {
-      stop = true;
-      return true;
-    }
-    return false;
-  };
-  // Per-thread counts, summed after the render: rays traced, and the camera paths the
-  // integrator could not represent (PathSample).
-  struct PathCounts {
-    std::uint64_t rays = 0, non_finite = 0, medium_overflows = 0;
-  };
-  tbb::enumerable_thread_specific<PathCounts> path_counts;
-  // The film's counts are those of every sample in it: the resumed film's, plus this call's,
-  // brought up to date before each checkpoint and at the end.
-  const std::uint64_t resumed_non_finite = film.non_finite_samples;
-  const std::uint64_t resumed_medium_overflows = film.medium_overflows;
-  auto update_film_counts = [&] {
-    film.non_finite_samples = resumed_non_finite;
-    film.medium_overflows = resumed_medium_overflows;
-    for (const PathCounts& c : path_counts) {
-      film.non_finite_samples += c.non_finite;
-      film.medium_overflows += c.medium_overflows;
-    }
-  };
-  // Progress state shared with the worker threads: atomics only (the film itself is read
-  // by the reporter only between passes).
-  std::atomic<std::uint64_t> samples_taken{0};
-  std::atomic<double> work_done{0.0};
-  std::atomic<double> mean_noise{0.0};
-  std::mutex progress_mutex;
-  double last_progress = -1.0;
-  const double work_total = double(film.pixel_count()) * double(total);
-  auto pass_statistics = [&] {
-    // Work done (a stopped pixel counts as finished) and the mean noise estimate.
-    double done = 0.0, noise = 0.0;
-    std::size_t noisy = 0;
-    for (std::size_t i = 0; i < film.pixel_count(); ++i) {
-      done += film.done[i] > 0.0f ? double(total) : double(film.count[i]);
-      const float e = film.pixel_noise(i);
-      if (std::isfinite(e)) {
-        noise += double(e);
-        ++noisy;
-      }
-    }
-    work_done = done;
-    mean_noise = noisy ? noise / double(noisy) : 0.0;
-  };
-  pass_statistics();
-  auto report = [&](bool force) {
-    if (!progress) return;
-    std::lock_guard<std::mutex> lock(progress_mutex);
-    const double now = elapsed();
-    if (!force && now - last_progress < 0.25) return;
-    last_progress = now;
-    const double rate = now > 0.0 ? double(samples_taken.load()) / now : 0.0;
-    const std::string detail =
-        fmt::format("{:.2f} M samples*px/s, noise {:.4f}", rate * 1e-6, mean_noise.load());
-    if (!progress(std::min(1.0, work_done.load() / work_total), detail)) stop = true;
-  };
-
-  double last_checkpoint = 0.0;
-  std::uint32_t target = 0;
-
-  // One block of kPacketSide x kPacketSide pixels brought to `target` samples. Camera rays
-  // are traced as packets of the block's pixels at one sample index (coherent rays: about
-  // 2.5x Embree's single-ray rate). A packet depends only on (block, index): lanes outside
-  // the image (repeating the last column or row) or whose pixel needs no sample at this
-  // index are traced all the same, so every camera ray is intersected in the same packet
-  // whatever the thread count, sample range or checkpoint, and renders stay bit-identical
-  // (a lane's hit can depend on the rest of its packet; see intersect_packet).
-  auto render_packet = [&](int bx, int by, PathCounts& counts) -> std::uint64_t {
-    constexpr int kLanes = SceneGeometry::kPacketSize;
-    std::size_t pixel_of[kLanes];
-    int px[kLanes], py[kLanes];
-    bool inside[kLanes];
-    std::uint32_t first = target;  // the lowest sample any pixel of the block still needs
-    for (int k = 0; k < kLanes; ++k) {
-      const int x = bx + k % kPacketSide, y = by + k / kPacketSide;
-      inside[k] = x < settings.width && y < settings.height;
-      px[k] = std::min(x, settings.width - 1);
-      py[k] = std::min(y, settings.height - 1);
-      pixel_of[k] = std::size_t(py[k]) * std::size_t(settings.width) + std::size_t(px[k]);
-      if (inside[k] && !(film.done[pixel_of[k]] > 0.0f))
-        first = std::min(first, std::uint32_t(film.count[pixel_of[k]]));
-    }
-    if (first >= target) return 0;
-    std::optional<OwenSobolPixel> samplers[kLanes];
-    for (int k = 0; k < kLanes; ++k) samplers[k].emplace(sampler, std::uint32_t(pixel_of[k]));
-    glm::vec3 origins[kLanes], directions[kLanes];
-    SceneGeometry::PacketHit hits[kLanes];
-    std::uint64_t taken = 0;
-    for (std::uint32_t s = first; s < target; ++s) {
-      const std::uint32_t index = begin + s;
-      for (int k = 0; k < kLanes; ++k) {
-        const glm::vec2 off = sample_pixel_filter(
-            settings.filter, glm::vec2(samplers[k]->sample_block(index, kPixelFilterBlock)));
-        const glm::vec2 ndc((float(px[k]) + 0.5f + off.x) / float(settings.width) * 2.0f - 1.0f,
-                            1.0f - (float(py[k]) + 0.5f + off.y) / float(settings.height) * 2.0f);
-        const Ray ray = camera_rays.generate(ndc);
-        origins[k] = ray.origin;
-        directions[k] = ray.direction;
-      }
-      geometry->intersect_packet(origins, directions, hits);
-      // The paths below are traced one after the other; the cache misses of their first
-      // hits' vertex data are started here together, so that they overlap.
-      for (int k = 0; k < kLanes; ++k)
-        if (hits[k].geom != SceneGeometry::kNoHit) geometry->prefetch(hits[k].geom, hits[k].prim);
-      for (int k = 0; k < kLanes; ++k) {
-        const std::size_t i = pixel_of[k];
-        if (!inside[k] || film.done[i] > 0.0f || s < std::uint32_t(film.count[i])) continue;
-        const PathSample ps = integrator.Li(origins[k], directions[k], hits[k], *samplers[k],
-                                            std::uint32_t(i), index, counts.rays);
-        counts.non_finite += ps.non_finite ? 1 : 0;
-        counts.medium_overflows += ps.medium_overflow ? 1 : 0;
-        film.sum[i] += ps.L;
-        film.albedo[i] += ps.albedo;
-        film.normal[i] += ps.normal;
-        film.depth[i] += ps.depth;
-        if (in_half_buffer(index)) {
-          film.sum_even[i] += ps.L;
-          film.albedo_even[i] += ps.albedo;
-          film.normal_even[i] += ps.normal;
-          film.depth_even[i] += ps.depth;
-        }
-        film.count[i] = float(s + 1);
-        ++taken;
-      }
-    }
-    return taken;
-  };
-
-  bool complete = false;
-  while (!complete && !should_stop()) {
-    target = next_target(target, total, settings.min_spp);
-    arena.execute([&] {
-      pbrkit::parallel_for(tbb::blocked_range2d<int>(0, tiles_y, 1, 0, tiles_x, 1),
-                           [&](const tbb::blocked_range2d<int>& r) {
-                             set_ftz_daz();
-                             PathCounts& counts = path_counts.local();
-                             for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
-                               for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
-                                 if (should_stop()) return;
-                                 std::uint64_t tile_samples = 0;
-                                 const int x1 = std::min(settings.width, (tx + 1) * kTileSize);
-                                 const int y1 = std::min(settings.height, (ty + 1) * kTileSize);
-                                 for (int by = ty * kTileSize; by < y1; by += kPacketSide)
-                                   for (int bx = tx * kTileSize; bx < x1; bx += kPacketSide)
-                                     tile_samples += render_packet(bx, by, counts);
-                                 // Shared counters are touched once per tile, not per sample.
-                                 samples_taken.fetch_add(tile_samples, std::memory_order_relaxed);
-                                 work_done.fetch_add(double(tile_samples),
-                                                     std::memory_order_relaxed);
-                                 report(false);
-                               }
-                           });
-    });
-    if (should_stop()) break;
-    // Adaptive sampling: pixels whose two half-buffer estimates agree (and their
-    // neighbours') stop here.
-    stop_converged_pixels(film, target, settings.noise_threshold, settings.min_spp);
-    complete = target >= total;
-    pass_statistics();
-    if (!complete && settings.checkpoint && settings.checkpoint_interval > 0.0 &&
-        elapsed() - last_checkpoint >= settings.checkpoint_interval) {
-      update_film_counts();
-      settings.checkpoint(film);
-      last_checkpoint = elapsed();
-    }
-  }
-  if (!complete) {
-    // Complete when every pixel got its samples (a stop may come after the last tile).
-    complete = true;
-    for (std::size_t i = 0; i < film.pixel_count() && complete; ++i)
-      complete = film.done[i] > 0.0f || film.count[i] >= float(total);
-  }
-  pass_statistics();
-  report(true);
-
-  result.stats.render_seconds = elapsed();
-  for (const PathCounts& c : path_counts) {
-    result.stats.rays += c.rays;
-    result.stats.non_finite_samples += c.non_finite;
-    result.stats.medium_overflows += c.medium_overflows;
-  }
-  update_film_counts();
-  // Once per render: what the image could not represent, with the limit it reached.
-  if (result.stats.non_finite_samples > 0)
-    warn(
-        "path tracer: {} of {} samples had a radiance that was not finite (NaN or infinite) and "
-        "were set to 0: the image is darker there; this is a bug, please report it with the "
-        "scene",
-        result.stats.non_finite_samples, samples_taken.load());
-  if (result.stats.medium_overflows > 0)
-    warn(
-        "path tracer: {} paths entered more than {} nested volumes (the path tracer's "
-        "limit); inside the deeper ones they took the enclosing medium's ior and absorption",
-        result.stats.medium_overflows, kMaxNestedVolumes);
-  result.stats.samples = samples_taken.load();
-  result.stats.complete = complete;
-  result.stats.stopped = !complete;
+// The mean of the pixels' noise estimates (those that have one).
+double mean_pixel_noise(const Film& film) {
   double noise = 0.0;
   std::size_t counted = 0;
   for (std::size_t i = 0; i < film.pixel_count(); ++i) {
@@ -333,8 +122,302 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
       ++counted;
     }
   }
-  result.stats.noise = counted ? noise / double(counted) : 0.0;
-  result.color = film.color();
+  return counted ? noise / double(counted) : 0.0;
+}
+
+// Per-thread counts, summed after the render: rays traced, and the camera paths the
+// integrator could not represent (PathSample).
+struct PathCounts {
+  std::uint64_t rays = 0, non_finite = 0, medium_overflows = 0;
+};
+
+// The sampling loop of one render over a prepared scene: passes over tiles of ray packets
+// until every pixel has its samples or converged, or a stop (flag, time limit, progress
+// callback) comes; progress reports, and checkpoints between passes.
+class SampleLoop {
+ public:
+  SampleLoop(const Scene& scene, const RenderSetup& setup, const Camera& camera,
+             const PathTracerSettings& settings, const ProgressCallback& progress,
+             tbb::task_arena& arena, Film& film, std::uint32_t begin, std::uint32_t total)
+      : settings_(settings),
+        progress_(progress),
+        arena_(arena),
+        geometry_(*setup.geometry),
+        film_(film),
+        begin_(begin),
+        total_(total),
+        camera_rays_(camera, float(settings.width) / float(settings.height)),
+        integrator_(scene, *setup.geometry, *setup.lights, settings,
+                    camera_rays_.pixel_cone(settings.height)),
+        sampler_(settings.seed),
+        tiles_x_((settings.width + kTileSize - 1) / kTileSize),
+        tiles_y_((settings.height + kTileSize - 1) / kTileSize),
+        resumed_non_finite_(film.non_finite_samples),
+        resumed_medium_overflows_(film.medium_overflows),
+        work_total_(double(film.pixel_count()) * double(total)) {}
+
+  // Runs the passes; true when every pixel got its samples (or converged).
+  bool run();
+  // The counts of the samples taken, into `stats` (render time, rays, samples, the
+  // samples the integrator could not represent), with a warning for the latter.
+  void finish(PathTracerStats& stats);
+
+ private:
+  double elapsed() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+  bool should_stop();
+  void update_film_counts();
+  void pass_statistics();
+  void report(bool force);
+  void render_pass();
+  std::uint64_t render_packet(int bx, int by, PathCounts& counts);
+  void checkpoint_if_due();
+  bool every_pixel_done() const;
+
+  const PathTracerSettings& settings_;
+  const ProgressCallback& progress_;
+  tbb::task_arena& arena_;
+  const SceneGeometry& geometry_;
+  Film& film_;
+  const std::uint32_t begin_, total_;
+  const CameraRays camera_rays_;
+  const Integrator integrator_;
+  const OwenSobolSampler sampler_;
+  const int tiles_x_, tiles_y_;
+  // The film's counts are those of every sample in it: the resumed film's, plus this
+  // call's, brought up to date before each checkpoint and at the end.
+  const std::uint64_t resumed_non_finite_, resumed_medium_overflows_;
+  const double work_total_;
+  const Clock::time_point start_ = Clock::now();
+  std::atomic<bool> stop_{false};
+  tbb::enumerable_thread_specific<PathCounts> path_counts_;
+  // Progress state shared with the worker threads: atomics only (the film itself is read
+  // by the reporter only between passes).
+  std::atomic<std::uint64_t> samples_taken_{0};
+  std::atomic<double> work_done_{0.0};
+  std::atomic<double> mean_noise_{0.0};
+  std::mutex progress_mutex_;
+  double last_progress_ = -1.0;
+  double last_checkpoint_ = 0.0;
+  std::uint32_t target_ = 0;  // the sample count of the current pass
+};
+
+bool SampleLoop::should_stop() {
+  if (stop_.load(std::memory_order_relaxed)) return true;
+  if ((settings_.stop && settings_.stop->load(std::memory_order_relaxed)) ||
+      (settings_.time_limit > 0.0 && elapsed() >= settings_.time_limit)) {
+    stop_ = true;
+    return true;
+  }
+  return false;
+}
+
+void SampleLoop::update_film_counts() {
+  film_.non_finite_samples = resumed_non_finite_;
+  film_.medium_overflows = resumed_medium_overflows_;
+  for (const PathCounts& c : path_counts_) {
+    film_.non_finite_samples += c.non_finite;
+    film_.medium_overflows += c.medium_overflows;
+  }
+}
+
+// Work done (a stopped pixel counts as finished) and the mean noise estimate.
+void SampleLoop::pass_statistics() {
+  double done = 0.0;
+  for (std::size_t i = 0; i < film_.pixel_count(); ++i)
+    done += film_.done[i] > 0.0f ? double(total_) : double(film_.count[i]);
+  work_done_ = done;
+  mean_noise_ = mean_pixel_noise(film_);
+}
+
+void SampleLoop::report(bool force) {
+  if (!progress_) return;
+  std::lock_guard<std::mutex> lock(progress_mutex_);
+  const double now = elapsed();
+  if (!force && now - last_progress_ < 0.25) return;
+  last_progress_ = now;
+  const double rate = now > 0.0 ? double(samples_taken_.load()) / now : 0.0;
+  const std::string detail =
+      fmt::format("{:.2f} M samples*px/s, noise {:.4f}", rate * 1e-6, mean_noise_.load());
+  if (!progress_(std::min(1.0, work_done_.load() / work_total_), detail)) stop_ = true;
+}
+
+// One block of kPacketSide x kPacketSide pixels brought to `target_` samples. Camera rays
+// are traced as packets of the block's pixels at one sample index (coherent rays: about
+// 2.5x Embree's single-ray rate). A packet depends only on (block, index): lanes outside
+// the image (repeating the last column or row) or whose pixel needs no sample at this
+// index are traced all the same, so every camera ray is intersected in the same packet
+// whatever the thread count, sample range or checkpoint, and renders stay bit-identical
+// (a lane's hit can depend on the rest of its packet; see intersect_packet).
+std::uint64_t SampleLoop::render_packet(int bx, int by, PathCounts& counts) {
+  constexpr int kLanes = SceneGeometry::kPacketSize;
+  const int width = settings_.width, height = settings_.height;
+  std::size_t pixel_of[kLanes];
+  int px[kLanes], py[kLanes];
+  bool inside[kLanes];
+  std::uint32_t first = target_;  // the lowest sample any pixel of the block still needs
+  for (int k = 0; k < kLanes; ++k) {
+    const int x = bx + k % kPacketSide, y = by + k / kPacketSide;
+    inside[k] = x < width && y < height;
+    px[k] = std::min(x, width - 1);
+    py[k] = std::min(y, height - 1);
+    pixel_of[k] = std::size_t(py[k]) * std::size_t(width) + std::size_t(px[k]);
+    if (inside[k] && !(film_.done[pixel_of[k]] > 0.0f))
+      first = std::min(first, std::uint32_t(film_.count[pixel_of[k]]));
+  }
+  if (first >= target_) return 0;
+  std::optional<OwenSobolPixel> samplers[kLanes];
+  for (int k = 0; k < kLanes; ++k) samplers[k].emplace(sampler_, std::uint32_t(pixel_of[k]));
+  glm::vec3 origins[kLanes], directions[kLanes];
+  SceneGeometry::PacketHit hits[kLanes];
+  std::uint64_t taken = 0;
+  for (std::uint32_t s = first; s < target_; ++s) {
+    const std::uint32_t index = begin_ + s;
+    for (int k = 0; k < kLanes; ++k) {
+      const glm::vec2 off = sample_pixel_filter(
+          settings_.filter, glm::vec2(samplers[k]->sample_block(index, kPixelFilterBlock)));
+      const glm::vec2 ndc((float(px[k]) + 0.5f + off.x) / float(width) * 2.0f - 1.0f,
+                          1.0f - (float(py[k]) + 0.5f + off.y) / float(height) * 2.0f);
+      const Ray ray = camera_rays_.generate(ndc);
+      origins[k] = ray.origin;
+      directions[k] = ray.direction;
+    }
+    geometry_.intersect_packet(origins, directions, hits);
+    // The paths below are traced one after the other; the cache misses of their first
+    // hits' vertex data are started here together, so that they overlap.
+    for (int k = 0; k < kLanes; ++k)
+      if (hits[k].geom != SceneGeometry::kNoHit) geometry_.prefetch(hits[k].geom, hits[k].prim);
+    for (int k = 0; k < kLanes; ++k) {
+      const std::size_t i = pixel_of[k];
+      if (!inside[k] || film_.done[i] > 0.0f || s < std::uint32_t(film_.count[i])) continue;
+      const PathSample ps = integrator_.Li(origins[k], directions[k], hits[k], *samplers[k],
+                                           std::uint32_t(i), index, counts.rays);
+      counts.non_finite += ps.non_finite ? 1 : 0;
+      counts.medium_overflows += ps.medium_overflow ? 1 : 0;
+      film_.sum[i] += ps.L;
+      film_.albedo[i] += ps.albedo;
+      film_.normal[i] += ps.normal;
+      film_.depth[i] += ps.depth;
+      if (in_half_buffer(index)) {
+        film_.sum_even[i] += ps.L;
+        film_.albedo_even[i] += ps.albedo;
+        film_.normal_even[i] += ps.normal;
+        film_.depth_even[i] += ps.depth;
+      }
+      film_.count[i] = float(s + 1);
+      ++taken;
+    }
+  }
+  return taken;
+}
+
+// Every pixel brought to `target_` samples, tiles in parallel (each tile's packets in
+// order); a stop ends it at the next tile.
+void SampleLoop::render_pass() {
+  arena_.execute([&] {
+    pbrkit::parallel_for(tbb::blocked_range2d<int>(0, tiles_y_, 1, 0, tiles_x_, 1),
+                         [&](const tbb::blocked_range2d<int>& r) {
+                           set_ftz_daz();
+                           PathCounts& counts = path_counts_.local();
+                           for (int ty = r.rows().begin(); ty < r.rows().end(); ++ty)
+                             for (int tx = r.cols().begin(); tx < r.cols().end(); ++tx) {
+                               if (should_stop()) return;
+                               std::uint64_t tile_samples = 0;
+                               const int x1 = std::min(settings_.width, (tx + 1) * kTileSize);
+                               const int y1 = std::min(settings_.height, (ty + 1) * kTileSize);
+                               for (int by = ty * kTileSize; by < y1; by += kPacketSide)
+                                 for (int bx = tx * kTileSize; bx < x1; bx += kPacketSide)
+                                   tile_samples += render_packet(bx, by, counts);
+                               // Shared counters are touched once per tile, not per sample.
+                               samples_taken_.fetch_add(tile_samples, std::memory_order_relaxed);
+                               work_done_.fetch_add(double(tile_samples),
+                                                    std::memory_order_relaxed);
+                               report(false);
+                             }
+                         });
+  });
+}
+
+void SampleLoop::checkpoint_if_due() {
+  if (!settings_.checkpoint || settings_.checkpoint_interval <= 0.0 ||
+      elapsed() - last_checkpoint_ < settings_.checkpoint_interval)
+    return;
+  update_film_counts();
+  settings_.checkpoint(film_);
+  last_checkpoint_ = elapsed();
+}
+
+// Whether every pixel got its samples (a stop may come after the last tile).
+bool SampleLoop::every_pixel_done() const {
+  for (std::size_t i = 0; i < film_.pixel_count(); ++i)
+    if (!(film_.done[i] > 0.0f || film_.count[i] >= float(total_))) return false;
+  return true;
+}
+
+bool SampleLoop::run() {
+  pass_statistics();
+  bool complete = false;
+  while (!complete && !should_stop()) {
+    target_ = next_target(target_, total_, settings_.min_spp);
+    render_pass();
+    if (should_stop()) break;
+    // Adaptive sampling: pixels whose two half-buffer estimates agree (and their
+    // neighbours') stop here.
+    stop_converged_pixels(film_, target_, settings_.noise_threshold, settings_.min_spp);
+    complete = target_ >= total_;
+    pass_statistics();
+    if (!complete) checkpoint_if_due();
+  }
+  if (!complete) complete = every_pixel_done();
+  pass_statistics();
+  report(true);
+  return complete;
+}
+
+void SampleLoop::finish(PathTracerStats& stats) {
+  stats.render_seconds = elapsed();
+  for (const PathCounts& c : path_counts_) {
+    stats.rays += c.rays;
+    stats.non_finite_samples += c.non_finite;
+    stats.medium_overflows += c.medium_overflows;
+  }
+  update_film_counts();
+  // Once per render: what the image could not represent, with the limit it reached.
+  if (stats.non_finite_samples > 0)
+    warn(
+        "path tracer: {} of {} samples had a radiance that was not finite (NaN or infinite) and "
+        "were set to 0: the image is darker there; this is a bug, please report it with the "
+        "scene",
+        stats.non_finite_samples, samples_taken_.load());
+  if (stats.medium_overflows > 0)
+    warn(
+        "path tracer: {} paths entered more than {} nested volumes (the path tracer's "
+        "limit); inside the deeper ones they took the enclosing medium's ior and absorption",
+        stats.medium_overflows, kMaxNestedVolumes);
+  stats.samples = samples_taken_.load();
+}
+
+}  // namespace
+
+PathTracerResult render_path(const Scene& scene, const Environment* env, const Camera& camera,
+                             const PathTracerSettings& settings, const ProgressCallback& progress) {
+  if (settings.width <= 0 || settings.height <= 0)
+    fail("render: image size {}x{} is not positive", settings.width, settings.height);
+  const std::uint32_t begin = settings.sample_begin;
+  const std::uint32_t end = settings.sample_end > 0 ? settings.sample_end : settings.spp;
+  if (end <= begin) fail("render: empty sample range {}:{}", begin, end);
+
+  PathTracerResult result;
+  tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
+  const RenderSetup setup = build_setup(scene, env, settings, arena, result.stats);
+  note_memory(scene, *setup.geometry);
+  start_film(result.film, settings, begin);
+  SampleLoop loop(scene, setup, camera, settings, progress, arena, result.film, begin, end - begin);
+  const bool complete = loop.run();
+  loop.finish(result.stats);
+  result.stats.complete = complete;
+  result.stats.stopped = !complete;
+  result.stats.noise = mean_pixel_noise(result.film);
+  result.color = result.film.color();
   return result;
 }
 

@@ -30,14 +30,14 @@ namespace {
 // factor times KHR_materials_emissive_strength. A factor above 1 (a built-in or loaded
 // scene's) is written as its colour over its largest component, with that component
 // moved into the strength, so the emitted radiance (factor * strength) is unchanged.
-struct GltfEmission {
-  glm::vec3 factor;
-  float strength;
-};
-GltfEmission gltf_emission(const Material& m) {
+Material with_gltf_emission(const Material& m) {
+  Material out = m;
   const float peak = std::max({m.emissive_factor.r, m.emissive_factor.g, m.emissive_factor.b});
-  if (peak <= 1.0f) return {m.emissive_factor, m.emissive_strength};
-  return {m.emissive_factor / peak, m.emissive_strength * peak};
+  if (peak > 1.0f) {
+    out.emissive_factor = m.emissive_factor / peak;
+    out.emissive_strength = m.emissive_strength * peak;
+  }
+  return out;
 }
 
 class Writer {
@@ -189,11 +189,11 @@ void put_texture(tinygltf::Value::Object& o, const char* name, const tinygltf::T
 // each with the values that differ from the README's defaults (a value JSON cannot write,
 // as an infinite attenuationDistance, is its default). KHR_materials_unlit excludes the
 // others (each of their READMEs says so, and the glTF-Validator reports the combination),
-// so an unlit material is written with KHR_materials_unlit only: what a viewer would show
-// of it.
+// so an unlit material is written with KHR_materials_unlit only (the validator reports
+// KHR_materials_emissive_strength beside it too): what a viewer would show of it.
 tinygltf::ExtensionMap Writer::material_extensions(const Material& m) {
   tinygltf::ExtensionMap out;
-  const auto extensions = pbrkit::material_extensions();
+  const auto extensions = material_schema();
   const bool exclusive = std::any_of(extensions.begin(), extensions.end(),
                                      [&](const auto& x) { return x.exclusive && x.present(m); });
   for (const MaterialExtension& x : extensions) {
@@ -220,7 +220,8 @@ tinygltf::ExtensionMap Writer::material_extensions(const Material& m) {
   return out;
 }
 
-void Writer::add_material(const Material& m) {
+void Writer::add_material(const Material& material) {
+  const Material m = with_gltf_emission(material);
   tinygltf::Material g;
   g.name = m.name;
   auto& pbr = g.pbrMetallicRoughness;
@@ -230,14 +231,8 @@ void Writer::add_material(const Material& m) {
   pbr.roughnessFactor = m.roughness_factor;
   pbr.baseColorTexture = texture_info(m.base_color_texture);
   pbr.metallicRoughnessTexture = texture_info(m.metallic_roughness_texture);
-  const GltfEmission emission = gltf_emission(m);
-  g.emissiveFactor.assign({emission.factor.r, emission.factor.g, emission.factor.b});
+  g.emissiveFactor.assign({m.emissive_factor.r, m.emissive_factor.g, m.emissive_factor.b});
   g.emissiveTexture = texture_info(m.emissive_texture);
-  if (emission.strength != 1.0f) {
-    tinygltf::Value::Object o;
-    o["emissiveStrength"] = tinygltf::Value(double(emission.strength));
-    g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(o);
-  }
   for (auto& [name, value] : material_extensions(m)) g.extensions[name] = std::move(value);
   const tinygltf::TextureInfo normal = texture_info(m.normal_texture);
   g.normalTexture.index = normal.index;
@@ -474,15 +469,11 @@ tinygltf::Model Writer::build() {
     uses("EXT_mesh_gpu_instancing");
     model_.extensionsRequired.push_back("EXT_mesh_gpu_instancing");
   }
-  if (std::any_of(scene_.materials.begin(), scene_.materials.end(),
-                  [](const Material& m) { return gltf_emission(m).strength != 1.0f; }))
-    uses("KHR_materials_emissive_strength");
-  // Each surface extension once, in the order the materials first use them.
+  // Each material extension once, in the order the materials first use them.
   for (const tinygltf::Material& g : model_.materials)
     for (const auto& [name, value] : g.extensions)
-      if (name != "KHR_materials_emissive_strength" &&
-          std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), name) ==
-              model_.extensionsUsed.end())
+      if (std::find(model_.extensionsUsed.begin(), model_.extensionsUsed.end(), name) ==
+          model_.extensionsUsed.end())
         uses(name.c_str());
   // Only the textures written count (an unlit material's extension textures are not).
   auto has_transform = [](const Material& m) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 #include <limits>
 #include <type_traits>
 
@@ -18,6 +19,7 @@ namespace pbrkit {
 namespace {
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kPi = 3.14159265358979f;
 
 // Accessors of a Material's optional extension `kExtension` and of its member `kMember`
 // (a float, or a glm::vec3 as 3 contiguous floats).
@@ -54,6 +56,15 @@ void add_ior(Material& m) {
   m.ior = Material{}.ior;
 }
 
+// KHR_materials_emissive_strength has no extension struct either: the strength is the
+// material's own (1, the README's default, when the extension is absent).
+bool has_emissive_strength(const Material& m) {
+  return m.emissive_strength != Material{}.emissive_strength;
+}
+void add_emissive_strength(Material& m) {
+  m.emissive_strength = Material{}.emissive_strength;
+}
+
 bool has_unlit(const Material& m) {
   return m.unlit;
 }
@@ -68,6 +79,13 @@ const char* check_ior(float& ior) {
   if (ior == 0.0f || ior >= 1.0f) return nullptr;
   ior = 1.0f;
   return "(the index must be >= 1, or 0 for the specular-glossiness mode); using 1";
+}
+
+// KHR_materials_emissive_strength, "Properties": emissiveStrength >= 0. A negative strength
+// would make the surface absorb light it never received; no value in range means what the
+// file meant, so the file is refused (rejected_is_error) rather than clamped.
+const char* check_emissive_strength(float& strength) {
+  return strength >= 0.0f ? nullptr : "must not be negative";
 }
 
 // KHR_materials_volume, "Properties": attenuationDistance is in (0, +inf), an open range,
@@ -92,16 +110,29 @@ std::string dispersion_note(const Material& m) {
 
 using S = TextureSlot;
 
+// A factor's control (the viewer's override panel): a slider over [min, max] from `start`.
+constexpr FactorControl slider(float min, float max, float start) {
+  return {min, max, start};
+}
+constexpr FactorControl log_slider(float min, float max, float start) {
+  return {min, max, start, true};
+}
+
+constexpr MaterialFactor kEmissiveStrengthFactors[] = {
+    {"emissiveStrength", "{}", 1, 0.0f, kInf, slider(0.0f, 20.0f, 1.0f),
+     &own_member<&Material::emissive_strength>, &check_emissive_strength, true},
+};
+
 constexpr MaterialFactor kIorFactors[] = {
-    {"ior", "{}", 1, 1.0f, kInf, &own_member<&Material::ior>, &check_ior},
+    {"ior", "{}", 1, 1.0f, kInf, slider(1.0f, 3.0f, 1.5f), &own_member<&Material::ior>, &check_ior},
 };
 
 // KHR_materials_specular: the schema bounds specularColorFactor below only; an F0 tint
 // above 1 is allowed (the README's "may be greater than 1").
 constexpr MaterialFactor kSpecularFactors[] = {
-    {"specularFactor", "{}", 1, 0.0f, 1.0f,
+    {"specularFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::specular, &SpecularExtension::factor>},
-    {"specularColorFactor", "{}", 3, 0.0f, kInf,
+    {"specularColorFactor", "{}", 3, 0.0f, kInf, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::specular, &SpecularExtension::color_factor>},
 };
 constexpr MaterialTexture kSpecularTextures[] = {
@@ -110,9 +141,9 @@ constexpr MaterialTexture kSpecularTextures[] = {
 };
 
 constexpr MaterialFactor kClearcoatFactors[] = {
-    {"clearcoatFactor", "{}", 1, 0.0f, 1.0f,
+    {"clearcoatFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::clearcoat, &ClearcoatExtension::factor>},
-    {"clearcoatRoughnessFactor", "roughness {}", 1, 0.0f, 1.0f,
+    {"clearcoatRoughnessFactor", "roughness {}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 0.1f),
      &member<&Material::clearcoat, &ClearcoatExtension::roughness_factor>},
 };
 constexpr MaterialTexture kClearcoatTextures[] = {
@@ -123,9 +154,9 @@ constexpr MaterialTexture kClearcoatTextures[] = {
 };
 
 constexpr MaterialFactor kSheenFactors[] = {
-    {"sheenColorFactor", "{}", 3, 0.0f, 1.0f,
+    {"sheenColorFactor", "{}", 3, 0.0f, 1.0f, slider(0.0f, 1.0f, 0.5f),
      &member<&Material::sheen, &SheenExtension::color_factor>},
-    {"sheenRoughnessFactor", "roughness {}", 1, 0.0f, 1.0f,
+    {"sheenRoughnessFactor", "roughness {}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 0.5f),
      &member<&Material::sheen, &SheenExtension::roughness_factor>},
 };
 constexpr MaterialTexture kSheenTextures[] = {
@@ -135,9 +166,9 @@ constexpr MaterialTexture kSheenTextures[] = {
 
 // anisotropyRotation is an angle in radians: every number is valid.
 constexpr MaterialFactor kAnisotropyFactors[] = {
-    {"anisotropyStrength", "{}", 1, 0.0f, 1.0f,
+    {"anisotropyStrength", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 0.5f),
      &member<&Material::anisotropy, &AnisotropyExtension::strength>},
-    {"anisotropyRotation", "rotation {}", 1, -kInf, kInf,
+    {"anisotropyRotation", "rotation {}", 1, -kInf, kInf, slider(-kPi, kPi, 0.0f),
      &member<&Material::anisotropy, &AnisotropyExtension::rotation>},
 };
 constexpr MaterialTexture kAnisotropyTextures[] = {
@@ -147,13 +178,13 @@ constexpr MaterialTexture kAnisotropyTextures[] = {
 // The thickness minimum may exceed the maximum (the README allows it: the thickness
 // texture then interpolates downwards), so each is bounded on its own.
 constexpr MaterialFactor kIridescenceFactors[] = {
-    {"iridescenceFactor", "{}", 1, 0.0f, 1.0f,
+    {"iridescenceFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::iridescence, &IridescenceExtension::factor>},
-    {"iridescenceIor", "ior {}", 1, 1.0f, kInf,
+    {"iridescenceIor", "ior {}", 1, 1.0f, kInf, slider(1.0f, 3.0f, 1.3f),
      &member<&Material::iridescence, &IridescenceExtension::ior>},
-    {"iridescenceThicknessMinimum", "thickness {}", 1, 0.0f, kInf,
+    {"iridescenceThicknessMinimum", "thickness {}", 1, 0.0f, kInf, slider(0.0f, 1200.0f, 100.0f),
      &member<&Material::iridescence, &IridescenceExtension::thickness_min>},
-    {"iridescenceThicknessMaximum", "to {} nm", 1, 0.0f, kInf,
+    {"iridescenceThicknessMaximum", "to {} nm", 1, 0.0f, kInf, slider(0.0f, 1200.0f, 400.0f),
      &member<&Material::iridescence, &IridescenceExtension::thickness_max>},
 };
 constexpr MaterialTexture kIridescenceTextures[] = {
@@ -162,7 +193,7 @@ constexpr MaterialTexture kIridescenceTextures[] = {
 };
 
 constexpr MaterialFactor kTransmissionFactors[] = {
-    {"transmissionFactor", "{}", 1, 0.0f, 1.0f,
+    {"transmissionFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::transmission, &TransmissionExtension::factor>},
 };
 constexpr MaterialTexture kTransmissionTextures[] = {
@@ -173,11 +204,11 @@ constexpr MaterialTexture kTransmissionTextures[] = {
 // c^(x / d) grows with the distance x travelled: the medium would make light. So it is
 // clamped to 1.
 constexpr MaterialFactor kVolumeFactors[] = {
-    {"thicknessFactor", "thickness {}", 1, 0.0f, kInf,
+    {"thicknessFactor", "thickness {}", 1, 0.0f, kInf, slider(0.0f, 5.0f, 0.5f),
      &member<&Material::volume, &VolumeExtension::thickness_factor>},
-    {"attenuationColor", "attenuation {}", 3, 0.0f, 1.0f,
+    {"attenuationColor", "attenuation {}", 3, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::volume, &VolumeExtension::attenuation_color>},
-    {"attenuationDistance", "at {}", 1, 0.0f, kInf,
+    {"attenuationDistance", "at {}", 1, 0.0f, kInf, log_slider(0.01f, 10.0f, 1.0f),
      &member<&Material::volume, &VolumeExtension::attenuation_distance>,
      &check_attenuation_distance},
 };
@@ -186,16 +217,16 @@ constexpr MaterialTexture kVolumeTextures[] = {
 };
 
 constexpr MaterialFactor kDispersionFactors[] = {
-    {"dispersion", "{}", 1, 0.0f, kInf,
+    {"dispersion", "{}", 1, 0.0f, kInf, slider(0.0f, 5.0f, 0.5f),
      &member<&Material::dispersion, &DispersionExtension::dispersion>},
 };
 
 // diffuseTransmissionColorFactor: the schema bounds it below only; above 1 the surface
 // would transmit more light than reaches it, so it is clamped to 1.
 constexpr MaterialFactor kDiffuseTransmissionFactors[] = {
-    {"diffuseTransmissionFactor", "{}", 1, 0.0f, 1.0f,
+    {"diffuseTransmissionFactor", "{}", 1, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::diffuse_transmission, &DiffuseTransmissionExtension::factor>},
-    {"diffuseTransmissionColorFactor", "{}", 3, 0.0f, 1.0f,
+    {"diffuseTransmissionColorFactor", "{}", 3, 0.0f, 1.0f, slider(0.0f, 1.0f, 1.0f),
      &member<&Material::diffuse_transmission, &DiffuseTransmissionExtension::color_factor>},
 };
 constexpr MaterialTexture kDiffuseTransmissionTextures[] = {
@@ -203,8 +234,16 @@ constexpr MaterialTexture kDiffuseTransmissionTextures[] = {
     {"diffuseTransmissionColorTexture", S::kDiffuseTransmissionColor, "RGB", true},
 };
 
+// Extensions without factors or textures.
+constexpr std::span<const MaterialFactor> kNoFactors;
+constexpr std::span<const MaterialTexture> kNoTextures;
+
+// The extensions that scale a core value come first (material_extensions() is the rest).
+constexpr std::size_t kScalesCoreCount = 1;
 constexpr MaterialExtension kExtensions[] = {
-    {"KHR_materials_ior", "ior", &has_ior, &add_ior, kIorFactors, {}},
+    {"KHR_materials_emissive_strength", "emissive strength", &has_emissive_strength,
+     &add_emissive_strength, kEmissiveStrengthFactors, kNoTextures, nullptr, false, true},
+    {"KHR_materials_ior", "ior", &has_ior, &add_ior, kIorFactors, kNoTextures},
     {"KHR_materials_specular", "specular", &has<&Material::specular>, &add<&Material::specular>,
      kSpecularFactors, kSpecularTextures},
     {"KHR_materials_clearcoat", "clearcoat", &has<&Material::clearcoat>, &add<&Material::clearcoat>,
@@ -219,23 +258,28 @@ constexpr MaterialExtension kExtensions[] = {
      &add<&Material::transmission>, kTransmissionFactors, kTransmissionTextures},
     {"KHR_materials_volume", "volume", &has<&Material::volume>, &add<&Material::volume>,
      kVolumeFactors, kVolumeTextures, &volume_note},
-    {"KHR_materials_dispersion",
-     "dispersion",
-     &has<&Material::dispersion>,
-     &add<&Material::dispersion>,
-     kDispersionFactors,
-     {},
-     &dispersion_note},
+    {"KHR_materials_dispersion", "dispersion", &has<&Material::dispersion>,
+     &add<&Material::dispersion>, kDispersionFactors, kNoTextures, &dispersion_note},
     {"KHR_materials_diffuse_transmission", "diffuse transmission",
      &has<&Material::diffuse_transmission>, &add<&Material::diffuse_transmission>,
      kDiffuseTransmissionFactors, kDiffuseTransmissionTextures},
-    {"KHR_materials_unlit", "unlit", &has_unlit, &add_unlit, {}, {}, nullptr, true},
+    {"KHR_materials_unlit", "unlit", &has_unlit, &add_unlit, kNoFactors, kNoTextures, nullptr,
+     true},
 };
 
 }  // namespace
 
-std::span<const MaterialExtension> material_extensions() {
+static_assert(std::all_of(kExtensions, kExtensions + kScalesCoreCount,
+                          [](const MaterialExtension& e) { return e.scales_core; }));
+static_assert(std::none_of(kExtensions + kScalesCoreCount, std::end(kExtensions),
+                           [](const MaterialExtension& e) { return e.scales_core; }));
+
+std::span<const MaterialExtension> material_schema() {
   return kExtensions;
+}
+
+std::span<const MaterialExtension> material_extensions() {
+  return std::span<const MaterialExtension>(kExtensions).subspan(kScalesCoreCount);
 }
 
 const MaterialExtension* find_material_extension(const std::string& name) {

@@ -14,6 +14,7 @@
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <fmt/format.h>
 #include <imgui.h>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -29,6 +30,7 @@
 #include "pbrkit/pt/progressive_render.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/material_schema.h"
 #include "pbrkit/util/data_dir.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -76,6 +78,24 @@ struct Orbit {
   }
 };
 
+// The override panel's state of one extension of the material schema: whether it overrides
+// every material, and its factors' components in the schema's order.
+struct ExtensionOverride {
+  bool on = false;
+  std::vector<float> values;
+};
+
+// Every extension off, each factor at its control's start value.
+std::vector<ExtensionOverride> extension_overrides() {
+  std::vector<ExtensionOverride> out;
+  for (const MaterialExtension& x : material_schema()) {
+    ExtensionOverride& o = out.emplace_back();
+    for (const MaterialFactor& f : x.factors)
+      o.values.insert(o.values.end(), f.components, f.control.start);
+  }
+  return out;
+}
+
 struct ViewerState {
   ViewerOptions options;
   Scene scene;
@@ -88,28 +108,10 @@ struct ViewerState {
   DisplaySettings display;
   bool override_metallic = false, override_roughness = false;
   float metallic = 1.0f, roughness = 0.5f;
-  // The KHR_materials extensions' factors, each an override of every material when on;
-  // applied through Renderer::set_materials when a control changes.
-  struct Extensions {
-    bool ior_on = false, specular_on = false, clearcoat_on = false, sheen_on = false;
-    bool anisotropy_on = false, iridescence_on = false;
-    float ior = 1.5f, specular = 1.0f;
-    float clearcoat = 1.0f, clearcoat_roughness = 0.1f;
-    glm::vec3 sheen_color{0.5f};
-    float sheen_roughness = 0.5f;
-    float anisotropy = 0.5f, anisotropy_rotation_deg = 0.0f;
-    float iridescence = 1.0f, iridescence_thickness = 400.0f;
-    // Transmission, volume (thickness, attenuation), dispersion, diffuse
-    // transmission.
-    bool transmission_on = false, volume_on = false, dispersion_on = false;
-    bool diffuse_transmission_on = false;
-    float transmission = 1.0f;
-    float thickness = 0.5f, attenuation_distance = 1.0f;
-    glm::vec3 attenuation_color{1.0f};
-    float dispersion = 0.5f;
-    float diffuse_transmission = 1.0f;
-    glm::vec3 diffuse_transmission_color{1.0f};
-  } ext;
+  // The KHR_materials extensions' factors (material_schema() order), each extension an
+  // override of every material when on; applied through Renderer::set_materials when a
+  // control changes.
+  std::vector<ExtensionOverride> ext = extension_overrides();
   Orbit orbit;
   // Until the user moves the camera the view is exactly the one `pbrkit render` takes
   // (select_view at the framebuffer's size), so that screenshots equal renders.
@@ -141,104 +143,46 @@ struct ViewerState {
   std::string message;               // the last problem with a dropped file or a reload
 };
 
-// The scene's materials with the panel's extension overrides.
+// The scene's materials with the panel's extension overrides: an extension turned on is
+// added where a material lacks it and its factors set to the panel's.
 std::vector<Material> overridden_materials(const ViewerState& s) {
   std::vector<Material> materials = s.scene.materials;
-  const ViewerState::Extensions& e = s.ext;
-  for (Material& m : materials) {
-    if (e.ior_on) m.ior = e.ior;
-    if (e.specular_on) {
-      if (!m.specular) m.specular.emplace();
-      m.specular->factor = e.specular;
+  const auto schema = material_schema();
+  for (Material& m : materials)
+    for (std::size_t i = 0; i < schema.size(); ++i) {
+      const MaterialExtension& x = schema[i];
+      if (!s.ext[i].on) continue;
+      if (!x.present(m)) x.add(m);
+      const float* v = s.ext[i].values.data();
+      for (const MaterialFactor& f : x.factors) {
+        std::copy(v, v + f.components, f.values(m));
+        v += f.components;
+      }
     }
-    if (e.clearcoat_on) {
-      if (!m.clearcoat) m.clearcoat.emplace();
-      m.clearcoat->factor = e.clearcoat;
-      m.clearcoat->roughness_factor = e.clearcoat_roughness;
-    }
-    if (e.sheen_on) {
-      if (!m.sheen) m.sheen.emplace();
-      m.sheen->color_factor = e.sheen_color;
-      m.sheen->roughness_factor = e.sheen_roughness;
-    }
-    if (e.anisotropy_on) {
-      if (!m.anisotropy) m.anisotropy.emplace();
-      m.anisotropy->strength = e.anisotropy;
-      m.anisotropy->rotation = glm::radians(e.anisotropy_rotation_deg);
-    }
-    if (e.iridescence_on) {
-      if (!m.iridescence) m.iridescence.emplace();
-      m.iridescence->factor = e.iridescence;
-      m.iridescence->thickness_max = e.iridescence_thickness;
-    }
-    if (e.transmission_on) {
-      if (!m.transmission) m.transmission.emplace();
-      m.transmission->factor = e.transmission;
-    }
-    if (e.volume_on) {
-      if (!m.volume) m.volume.emplace();
-      m.volume->thickness_factor = e.thickness;
-      m.volume->attenuation_distance = e.attenuation_distance;
-      m.volume->attenuation_color = e.attenuation_color;
-    }
-    if (e.dispersion_on) {
-      if (!m.dispersion) m.dispersion.emplace();
-      m.dispersion->dispersion = e.dispersion;
-    }
-    if (e.diffuse_transmission_on) {
-      if (!m.diffuse_transmission) m.diffuse_transmission.emplace();
-      m.diffuse_transmission->factor = e.diffuse_transmission;
-      m.diffuse_transmission->color_factor = e.diffuse_transmission_color;
-    }
-  }
   return materials;
 }
 
-// The extension controls; true when one changed.
+// The extension controls, one checkbox per extension with factors and a slider (a colour
+// picker for a colour) per factor, from the material schema; true when one changed.
 bool draw_extension_controls(ViewerState& s) {
-  ViewerState::Extensions& e = s.ext;
   bool changed = false;
-  changed |= ImGui::Checkbox("override ior", &e.ior_on);
-  if (e.ior_on) changed |= ImGui::SliderFloat("ior", &e.ior, 1.0f, 3.0f);
-  changed |= ImGui::Checkbox("override specular", &e.specular_on);
-  if (e.specular_on) changed |= ImGui::SliderFloat("specular", &e.specular, 0.0f, 1.0f);
-  changed |= ImGui::Checkbox("override clearcoat", &e.clearcoat_on);
-  if (e.clearcoat_on) {
-    changed |= ImGui::SliderFloat("clearcoat", &e.clearcoat, 0.0f, 1.0f);
-    changed |= ImGui::SliderFloat("clearcoat roughness", &e.clearcoat_roughness, 0.0f, 1.0f);
-  }
-  changed |= ImGui::Checkbox("override sheen", &e.sheen_on);
-  if (e.sheen_on) {
-    changed |= ImGui::ColorEdit3("sheen colour", &e.sheen_color.x);
-    changed |= ImGui::SliderFloat("sheen roughness", &e.sheen_roughness, 0.0f, 1.0f);
-  }
-  changed |= ImGui::Checkbox("override anisotropy", &e.anisotropy_on);
-  if (e.anisotropy_on) {
-    changed |= ImGui::SliderFloat("anisotropy", &e.anisotropy, 0.0f, 1.0f);
-    changed |= ImGui::SliderFloat("anisotropy rotation", &e.anisotropy_rotation_deg, -180.0f,
-                                  180.0f, "%.0f deg");
-  }
-  changed |= ImGui::Checkbox("override iridescence", &e.iridescence_on);
-  if (e.iridescence_on) {
-    changed |= ImGui::SliderFloat("iridescence", &e.iridescence, 0.0f, 1.0f);
-    changed |=
-        ImGui::SliderFloat("film thickness", &e.iridescence_thickness, 0.0f, 1200.0f, "%.0f nm");
-  }
-  changed |= ImGui::Checkbox("override transmission", &e.transmission_on);
-  if (e.transmission_on) changed |= ImGui::SliderFloat("transmission", &e.transmission, 0.0f, 1.0f);
-  changed |= ImGui::Checkbox("override volume", &e.volume_on);
-  if (e.volume_on) {
-    changed |= ImGui::SliderFloat("thickness", &e.thickness, 0.0f, 5.0f);
-    changed |= ImGui::SliderFloat("attenuation distance", &e.attenuation_distance, 0.01f, 10.0f,
-                                  "%.2f", ImGuiSliderFlags_Logarithmic);
-    changed |= ImGui::ColorEdit3("attenuation colour", &e.attenuation_color.x);
-  }
-  changed |= ImGui::Checkbox("override dispersion", &e.dispersion_on);
-  if (e.dispersion_on) changed |= ImGui::SliderFloat("dispersion", &e.dispersion, 0.0f, 5.0f);
-  changed |= ImGui::Checkbox("override diffuse transmission", &e.diffuse_transmission_on);
-  if (e.diffuse_transmission_on) {
-    changed |= ImGui::SliderFloat("diffuse transmission", &e.diffuse_transmission, 0.0f, 1.0f);
-    changed |= ImGui::ColorEdit3("diffuse transmission colour", &e.diffuse_transmission_color.x);
+  const auto schema = material_schema();
+  for (std::size_t i = 0; i < schema.size(); ++i) {
+    const MaterialExtension& x = schema[i];
+    ExtensionOverride& o = s.ext[i];
+    if (x.factors.empty()) continue;  // KHR_materials_unlit: a shading mode, not a value
+    changed |= ImGui::Checkbox(fmt::format("override {}", x.summary).c_str(), &o.on);
+    if (!o.on) continue;
+    float* v = o.values.data();
+    for (const MaterialFactor& f : x.factors) {
+      const FactorControl& c = f.control;
+      if (f.components == 3)
+        changed |= ImGui::ColorEdit3(f.json_name, v);
+      else
+        changed |= ImGui::SliderFloat(f.json_name, v, c.min, c.max, "%.3g",
+                                      c.logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
+      v += f.components;
+    }
   }
   return changed;
 }
@@ -604,16 +548,8 @@ void handle_drops(ViewerState& s, gl::Renderer& renderer, float aspect) {
   s.dropped.clear();
 }
 
-}  // namespace
-
-void run_viewer(const ViewerOptions& options) {
-  if (!glfwInit())
-    fail(
-        "pbrkit view: cannot open a window (GLFW could not initialise; is there an X display? "
-        "For a headless machine use xvfb-run, or 'pbrkit render --renderer gl')");
-  struct GlfwGuard {
-    ~GlfwGuard() { glfwTerminate(); }
-  } glfw_guard;
+// An OpenGL 4.5 core window of the asked size, its context current (GLFW initialised).
+GLFWwindow* create_window(const ViewerOptions& options) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -625,260 +561,320 @@ void run_viewer(const ViewerOptions& options) {
          options.height);
   glfwMakeContextCurrent(window);
   glfwSwapInterval(options.frames > 0 || options.exit_when_done ? 0 : 1);
+  return window;
+}
 
+void init_imgui(GLFWwindow* window) {
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini in the user's working directory
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 450");
+}
 
+void shutdown_imgui() {
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+}
+
+// The state's settings from the options and the context (MSAA), and the environments
+// the panel offers.
+void init_state(ViewerState& s, const ViewerOptions& options) {
+  s.options = options;
+  s.settings.brdf = options.brdf;
+  s.settings.background = options.background;
+  s.settings.msaa = options.msaa;
+  glGetIntegerv(GL_MAX_SAMPLES, &s.max_samples);
+  if (s.settings.msaa <= 0) {
+    const std::string gpu = gl::current_renderer();
+    s.settings.msaa = gl::interactive_msaa(gpu);
+    if (s.settings.msaa == 1)
+      note("view: MSAA off on {}, a software rasteriser (--msaa 4 or the panel turns it on)", gpu);
+  }
+  s.display = options.display;
+  s.env_choices.push_back(options.env);
+  // The environments pbrkit ships (data/env/), offered in the panel by name order.
+  std::vector<std::string> shipped;
+  for (const auto& entry : std::filesystem::directory_iterator(data_dir() / "env"))
+    if (entry.path().extension() == ".exr") shipped.push_back(entry.path().string());
+  std::sort(shipped.begin(), shipped.end());
+  s.env_choices.insert(s.env_choices.end(), shipped.begin(), shipped.end());
+  s.mode = options.mode;
+  s.channel = options.channel;
+  s.path_channel = options.path_channel;
+  s.denoise = options.denoise;
+  s.split = std::clamp(options.split, 0.0f, 1.0f);
+}
+
+// Camera controls (when the panel does not want the mouse); in the split view a drag
+// that starts on the divider moves the divider.
+void handle_mouse(ViewerState& s, const ImGuiIO& io) {
+  if (io.WantCaptureMouse) return;
+  const float divider_x = s.split * io.DisplaySize.x;
+  if (s.mode == ViewMode::kSplit && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+      std::fabs(io.MousePos.x - divider_x) < 8.0f)
+    s.dragging_divider = true;
+  if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) s.dragging_divider = false;
+  if (s.dragging_divider) {
+    if (io.DisplaySize.x > 0.0f) s.split = std::clamp(io.MousePos.x / io.DisplaySize.x, 0.0f, 1.0f);
+  } else if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+    s.orbit.yaw -= io.MouseDelta.x * 0.01f;
+    s.orbit.pitch = std::clamp(s.orbit.pitch + io.MouseDelta.y * 0.01f, -1.5f, 1.5f);
+    s.orbit_moved = s.path_dirty = true;
+  }
+  if (ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
+    const Camera c = s.orbit.camera();
+    const glm::vec3 right(c.camera_to_world[0]), up(c.camera_to_world[1]);
+    const float scale = s.orbit.distance * 0.002f;
+    s.orbit.target += (-io.MouseDelta.x * right + io.MouseDelta.y * up) * scale;
+    s.orbit_moved = s.path_dirty = true;
+  }
+  if (io.MouseWheel != 0.0f) {
+    s.orbit.distance *= std::pow(0.9f, io.MouseWheel);
+    s.orbit_moved = s.path_dirty = true;
+  }
+}
+
+// The keys (when the panel does not want the keyboard): Esc, the view modes 1-4, C the
+// next channel, D the denoiser, R reload; true when F12 or P asks for a screenshot.
+bool handle_keys(ViewerState& s, gl::Renderer& renderer, GLFWwindow* window, const ImGuiIO& io) {
+  if (io.WantCaptureKeyboard) return false;
+  bool screenshot = false;
+  if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window, GLFW_TRUE);
+  if (ImGui::IsKeyPressed(GLFW_KEY_F12) || ImGui::IsKeyPressed(GLFW_KEY_P)) screenshot = true;
+  const int mode_keys[] = {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4};
+  for (int m = 0; m < 4; ++m)
+    if (ImGui::IsKeyPressed(mode_keys[m])) s.mode = ViewMode(m);
+  if (ImGui::IsKeyPressed(GLFW_KEY_C)) {
+    // The next channel of the view shown (the raster view's debug channels, the path
+    // view's features).
+    if (s.mode == ViewMode::kPath) {
+      s.path_channel = PathChannel((int(s.path_channel) + 1) % 4);
+      s.path_display_dirty = true;
+    } else if (s.mode == ViewMode::kRaster) {
+      const int count = int(gl::debug_channel_names().size());
+      s.channel = gl::DebugChannel((int(s.channel) + 1) % count);
+    }
+  }
+  if (ImGui::IsKeyPressed(GLFW_KEY_D) && s.mode == ViewMode::kPath) {
+    s.denoise = !s.denoise;
+    s.path_display_dirty = true;
+  }
+  if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
+    try {
+      load_scene_into(s, renderer);
+      s.message.clear();
+    } catch (const Error& e) {
+      s.message = std::string("reload failed: ") + e.what();
+      warn("reload failed: {}", e.what());
+    }
+    s.path_dirty = true;
+  }
+  return screenshot;
+}
+
+// The path tracer runs only while a truth view is shown; it restarts on any change of
+// what it renders, and keeps its image across switches between the truth views. Its
+// newest snapshot (or the denoised colour) becomes the path texture when what it shows
+// changed.
+void update_path_view(ViewerState& s, bool truth, int fb_w, int fb_h) {
+  if (truth && s.path_dirty && fb_w > 0 && fb_h > 0) start_path(s, fb_w, fb_h);
+  if (auto snap = s.path.latest(s.path_seen)) {
+    s.path_seen = snap->serial;
+    if (snap->job == s.path_job) {
+      s.snapshot = std::move(*snap);
+      s.path_display_dirty = true;
+    }
+  }
+  if (s.shown_display.exposure_ev != s.display.exposure_ev ||
+      s.shown_display.tone_mapper != s.display.tone_mapper || s.shown_mode != s.mode)
+    s.path_display_dirty = true;
+  // The denoised colour: asked for when the toggle is on and the render is final, taken
+  // when the denoiser's thread has it.
+  if (s.denoise && s.snapshot) s.denoiser.request(*s.snapshot);
+  if (s.denoiser.poll()) s.path_display_dirty = true;
+  if (truth && s.snapshot && s.path_display_dirty) {
+    s.path_texture.upload(path_display(s));
+    s.shown_display = s.display;
+    s.shown_mode = s.mode;
+    s.path_display_dirty = false;
+  }
+}
+
+// Automation: whether frame `frame_index` is the last (the mode's image is final).
+bool automation_done(const ViewerState& s, int frame_index, bool truth) {
+  const ViewerOptions& options = s.options;
+  if (options.exit_when_done)
+    return truth ? (s.snapshot && s.snapshot->complete && frame_index + 1 >= options.frames &&
+                    (!denoise_shown(s) || s.denoiser.result(s.snapshot->serial) ||
+                     s.denoiser.error()))
+                 : frame_index + 1 >= std::max(options.frames, 2);
+  return options.frames > 0 && frame_index + 1 >= options.frames;
+}
+
+// The raster frame into the window (or a cleared window in the path view); returns the
+// float frame when `read_back`, else nothing. `gpu_ms` gets the renderer's GPU time.
+Image draw_raster_frame(const ViewerState& s, gl::Renderer& renderer, bool raster, int fb_w,
+                        int fb_h, bool read_back, double& gpu_ms) {
+  Image frame;
+  if (fb_w <= 0 || fb_h <= 0) return frame;
+  if (!raster) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fb_w, fb_h);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    return frame;
+  }
+  // At the framebuffer's size of this frame, so the projection has the window's aspect,
+  // also right after a resize. The debug channel in the raster view only: the split and
+  // the error compare the shaded image with the truth.
+  gl::RenderSettings settings = s.settings;
+  settings.debug_channel = s.mode == ViewMode::kRaster ? s.channel : gl::DebugChannel::kNone;
+  renderer.render(current_camera(s, fb_w, fb_h), fb_w, fb_h, settings);
+  gpu_ms = renderer.latest_gpu_time_ms();
+  // The display transform on the GPU, straight into the window (display.glsl, the PNG
+  // outputs' code, held to it by tests/gl/display_glsl_test.cpp); the float frame is read
+  // back only for a screenshot or the error view.
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const DisplaySettings shown = s.mode == ViewMode::kRaster ? raster_display(s) : s.display;
+  renderer.display(shown.exposure_ev, shown.tone_mapper);
+  if (read_back) frame = renderer.read_back();
+  return frame;
+}
+
+// The truth views over the raster frame, behind the panel.
+void draw_truth_views(const ViewerState& s, const ImGuiIO& io) {
+  ImDrawList* back = ImGui::GetBackgroundDrawList();
+  const ImVec2 size = io.DisplaySize;
+  const auto texture = [](const DisplayTexture& t) {
+    return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(t.id()));
+  };
+  if (s.mode == ViewMode::kPath && !s.path_texture.empty())
+    back->AddImage(texture(s.path_texture), ImVec2(0, 0), size);
+  if (s.mode == ViewMode::kSplit && !s.path_texture.empty()) {
+    const float x = s.split * size.x;
+    back->AddImage(texture(s.path_texture), ImVec2(x, 0), size, ImVec2(s.split, 0), ImVec2(1, 1));
+    back->AddLine(ImVec2(x, 0), ImVec2(x, size.y), IM_COL32(255, 255, 255, 200), 2.0f);
+  }
+  if (s.mode == ViewMode::kDifference && !s.error_texture.empty())
+    back->AddImage(texture(s.error_texture), ImVec2(0, 0), size);
+}
+
+// The view shown, saved as `path` (PNG and EXR): the raster frame, the path-traced image,
+// the split of the two, or the raster image's error against the truth.
+void save_view(const ViewerState& s, const std::string& path, const Image& frame, int fb_w) {
+  if (s.mode == ViewMode::kRaster && !frame.empty()) {
+    save_screenshot(path, frame, raster_display(s));
+  } else if (s.mode == ViewMode::kPath && s.snapshot) {
+    const Image linear = path_linear(s);
+    const Image shown = path_display(s);
+    save_screenshot(path, linear, s.display, &shown);
+  } else if (s.mode == ViewMode::kSplit && s.snapshot && !frame.empty()) {
+    save_screenshot(
+        path, split_image(rgb_channels(frame), s.snapshot->color, split_column(s.split, fb_w)),
+        s.display);
+  } else if (s.mode == ViewMode::kDifference && s.snapshot && !frame.empty()) {
+    const ErrorView e = luminance_error(frame, s.snapshot->color);
+    const Image heat = error_heatmap(e.error, 0.5f);
+    save_screenshot(path, e.error, s.display, &heat);
+    note("view: relative luminance error mean {:.4f}, 95th percentile {:.4f}", e.mean, e.p95);
+  }
+}
+
+// The window's frames until it closes (or automation is done).
+void run_frames(ViewerState& s, gl::Renderer& renderer, GLFWwindow* window) {
+  const ViewerOptions& options = s.options;
+  double cpu_ms = 0.0, gpu_ms = 0.0;
+  int last_w = 0, last_h = 0;
+  for (int frame_index = 0; !glfwWindowShouldClose(window); ++frame_index) {
+    const auto t0 = Clock::now();
+    glfwPollEvents();
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    ImGuiIO& io = ImGui::GetIO();
+    int fb_w = 0, fb_h = 0;
+    glfwGetFramebufferSize(window, &fb_w, &fb_h);
+    if (!s.dropped.empty()) handle_drops(s, renderer, framebuffer_aspect(window, options));
+    handle_mouse(s, io);
+    const bool screenshot = handle_keys(s, renderer, window, io);
+    if (draw_panel(s, renderer, cpu_ms, gpu_ms)) s.path_dirty = s.path_scene_dirty = true;
+    s.settings.metallic_override = s.override_metallic ? s.metallic : -1.0f;
+    s.settings.roughness_override = s.override_roughness ? s.roughness : -1.0f;
+
+    const bool truth = s.mode != ViewMode::kRaster;
+    const bool raster = s.mode != ViewMode::kPath;
+    if (fb_w != last_w || fb_h != last_h) s.path_dirty = true;
+    last_w = fb_w;
+    last_h = fb_h;
+    update_path_view(s, truth, fb_w, fb_h);
+
+    const bool automation = options.frames > 0 || options.exit_when_done;
+    const bool done =
+        (options.exit_when_done || options.frames > 0) && automation_done(s, frame_index, truth);
+    if (automation && truth && s.path.error()) fail("path tracer: {}", *s.path.error());
+
+    // The raster frame, read back only when it is needed on the CPU.
+    const bool error_due = s.mode == ViewMode::kDifference && s.snapshot && !s.snapshot->preview &&
+                           (Clock::now() - s.error_time > std::chrono::milliseconds(200) || done);
+    const Image frame =
+        draw_raster_frame(s, renderer, raster, fb_w, fb_h, screenshot || done || error_due, gpu_ms);
+    if (error_due && !frame.empty() && frame.width == s.snapshot->color.width &&
+        frame.height == s.snapshot->color.height) {
+      s.error = luminance_error(frame, s.snapshot->color);
+      s.error_texture.upload(error_heatmap(s.error.error, 0.5f));
+      s.error_time = Clock::now();
+    }
+    draw_truth_views(s, io);
+
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, fb_w, fb_h);
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+
+    if ((screenshot || (done && !options.screenshot.empty())) && fb_w > 0 && fb_h > 0)
+      save_view(s,
+                !options.screenshot.empty() ? options.screenshot
+                                            : "out/view_" + std::to_string(frame_index) + ".png",
+                frame, fb_w);
+    glfwSwapBuffers(window);
+    cpu_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+    if (done) break;
+    // While the path tracer works and nothing else moves, draw at most ~30 frames a
+    // second: it has the other cores, and the window needs no more.
+    if (truth && !automation) std::this_thread::sleep_for(std::chrono::milliseconds(15));
+  }
+}
+
+}  // namespace
+
+void run_viewer(const ViewerOptions& options) {
+  if (!glfwInit())
+    fail(
+        "pbrkit view: cannot open a window (GLFW could not initialise; is there an X display? "
+        "For a headless machine use xvfb-run, or 'pbrkit render --renderer gl')");
+  struct GlfwGuard {
+    ~GlfwGuard() { glfwTerminate(); }
+  } glfw_guard;
+  GLFWwindow* window = create_window(options);
+  init_imgui(window);
   {
     ViewerState s;
-    s.options = options;
-    s.settings.brdf = options.brdf;
-    s.settings.background = options.background;
-    s.settings.msaa = options.msaa;
-    glGetIntegerv(GL_MAX_SAMPLES, &s.max_samples);
-    if (s.settings.msaa <= 0) {
-      const std::string gpu = gl::current_renderer();
-      s.settings.msaa = gl::interactive_msaa(gpu);
-      if (s.settings.msaa == 1)
-        note("view: MSAA off on {}, a software rasteriser (--msaa 4 or the panel turns it on)",
-             gpu);
-    }
-    s.display = options.display;
-    s.env_choices.push_back(options.env);
-    // The environments pbrkit ships (data/env/), offered in the panel by name order.
-    std::vector<std::string> shipped;
-    for (const auto& entry : std::filesystem::directory_iterator(data_dir() / "env"))
-      if (entry.path().extension() == ".exr") shipped.push_back(entry.path().string());
-    std::sort(shipped.begin(), shipped.end());
-    s.env_choices.insert(s.env_choices.end(), shipped.begin(), shipped.end());
+    init_state(s, options);
     gl::Renderer renderer;
     load_scene_into(s, renderer);
     reset_orbit(s, framebuffer_aspect(window, options));
     load_environment(s, renderer);
-
-    s.mode = options.mode;
-    s.channel = options.channel;
-    s.path_channel = options.path_channel;
-    s.denoise = options.denoise;
-    s.split = std::clamp(options.split, 0.0f, 1.0f);
     glfwSetWindowUserPointer(window, &s);
     glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
       auto* state = static_cast<ViewerState*>(glfwGetWindowUserPointer(w));
       for (int i = 0; i < count; ++i) state->dropped.emplace_back(paths[i]);
     });
-
-    double cpu_ms = 0.0, gpu_ms = 0.0;
-    int last_w = 0, last_h = 0;
-    for (int frame_index = 0; !glfwWindowShouldClose(window); ++frame_index) {
-      const auto t0 = Clock::now();
-      glfwPollEvents();
-      ImGui_ImplOpenGL3_NewFrame();
-      ImGui_ImplGlfw_NewFrame();
-      ImGui::NewFrame();
-      ImGuiIO& io = ImGui::GetIO();
-      int fb_w = 0, fb_h = 0;
-      glfwGetFramebufferSize(window, &fb_w, &fb_h);
-      if (!s.dropped.empty()) handle_drops(s, renderer, framebuffer_aspect(window, options));
-
-      // Camera controls (when the panel does not want the mouse); in the split view a drag
-      // that starts on the divider moves the divider.
-      if (!io.WantCaptureMouse) {
-        const float divider_x = s.split * io.DisplaySize.x;
-        if (s.mode == ViewMode::kSplit && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
-            std::fabs(io.MousePos.x - divider_x) < 8.0f)
-          s.dragging_divider = true;
-        if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) s.dragging_divider = false;
-        if (s.dragging_divider) {
-          if (io.DisplaySize.x > 0.0f)
-            s.split = std::clamp(io.MousePos.x / io.DisplaySize.x, 0.0f, 1.0f);
-        } else if (ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
-          s.orbit.yaw -= io.MouseDelta.x * 0.01f;
-          s.orbit.pitch = std::clamp(s.orbit.pitch + io.MouseDelta.y * 0.01f, -1.5f, 1.5f);
-          s.orbit_moved = s.path_dirty = true;
-        }
-        if (ImGui::IsMouseDragging(ImGuiMouseButton_Right)) {
-          const Camera c = s.orbit.camera();
-          const glm::vec3 right(c.camera_to_world[0]), up(c.camera_to_world[1]);
-          const float scale = s.orbit.distance * 0.002f;
-          s.orbit.target += (-io.MouseDelta.x * right + io.MouseDelta.y * up) * scale;
-          s.orbit_moved = s.path_dirty = true;
-        }
-        if (io.MouseWheel != 0.0f) {
-          s.orbit.distance *= std::pow(0.9f, io.MouseWheel);
-          s.orbit_moved = s.path_dirty = true;
-        }
-      }
-      bool screenshot = false;
-      if (!io.WantCaptureKeyboard) {
-        if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) glfwSetWindowShouldClose(window, GLFW_TRUE);
-        if (ImGui::IsKeyPressed(GLFW_KEY_F12) || ImGui::IsKeyPressed(GLFW_KEY_P)) screenshot = true;
-        const int mode_keys[] = {GLFW_KEY_1, GLFW_KEY_2, GLFW_KEY_3, GLFW_KEY_4};
-        for (int m = 0; m < 4; ++m)
-          if (ImGui::IsKeyPressed(mode_keys[m])) s.mode = ViewMode(m);
-        if (ImGui::IsKeyPressed(GLFW_KEY_C)) {
-          // The next channel of the view shown (the raster view's debug channels, the path
-          // view's features).
-          if (s.mode == ViewMode::kPath) {
-            s.path_channel = PathChannel((int(s.path_channel) + 1) % 4);
-            s.path_display_dirty = true;
-          } else if (s.mode == ViewMode::kRaster) {
-            const int count = int(gl::debug_channel_names().size());
-            s.channel = gl::DebugChannel((int(s.channel) + 1) % count);
-          }
-        }
-        if (ImGui::IsKeyPressed(GLFW_KEY_D) && s.mode == ViewMode::kPath) {
-          s.denoise = !s.denoise;
-          s.path_display_dirty = true;
-        }
-        if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
-          try {
-            load_scene_into(s, renderer);
-            s.message.clear();
-          } catch (const Error& e) {
-            s.message = std::string("reload failed: ") + e.what();
-            warn("reload failed: {}", e.what());
-          }
-          s.path_dirty = true;
-        }
-      }
-      if (draw_panel(s, renderer, cpu_ms, gpu_ms)) s.path_dirty = s.path_scene_dirty = true;
-      s.settings.metallic_override = s.override_metallic ? s.metallic : -1.0f;
-      s.settings.roughness_override = s.override_roughness ? s.roughness : -1.0f;
-
-      const bool truth = s.mode != ViewMode::kRaster;
-      const bool raster = s.mode != ViewMode::kPath;
-      if (fb_w != last_w || fb_h != last_h) s.path_dirty = true;
-      last_w = fb_w;
-      last_h = fb_h;
-      // The path tracer runs only while a truth view is shown; it restarts on any change of
-      // what it renders, and keeps its image across switches between the truth views.
-      if (truth && s.path_dirty && fb_w > 0 && fb_h > 0) start_path(s, fb_w, fb_h);
-      if (auto snap = s.path.latest(s.path_seen)) {
-        s.path_seen = snap->serial;
-        if (snap->job == s.path_job) {
-          s.snapshot = std::move(*snap);
-          s.path_display_dirty = true;
-        }
-      }
-      if (s.shown_display.exposure_ev != s.display.exposure_ev ||
-          s.shown_display.tone_mapper != s.display.tone_mapper || s.shown_mode != s.mode)
-        s.path_display_dirty = true;
-      // The denoised colour: asked for when the toggle is on and the render is final, taken
-      // when the denoiser's thread has it.
-      if (s.denoise && s.snapshot) s.denoiser.request(*s.snapshot);
-      if (s.denoiser.poll()) s.path_display_dirty = true;
-      if (truth && s.snapshot && s.path_display_dirty) {
-        s.path_texture.upload(path_display(s));
-        s.shown_display = s.display;
-        s.shown_mode = s.mode;
-        s.path_display_dirty = false;
-      }
-
-      const bool automation = options.frames > 0 || options.exit_when_done;
-      bool done = false;
-      if (options.exit_when_done)
-        done = truth ? (s.snapshot && s.snapshot->complete && frame_index + 1 >= options.frames &&
-                        (!denoise_shown(s) || s.denoiser.result(s.snapshot->serial) ||
-                         s.denoiser.error()))
-                     : frame_index + 1 >= std::max(options.frames, 2);
-      else if (options.frames > 0)
-        done = frame_index + 1 >= options.frames;
-      if (automation && truth && s.path.error()) fail("path tracer: {}", *s.path.error());
-
-      Image frame;  // the raster frame, read back only when it is needed on the CPU
-      const bool error_due = s.mode == ViewMode::kDifference && s.snapshot &&
-                             !s.snapshot->preview &&
-                             (Clock::now() - s.error_time > std::chrono::milliseconds(200) || done);
-      if (fb_w > 0 && fb_h > 0) {
-        if (raster) {
-          // At the framebuffer's size of this frame, so the projection has the window's
-          // aspect, also right after a resize.
-          // The debug channel in the raster view only: the split and the error compare the
-          // shaded image with the truth.
-          gl::RenderSettings settings = s.settings;
-          settings.debug_channel =
-              s.mode == ViewMode::kRaster ? s.channel : gl::DebugChannel::kNone;
-          renderer.render(current_camera(s, fb_w, fb_h), fb_w, fb_h, settings);
-          gpu_ms = renderer.latest_gpu_time_ms();
-          // The display transform on the GPU, straight into the window (display.glsl, the
-          // PNG outputs' code, held to it by tests/gl/display_glsl_test.cpp); the float
-          // frame is read back only for a screenshot or the error view.
-          glBindFramebuffer(GL_FRAMEBUFFER, 0);
-          const DisplaySettings shown = s.mode == ViewMode::kRaster ? raster_display(s) : s.display;
-          renderer.display(shown.exposure_ev, shown.tone_mapper);
-          if (screenshot || done || error_due) frame = renderer.read_back();
-        } else {
-          glBindFramebuffer(GL_FRAMEBUFFER, 0);
-          glViewport(0, 0, fb_w, fb_h);
-          glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-          glClear(GL_COLOR_BUFFER_BIT);
-        }
-      }
-      if (error_due && !frame.empty() && frame.width == s.snapshot->color.width &&
-          frame.height == s.snapshot->color.height) {
-        s.error = luminance_error(frame, s.snapshot->color);
-        s.error_texture.upload(error_heatmap(s.error.error, 0.5f));
-        s.error_time = Clock::now();
-      }
-      // The truth views over the raster frame, behind the panel.
-      ImDrawList* back = ImGui::GetBackgroundDrawList();
-      const ImVec2 size = io.DisplaySize;
-      const auto texture = [](const DisplayTexture& t) {
-        return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(t.id()));
-      };
-      if (s.mode == ViewMode::kPath && !s.path_texture.empty())
-        back->AddImage(texture(s.path_texture), ImVec2(0, 0), size);
-      if (s.mode == ViewMode::kSplit && !s.path_texture.empty()) {
-        const float x = s.split * size.x;
-        back->AddImage(texture(s.path_texture), ImVec2(x, 0), size, ImVec2(s.split, 0),
-                       ImVec2(1, 1));
-        back->AddLine(ImVec2(x, 0), ImVec2(x, size.y), IM_COL32(255, 255, 255, 200), 2.0f);
-      }
-      if (s.mode == ViewMode::kDifference && !s.error_texture.empty())
-        back->AddImage(texture(s.error_texture), ImVec2(0, 0), size);
-
-      glBindFramebuffer(GL_FRAMEBUFFER, 0);
-      glViewport(0, 0, fb_w, fb_h);
-      ImGui::Render();
-      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-
-      if ((screenshot || (done && !options.screenshot.empty())) && fb_w > 0 && fb_h > 0) {
-        const std::string path = !options.screenshot.empty()
-                                     ? options.screenshot
-                                     : "out/view_" + std::to_string(frame_index) + ".png";
-        if (s.mode == ViewMode::kRaster && !frame.empty()) {
-          save_screenshot(path, frame, raster_display(s));
-        } else if (s.mode == ViewMode::kPath && s.snapshot) {
-          const Image linear = path_linear(s);
-          const Image shown = path_display(s);
-          save_screenshot(path, linear, s.display, &shown);
-        } else if (s.mode == ViewMode::kSplit && s.snapshot && !frame.empty()) {
-          save_screenshot(
-              path,
-              split_image(rgb_channels(frame), s.snapshot->color, split_column(s.split, fb_w)),
-              s.display);
-        } else if (s.mode == ViewMode::kDifference && s.snapshot && !frame.empty()) {
-          const ErrorView e = luminance_error(frame, s.snapshot->color);
-          const Image heat = error_heatmap(e.error, 0.5f);
-          save_screenshot(path, e.error, s.display, &heat);
-          note("view: relative luminance error mean {:.4f}, 95th percentile {:.4f}", e.mean, e.p95);
-        }
-      }
-      glfwSwapBuffers(window);
-      cpu_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-      if (done) break;
-      // While the path tracer works and nothing else moves, draw at most ~30 frames a
-      // second: it has the other cores, and the window needs no more.
-      if (truth && !automation) std::this_thread::sleep_for(std::chrono::milliseconds(15));
-    }
+    run_frames(s, renderer, window);
     s.path.stop();
   }  // the renderer's GL objects go before the context
-  ImGui_ImplOpenGL3_Shutdown();
-  ImGui_ImplGlfw_Shutdown();
-  ImGui::DestroyContext();
+  shutdown_imgui();
   glfwDestroyWindow(window);
 }
 

@@ -44,8 +44,9 @@ class Loader {
   [[noreturn]] void error(const std::string& where, const std::string& what) const;
   void warning(const std::string& message);
   // LoadOptions::progress, when given.
-  void report_progress(double fraction, const std::string& detail) const {
-    if (options_.progress) options_.progress(fraction, detail);
+  // False once LoadOptions::progress asked to stop (util/progress.h).
+  bool report_progress(double fraction, const std::string& detail) const {
+    return !options_.progress || options_.progress(fraction, detail);
   }
 
   // file_access.cpp: the file's bytes, the GLB container, tinygltf behind our callbacks.

@@ -10,9 +10,10 @@
 // - a number outside its schema range is a warning naming its JSON path, and is clamped
 //   to that range (the schema's rows say where the loader is stricter than a schema:
 //   attenuationColor and diffuseTransmissionColorFactor are clamped to 1);
-// - the two values a range cannot describe have a check of their own in the schema:
-//   KHR_materials_ior.ior 0 (the specular-glossiness mode) and
-//   KHR_materials_volume.attenuationDistance (an open range with an infinite default);
+// - the values a range cannot describe have a check of their own in the schema:
+//   KHR_materials_ior.ior 0 (the specular-glossiness mode),
+//   KHR_materials_volume.attenuationDistance (an open range with an infinite default), and
+//   a negative KHR_materials_emissive_strength.emissiveStrength, which is an error;
 // - combinations that the READMEs give no effect (a volume with neither transmission nor
 //   diffuse transmission, dispersion without a volume, doubleSided on a volume boundary,
 //   unlit with any other) are warnings that say so; the values are kept.
@@ -173,14 +174,16 @@ void Loader::extension_values(const json& ext, const MaterialFactor& factor,
   }
   const float read = extension_factor(ext, factor.json_name, *values, -kInf, kInf, where);
   float value = read;
-  if (const char* why = factor.check(value))
+  if (const char* why = factor.check(value)) {
+    if (factor.rejected_is_error) error(where + "." + factor.json_name, why);
     warning(fmt::format("{}.{}: {:g} is invalid {}", where, factor.json_name, read, why));
+  }
   *values = value;
 }
 
 void Loader::read_material_extensions(const json& extensions, const std::string& where,
                                       Material& m) {
-  for (const MaterialExtension& x : material_extensions()) {
+  for (const MaterialExtension& x : material_schema()) {
     const json* e = extension_object(extensions, x.name, where);
     if (!e) continue;
     const std::string path = where + ".extensions." + x.name;
@@ -217,10 +220,10 @@ void Loader::warn_ineffective_combinations(const json& extensions, const std::st
         fmt::format("{}.doubleSided: has no effect on a volume boundary (KHR_materials_volume with "
                     "thicknessFactor > 0): both sides of the mesh bound the medium",
                     where));
-  // KHR_materials_unlit: every other extension here names it among its exclusions.
-  for (const MaterialExtension& alone : material_extensions()) {
+  // KHR_materials_unlit: every other extension names it among its exclusions.
+  for (const MaterialExtension& alone : material_schema()) {
     if (!alone.exclusive || !alone.present(m)) continue;
-    for (const MaterialExtension& other : material_extensions())
+    for (const MaterialExtension& other : material_schema())
       if (&other != &alone && extensions.contains(other.name))
         warning(
             fmt::format("{}.extensions: {} must not be combined with {}; the material is shown {}",

@@ -1,6 +1,6 @@
-// Materials (glTF 2.0 section 3.9, metallic-roughness) with KHR_materials_emissive_strength,
-// and the texture references they hold (texture coordinate set, KHR_texture_transform).
-// The KHR_materials_* surface extensions are read in material_extensions.cpp.
+// Materials (glTF 2.0 section 3.9, metallic-roughness) and the texture references they hold
+// (texture coordinate set, KHR_texture_transform). The KHR_materials_* extensions, with
+// KHR_materials_emissive_strength, are read in material_extensions.cpp.
 #include <cmath>
 
 #include "pbrkit/scene/gltf/loader.h"
@@ -66,17 +66,6 @@ void Loader::build_materials() {
         m.emissive_factor[c] = number(g.emissiveFactor[std::size_t(c)], ".emissiveFactor");
     else if (!g.emissiveFactor.empty())
       error(where + ".emissiveFactor", "must have 3 numbers");
-    if (const auto it = g.extensions.find("KHR_materials_emissive_strength");
-        it != g.extensions.end()) {
-      const tinygltf::Value& s = it->second.Get("emissiveStrength");
-      if (s.IsNumber()) {
-        m.emissive_strength =
-            number(s.GetNumberAsDouble(), ".extensions.KHR_materials_emissive_strength");
-        if (m.emissive_strength < 0.0f)
-          error(where + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
-                "must not be negative");
-      }
-    }
     if (g.alphaMode == "MASK")
       m.alpha_mode = AlphaMode::kMask;
     else if (g.alphaMode == "BLEND")

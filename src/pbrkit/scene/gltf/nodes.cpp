@@ -121,13 +121,19 @@ void Loader::build_nodes() {
   // Progress: the JSON and the model are parsed by now (half the time of a file of many
   // small nodes); the other half is this walk.
   std::size_t visited = 0;
-  report_progress(0.5, "nodes");
+  bool go_on = report_progress(0.5, "nodes");
   while (!stack.empty()) {
+    // Stopped (util/progress.h): the scene keeps the nodes set up so far.
+    if (!go_on) {
+      scene_.interrupted = true;
+      warning(fmt::format("the load was stopped: {} of {} nodes set up", visited, count));
+      break;
+    }
     const auto [node, parent_world] = stack.back();
     stack.pop_back();
     if (++visited % 4096 == 0)
-      report_progress(0.5 + 0.5 * double(visited) / double(count),
-                      fmt::format("{} of {} nodes", visited, count));
+      go_on = report_progress(0.5 + 0.5 * double(visited) / double(count),
+                              fmt::format("{} of {} nodes", visited, count));
     const auto& n = model_.nodes[std::size_t(node)];
     const glm::mat4 world = parent_world * local_transform(node);
     if (!finite_matrix(world))

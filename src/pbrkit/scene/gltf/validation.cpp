@@ -17,15 +17,13 @@ namespace gltf {
 namespace {
 
 // Extensions this loader implements; any other one in extensionsRequired is an error. The
-// KHR_materials_* ones are the material schema's, with KHR_materials_emissive_strength
-// (read with the core emissiveFactor, in materials.cpp).
+// KHR_materials_* ones are the material schema's.
 const std::set<std::string>& supported_extensions() {
   static const std::set<std::string> kNames = [] {
-    std::set<std::string> names = {
-        "KHR_materials_emissive_strength", "KHR_texture_transform",      "KHR_lights_punctual",
-        "KHR_mesh_quantization",           "KHR_draco_mesh_compression", "EXT_meshopt_compression",
-        "EXT_mesh_gpu_instancing"};
-    for (const MaterialExtension& e : material_extensions()) names.insert(e.name);
+    std::set<std::string> names = {"KHR_texture_transform",   "KHR_lights_punctual",
+                                   "KHR_mesh_quantization",   "KHR_draco_mesh_compression",
+                                   "EXT_meshopt_compression", "EXT_mesh_gpu_instancing"};
+    for (const MaterialExtension& e : material_schema()) names.insert(e.name);
     return names;
   }();
   return kNames;
