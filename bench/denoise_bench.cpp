@@ -1,5 +1,5 @@
-// The denoiser's quality and speed (issue 13), the figures of BENCHMARKS.md's "Issue 13"
-// section: relative MSE of the raw and the denoised image against converged references,
+// The denoiser's quality and speed, the figures of BENCHMARKS.md's "the denoiser"
+// sections: relative MSE of the raw and the denoised image against converged references,
 // at 16 and 64 spp and at equal time, for the built-in spheres and cornell and for two
 // shared models under two shared HDRIs; the mean of every 1/8 x 1/8 block against the
 // reference; the time to denoise 512x512. Also writes a grid of crops (raw, denoised,

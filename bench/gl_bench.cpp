@@ -84,8 +84,8 @@ void BM_GlFrameSpheresIblTwoLights(benchmark::State& state) {
   gl::HeadlessContext context;
   gl::RenderSettings settings;  // SH irradiance, reference model
   settings.msaa = int(state.range(2));
-  // A fourth argument 0: no compensation (the default before issue 11, to compare like
-  // with like across that change).
+  // A fourth argument 0: no compensation (the default before the energy-compensated
+  // layers, to compare like with like across that change).
   if (state.range(3) == 0) settings.brdf.multiscatter = false;
   time_frames(state, spheres_with_two_lights(), width, height, settings);
   state.SetLabel(gl::describe_current_context());
@@ -149,9 +149,9 @@ BENCHMARK(BM_GlFrameBreakdown)
     ->UseRealTime()
     ->MinTime(2.0);
 
-// Issue 11: the cost of the layered material. The 1280x720 frame (MSAA 1) of `spheres` as
-// is (0) and with KHR_materials_clearcoat and KHR_materials_sheen on every sphere (1: its
-// own shader permutation, the coat's and the sheen's lobes per light and their IBL
+// The cost of the layered material (BENCHMARKS.md, "the material extensions"). The 1280x720 frame
+// (MSAA 1) of `spheres` as is (0) and with KHR_materials_clearcoat and KHR_materials_sheen on every
+// sphere (1: its own shader permutation, the coat's and the sheen's lobes per light and their IBL
 // lookups). Goal: 1 at most 1.3x 0.
 void BM_GlFrameLayers(benchmark::State& state) {
   constexpr int kWidth = 1280, kHeight = 720;
@@ -191,9 +191,9 @@ void BM_GlFrameAnisotropy(benchmark::State& state) {
 }
 BENCHMARK(BM_GlFrameAnisotropy)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
-// Issue 12: the cost of the transmission pass. The 1280x720 frame (MSAA 1) of `spheres`
-// as is (0: no transmissive material, so no capture and no mip chain), with every other
-// sphere thin-walled glass (1: the opaque frame captured, its mip chain built, the glass
+// The cost of the transmission pass (BENCHMARKS.md, "glass and liquids"). The 1280x720 frame (MSAA
+// 1) of `spheres` as is (0: no transmissive material, so no capture and no mip chain), with every
+// other sphere thin-walled glass (1: the opaque frame captured, its mip chain built, the glass
 // spheres drawn after it reading it), and with those spheres a thick dispersive volume
 // (2: three refracted reads per fragment). Goal: 1 and 2 cost at most one extra opaque
 // pass plus the mip chain over 0. 3 and 4: the built-in `glass` and `liquid` scenes (their
