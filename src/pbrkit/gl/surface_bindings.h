@@ -56,7 +56,7 @@ std::vector<SurfaceBinding> surface_bindings();
 std::string texture_slot_macro(TextureSlot slot);
 
 /// The surface program's uniform for an extension's factor: "u" and the factor's JSON
-/// name capitalised ("sheenColorFactor": uSheenColorFactor), a float or a vec3 as the
+/// name capitalised (sheenColorFactor: uSheenColorFactor), a float or a vec3 as the
 /// factor's components.
 std::string factor_uniform(const MaterialFactor& factor);
 
