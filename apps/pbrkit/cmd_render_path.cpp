@@ -264,9 +264,12 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.stop = &g_stop;
 
     ProgressBar bar("render");
-    note("path tracing {} ({} triangles) at {}x{}, up to {} spp{}, {} bounces", scene.source,
-         scene.triangle_count(), s.width, s.height, partial ? s.sample_end - s.sample_begin : s.spp,
-         s.noise_threshold > 0.0f ? fmt::format(", noise threshold {}", s.noise_threshold) : "",
+    note("path tracing {} ({} triangles) at {}x{}, {} {} spp{}, {} bounces", scene.source,
+         scene.triangle_count(), s.width, s.height, driven ? "on average" : "up to",
+         partial ? s.sample_end - s.sample_begin : s.spp,
+         driven                     ? ", denoiser-driven"
+         : s.noise_threshold > 0.0f ? fmt::format(", noise threshold {}", s.noise_threshold)
+                                    : "",
          s.max_bounces);
     std::optional<Image> driven_denoised;
     const PathTracerResult result = [&] {

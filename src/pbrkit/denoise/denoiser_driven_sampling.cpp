@@ -92,8 +92,11 @@ DenoiserDrivenSamplingResult render_denoiser_driven(const Scene& scene, const En
     ProgressCallback inner;
     if (progress)
       inner = [&](double fraction, const std::string& detail) {
-        const double done = (double(before) + fraction * double(cost)) / double(budget);
-        return progress(std::min(1.0, done), detail);
+        // render_path counts the pixels marked done as finished: its work is
+        // n x target, of which n x target - cost was done before the pass.
+        const double whole = double(n) * double(pass_target);
+        const double pass = std::max(0.0, fraction * whole - (whole - double(cost)));
+        return progress(std::min(1.0, (double(before) + pass) / double(budget)), detail);
       };
     PathTracerResult r = render_path(scene, env, camera, s, inner);
     taken += r.stats.samples;
