@@ -29,6 +29,9 @@ void check(const PathTracerSettings& settings, const DenoiserDrivenSamplingOptio
         "denoiser-driven sampling: noise_threshold must be 0 (the denoised error decides "
         "where samples go; it is {})",
         settings.noise_threshold);
+  if (settings.spp < 1 || settings.width < 1 || settings.height < 1)
+    fail("denoiser-driven sampling: the image and spp must not be empty ({}x{}, {} spp)",
+         settings.width, settings.height, settings.spp);
   if (!(options.initial_fraction > 0.0f && options.initial_fraction <= 1.0f))
     fail("denoiser-driven sampling: initial_fraction must be in (0, 1] (it is {})",
          options.initial_fraction);
