@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/scene/camera.h"
@@ -119,6 +121,20 @@ TEST(DenoiserDrivenSampling, RefusesWhatItCannotHonour) {
   const Film film(kSize, kSize);
   s.resume = &film;
   expect_refused(s, "resume");
+}
+
+// A stop (util/progress.h's rule) returns what was rendered, undenoised and said so.
+TEST(DenoiserDrivenSampling, StopReturnsTheRawImageAndSaysSo) {
+  const Cornell c;
+  PathTracerSettings s = settings_for(c.view, 8, 0);
+  int reports = 0;
+  const DenoiserDrivenSamplingResult r =
+      render_denoiser_driven(c.scene, &c.env, c.view.camera, s, {},
+                             [&](double, const std::string&) { return ++reports < 2; });
+  EXPECT_FALSE(r.denoised_ok);
+  EXPECT_TRUE(r.render.stats.stopped);
+  EXPECT_LT(r.render.stats.samples, r.budget);
+  EXPECT_EQ(r.denoised.data, r.render.film.color().data);
 }
 
 // The error estimate denoise() returns: one channel, finite, >= 0, larger where the input

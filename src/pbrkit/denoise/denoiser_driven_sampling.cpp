@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #include "pbrkit/denoise/inputs.h"
@@ -81,7 +82,7 @@ DenoiserDrivenSamplingResult render_denoiser_driven(const Scene& scene, const En
       settings.spp,
       std::max(2u, std::uint32_t(std::floor(double(settings.spp) * options.initial_fraction))));
 
-  bool stopped = false;
+  bool stopped = false, asked_to_stop = false;
   std::uint64_t taken = 0;
   // One pass: render_path brings every pixel not marked done to `pass_target` samples.
   auto render_pass = [&](std::uint32_t pass_target, const Film* resume, std::uint64_t cost) {
@@ -99,7 +100,9 @@ DenoiserDrivenSamplingResult render_denoiser_driven(const Scene& scene, const En
         // n x target, of which n x target - cost was done before the pass.
         const double whole = double(n) * double(pass_target);
         const double pass = std::max(0.0, fraction * whole - (whole - double(cost)));
-        return progress(std::min(1.0, (double(before) + pass) / double(budget)), detail);
+        if (!progress(std::min(1.0, (double(before) + pass) / double(budget)), detail))
+          asked_to_stop = true;
+        return !asked_to_stop;
       };
     PathTracerResult r = render_path(scene, env, camera, s, inner);
     taken += r.stats.samples;
@@ -109,7 +112,7 @@ DenoiserDrivenSamplingResult render_denoiser_driven(const Scene& scene, const En
     ++out.passes;
   };
   const auto keep_going = [&] {
-    return !(settings.stop && settings.stop->load()) &&
+    return !asked_to_stop && !(settings.stop && settings.stop->load()) &&
            !(settings.time_limit > 0.0 && elapsed() >= settings.time_limit);
   };
   auto run_denoiser = [&](Image* error) {
@@ -162,7 +165,7 @@ DenoiserDrivenSamplingResult render_denoiser_driven(const Scene& scene, const En
       }
     } while (chosen == 0 && target < cap);
     if (chosen == 0) break;
-    const Film resume = film;
+    const Film resume = std::move(film);  // render_path starts from a copy
     render_pass(target, &resume, cost);
     current = false;
   }
