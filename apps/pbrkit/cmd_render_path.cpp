@@ -14,6 +14,7 @@
 #include "commands.h"
 #include "denoising.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/denoise/denoiser_driven_sampling.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
@@ -81,6 +82,8 @@ struct PathOptions {
   std::string resume;
   std::vector<std::string> aovs;
   bool denoise = false;
+  std::string adaptive = "noise";
+  bool noise_threshold_given = false;
   std::string filter{pixel_filter_name(PathTracerSettings{}.filter)};
   std::string light_sampler{light_sampler_name(PathTracerSettings{}.light_sampler)};
 };
@@ -122,11 +125,21 @@ RenderRunner add_path_render_options(CLI::App& render) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str()
       ->group(group);
+  CLI::Option* noise_threshold_option =
+      render
+          .add_option("--noise-threshold", p->noise_threshold,
+                      "adaptive sampling: a pixel stops once its estimated relative error (two "
+                      "interleaved half buffers, as in Cycles) is below this; 0 turns it off")
+          ->check(CLI::NonNegativeNumber)
+          ->capture_default_str()
+          ->group(group);
   render
-      .add_option("--noise-threshold", p->noise_threshold,
-                  "adaptive sampling: a pixel stops once its estimated relative error (two "
-                  "interleaved half buffers, as in Cycles) is below this; 0 turns it off")
-      ->check(CLI::NonNegativeNumber)
+      .add_option("--adaptive", p->adaptive,
+                  "where samples go: 'noise' (each pixel stops by its own noise, "
+                  "--noise-threshold) or 'denoised' (passes of samples sent where the denoised "
+                  "image's estimated error falls most per sample, --spp x pixels samples in "
+                  "all; implies --denoise; docs/DENOISER.md)")
+      ->check(CLI::IsMember({"noise", "denoised"}))
       ->capture_default_str()
       ->group(group);
   render.add_option("--min-spp", p->min_spp, "samples every pixel gets before it may stop")
@@ -190,7 +203,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
       ->capture_default_str()
       ->group(group);
 
-  return [p](const RenderCommandOptions& o) {
+  return [p, noise_threshold_option](const RenderCommandOptions& o) {
     const PathOptions& po = *p;
     const Scene scene = load_scene_showing_progress(o.scene);
     std::optional<Environment> env;
@@ -213,6 +226,21 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.brdf.model = parse_brdf_model(o.model);
     s.brdf.multiscatter = o.multiscatter.value_or(default_multiscatter(s.brdf.model));
     const bool partial = !po.sample_range.empty();
+    const bool driven = po.adaptive == "denoised";
+    if (driven) {
+      if (partial)
+        fail(
+            "--adaptive denoised with --sample-range: each pass's choice of pixels depends on "
+            "every sample before it, so a range cannot be rendered alone");
+      if (!po.resume.empty() || !po.checkpoint.empty())
+        fail(
+            "--adaptive denoised with --resume or --checkpoint: a film does not record its passes");
+      if (noise_threshold_option->count() > 0 && po.noise_threshold > 0.0f)
+        fail(
+            "--adaptive denoised with --noise-threshold: the denoised error decides where "
+            "samples go (use --adaptive noise for the per-pixel rule)");
+      s.noise_threshold = 0.0f;
+    }
     if (partial && po.denoise)
       fail(
           "--denoise with --sample-range: a part cannot be denoised alone; denoise when "
@@ -236,12 +264,23 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.stop = &g_stop;
 
     ProgressBar bar("render");
-    note("path tracing {} ({} triangles) at {}x{}, up to {} spp{}, {} bounces", scene.source,
-         scene.triangle_count(), s.width, s.height, partial ? s.sample_end - s.sample_begin : s.spp,
-         s.noise_threshold > 0.0f ? fmt::format(", noise threshold {}", s.noise_threshold) : "",
+    note("path tracing {} ({} triangles) at {}x{}, {} {} spp{}, {} bounces", scene.source,
+         scene.triangle_count(), s.width, s.height, driven ? "on average" : "up to",
+         partial ? s.sample_end - s.sample_begin : s.spp,
+         driven                     ? ", denoiser-driven"
+         : s.noise_threshold > 0.0f ? fmt::format(", noise threshold {}", s.noise_threshold)
+                                    : "",
          s.max_bounces);
-    const PathTracerResult result =
-        render_path(scene, env ? &*env : nullptr, camera, s, bar.callback());
+    std::optional<Image> driven_denoised;
+    const PathTracerResult result = [&] {
+      if (!driven) return render_path(scene, env ? &*env : nullptr, camera, s, bar.callback());
+      DenoiserDrivenSamplingResult r =
+          render_denoiser_driven(scene, env ? &*env : nullptr, camera, s, {}, bar.callback());
+      note("denoiser-driven sampling: {} passes, {} of {} samples", r.passes,
+           r.render.stats.samples, r.budget);
+      if (r.denoised_ok) driven_denoised = std::move(r.denoised);
+      return std::move(r.render);
+    }();
     const auto& st = result.stats;
     bar.finish(fmt::format(
         "{:.1f} s, {:.2f} M samples*px/s, {:.2f} M rays/s, BVH {:.2f} s", st.render_seconds,
@@ -258,10 +297,11 @@ RenderRunner add_path_render_options(CLI::App& render) {
       const auto type = o.exr_float.value_or(false) ? ExrPixelType::kFloat : ExrPixelType::kHalf;
       // Denoising is skipped when the render was interrupted, and stops (leaving the raw
       // image to be written) when Ctrl-C comes while it runs.
-      std::optional<Image> denoised;
-      if (po.denoise && !g_stop.load())
+      std::optional<Image> denoised = std::move(driven_denoised);
+      if (po.denoise && !driven && !g_stop.load())
         denoised = run_denoiser(denoise_input(result.film), &g_stop);
-      if (po.denoise && !denoised) warn("interrupted: not denoised, wrote the raw image");
+      if ((po.denoise || driven) && !denoised)
+        warn("interrupted: not denoised, wrote the raw image");
       if (denoised) {
         write_render_exr(exr, result.film, with_denoise_aovs(po.aovs), type, &*denoised);
         write_display_png(o.outputs.png, *denoised, {o.exposure, parse_tone_mapper(o.tonemap)});

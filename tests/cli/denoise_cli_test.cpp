@@ -123,5 +123,37 @@ TEST(DenoiseCli, SampleRangeWithDenoiseIsRefused) {
   EXPECT_NE(log.find("pbrkit merge --denoise"), std::string::npos) << log;
 }
 
+// --adaptive denoised: the image is denoised (raw layer kept), the sample counts vary from
+// pixel to pixel with --spp as their mean at most, and a sample range is refused.
+TEST(DenoiseCli, AdaptiveDenoisedVariesTheCountsWithinTheBudget) {
+  const fs::path dir = test::scratch_dir();
+  std::string log;
+  ASSERT_EQ(pbrkit_cli(kRender + "--adaptive denoised --aov samples -o " + (dir / "a.exr").string(),
+                       &log),
+            0)
+      << log;
+  const auto layers = read_exr_layers(dir / "a.exr");
+  for (const char* name : {"", "raw", "samples"})
+    ASSERT_NE(layer(layers, name), nullptr) << "layer '" << name << "' missing";
+  EXPECT_NE(layer(layers, "")->data, layer(layers, "raw")->data);
+  const Image& samples = *layer(layers, "samples");
+  double total = 0.0;
+  float lowest = 1e30f, highest = 0.0f;
+  for (std::size_t i = 0; i < samples.pixel_count(); ++i) {
+    const float v = samples.data[i * std::size_t(samples.channels)];
+    total += v;
+    lowest = std::min(lowest, v);
+    highest = std::max(highest, v);
+  }
+  EXPECT_LE(total, 8.0 * double(samples.pixel_count()));
+  EXPECT_LT(lowest, 8.0f);
+  EXPECT_GT(highest, 8.0f);
+  EXPECT_EQ(
+      pbrkit_cli(kRender + "--adaptive denoised --sample-range 0:4 -o " + (dir / "p.exr").string(),
+                 &log),
+      1);
+  EXPECT_NE(log.find("--sample-range"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace pbrkit

@@ -95,6 +95,7 @@ const std::map<std::string, std::string> kValidValues = {
     {"--spp", "4"},
     {"--time", "1"},
     {"--noise-threshold", "0.1"},
+    {"--adaptive", "denoised"},
     {"--min-spp", "2"},
     {"--max-bounces", "4"},
     {"--seed", "3"},

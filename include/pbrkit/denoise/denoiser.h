@@ -149,7 +149,15 @@ std::vector<std::string> denoise_layer_names();
 /// input's mean, undenoised, with DenoiseStats::interrupted set (pass `stats` to tell the
 /// two apart). Returns the denoised RGB image (every value finite and >= the smallest
 /// input value).
+///
+/// `error` (when set) gets the denoiser's own per-pixel estimate of the output's error
+/// (one channel): the SURE estimate of the candidate chosen at the pixel, relative to the
+/// pixel's level, (F - truth)^2 / (m^2 + 0.01) averaged over the channels, box-smoothed as
+/// the selection smooths it and clamped at 0 (what denoised-error adaptive sampling reads,
+/// denoise/denoiser_driven_sampling.h). It does not change the image. Left untouched when
+/// the work was interrupted.
 Image denoise(const DenoiseInput& input, const DenoiseOptions& options = {},
-              const ProgressCallback& progress = {}, DenoiseStats* stats = nullptr);
+              const ProgressCallback& progress = {}, DenoiseStats* stats = nullptr,
+              Image* error = nullptr);
 
 }  // namespace pbrkit

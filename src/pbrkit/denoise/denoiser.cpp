@@ -71,7 +71,7 @@ denoising::Channels channels_unpadded(const denoising::Channels& color, int w, i
 }  // namespace
 
 Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
-              const ProgressCallback& progress, DenoiseStats* stats) {
+              const ProgressCallback& progress, DenoiseStats* stats, Image* error) {
   using namespace denoising;
   const auto start = std::chrono::steady_clock::now();
   validate_denoise_input(input);
@@ -190,7 +190,7 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
     }
   }
   std::vector<double> share;
-  Image out = select_candidates(candidates, options, &share);
+  Image out = select_candidates(candidates, options, &share, error);
   report(1.0);
   if (stats) {
     stats->seconds =

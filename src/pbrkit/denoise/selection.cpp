@@ -22,10 +22,13 @@ namespace pbrkit::denoising {
 namespace {
 // The smoothed one-hot choice among the candidates from their errors `error` relative to
 // the level of `color` (the mean over candidates and channels): per candidate a plane in
-// [0, 1] summing to 1 over the candidates. `wins` gets each candidate's pixel count.
+// [0, 1] summing to 1 over the candidates. `wins` gets each candidate's pixel count;
+// `chosen` (when set) adds `weight` times the smoothed relative error of the candidate
+// chosen at each pixel, clamped at 0 (SURE less the variance can be negative).
 std::vector<Plane> choose(const std::vector<const Channels*>& color,
                           const std::vector<const Plane*>& error, const DenoiseOptions& options,
-                          std::vector<std::size_t>& wins) {
+                          std::vector<std::size_t>& wins, Image* chosen = nullptr,
+                          float weight = 1.0f) {
   const int k_count = int(color.size());
   const int w = error.front()->width, h = error.front()->height;
   const int er = std::max(0, options.error_radius), sr = std::max(0, options.selection_radius);
@@ -56,6 +59,8 @@ std::vector<Plane> choose(const std::vector<const Channels*>& color,
         if (relative[std::size_t(k)].at(x, y) < relative[std::size_t(best)].at(x, y)) best = k;
       choice[std::size_t(best)].at(x, y) = 1.0f;
       ++wins[std::size_t(best)];
+      if (chosen)
+        chosen->pixel(x, y)[0] += weight * std::max(0.0f, relative[std::size_t(best)].at(x, y));
     }
   for (Plane& p : choice) {
     fill_padding(p);
@@ -84,7 +89,7 @@ void blend(const std::vector<Plane>& choice, const std::vector<const Channels*>&
 }  // namespace
 
 Image select_candidates(const Candidates& candidates, const DenoiseOptions& options,
-                        std::vector<double>* share) {
+                        std::vector<double>* share, Image* error_out) {
   const std::size_t k_count = candidates.size();
   const int w = candidates.error[0].front().width, h = candidates.error[0].front().height;
   std::vector<const Channels*> color[2];
@@ -96,11 +101,13 @@ Image select_candidates(const Candidates& candidates, const DenoiseOptions& opti
     }
   std::vector<std::size_t> wins(k_count, 0);
   Image out(w, h, 3);
+  if (error_out) *error_out = Image(w, h, 1);
   std::size_t choices = 0;
   if (options.cross_selection) {
     for (int half = 0; half < 2; ++half) {
       const int other = 1 - half;
-      blend(choose(color[other], error[other], options, wins), color[half], 0.5f, out);
+      blend(choose(color[other], error[other], options, wins, error_out, 0.5f), color[half], 0.5f,
+            out);
     }
     choices = 2;
   } else {
@@ -128,7 +135,8 @@ Image select_candidates(const Candidates& candidates, const DenoiseOptions& opti
       mean_color_ptr.push_back(&mean_color[k]);
       mean_error_ptr.push_back(&mean_error[k]);
     }
-    const std::vector<Plane> choice = choose(mean_color_ptr, mean_error_ptr, options, wins);
+    const std::vector<Plane> choice =
+        choose(mean_color_ptr, mean_error_ptr, options, wins, error_out);
     blend(choice, mean_color_ptr, 1.0f, out);
     choices = 1;
   }

@@ -116,8 +116,10 @@ Candidates cross_filter(const CrossFilterInput& input, const DenoiseOptions& opt
 /// Chooses per pixel among the candidates by their smoothed relative error, smooths the
 /// choice and blends, each half with a choice made from the other half's error estimate
 /// when options.cross_selection is on (from both halves' otherwise). Returns the RGB mean
-/// of the blended halves; `share` gets the fraction each candidate won.
+/// of the blended halves; `share` gets the fraction each candidate won and `error` (when
+/// set) the smoothed relative error estimate of the candidate chosen at each pixel (one
+/// channel; with cross_selection the mean of the two halves' choices).
 Image select_candidates(const Candidates& candidates, const DenoiseOptions& options,
-                        std::vector<double>* share);
+                        std::vector<double>* share, Image* error = nullptr);
 
 }  // namespace pbrkit::denoising
