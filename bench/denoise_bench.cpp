@@ -41,6 +41,7 @@
 #include "pbrkit/denoise/denoiser.h"
 #include "pbrkit/denoise/energy.h"
 #include "pbrkit/denoise/inputs.h"
+#include "pbrkit/image/compare.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image_io.h"
@@ -62,12 +63,7 @@ struct BenchScene {
 };
 
 double rel_mse(const Image& x, const Image& ref) {
-  double s = 0.0;
-  for (std::size_t i = 0; i < x.data.size(); ++i) {
-    const double d = double(x.data[i]) - ref.data[i];
-    s += d * d / (double(ref.data[i]) * ref.data[i] + 0.01);
-  }
-  return s / double(x.data.size());
+  return compare_images(x, ref).relative_mse;
 }
 
 // The largest relative difference of a block mean (8 x 8 blocks, luminance-free: the mean

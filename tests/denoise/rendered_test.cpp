@@ -8,6 +8,7 @@
 #include "pbrkit/denoise/denoiser.h"
 #include "pbrkit/denoise/energy.h"
 #include "pbrkit/denoise/inputs.h"
+#include "pbrkit/image/compare.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/pt/camera_rays.h"
@@ -22,12 +23,7 @@ namespace {
 
 // Relative MSE as the benchmark reports it: mean of (x - ref)^2 / (ref^2 + 0.01).
 double rel_mse(const Image& x, const Image& ref) {
-  double s = 0.0;
-  for (std::size_t i = 0; i < x.data.size(); ++i) {
-    const double d = double(x.data[i]) - ref.data[i];
-    s += d * d / (double(ref.data[i]) * ref.data[i] + 0.01);
-  }
-  return s / double(x.data.size());
+  return compare_images(x, ref).relative_mse;
 }
 
 Film render(const Scene& scene, const Environment& env, std::uint32_t spp, std::uint32_t seed,
