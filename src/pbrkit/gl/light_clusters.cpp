@@ -230,6 +230,11 @@ GpuLight gpu_light(const Light& l) {
   return g;
 }
 
+GpuListedLight gpu_listed_light(const GpuLight& light, std::uint32_t index) {
+  return GpuListedLight{light.position, light.range, light.radiance,
+                        std::uint32_t(light.type) << 30 | index};
+}
+
 GpuLightBuffers::GpuLightBuffers() {
   glCreateBuffers(1, &lights_);
   glCreateBuffers(1, &ranges_);
@@ -245,6 +250,8 @@ GpuLightBuffers::~GpuLightBuffers() {
 }
 
 void GpuLightBuffers::upload(std::span<const Light* const> lights, const LightClusters* clusters) {
+  if (lights.size() >= (std::size_t(1) << 30))
+    fail("OpenGL: {} punctual lights; at most 2^30 - 1", lights.size());
   // Each buffer holds at least one element: a buffer of size 0 cannot be bound.
   std::vector<GpuLight> gpu(std::max<std::size_t>(1, lights.size()));
   for (std::size_t i = 0; i < lights.size(); ++i) gpu[i] = gpu_light(*lights[i]);
@@ -258,9 +265,9 @@ void GpuLightBuffers::upload(std::span<const Light* const> lights, const LightCl
     for (glm::uvec2& r : ranges) r.x += global;
   }
   if (indices.empty()) indices.push_back(0);
-  std::vector<glm::vec4> spheres(indices.size());
+  std::vector<GpuListedLight> listed(indices.size());
   for (std::size_t i = 0; i < indices.size(); ++i)
-    spheres[i] = glm::vec4(gpu[indices[i]].position, gpu[indices[i]].range);
+    listed[i] = gpu_listed_light(gpu[indices[i]], indices[i]);
   glNamedBufferData(lights_, GLsizeiptr(gpu.size() * sizeof(GpuLight)), gpu.data(), GL_STREAM_DRAW);
   glNamedBufferData(ranges_, GLsizeiptr(ranges.size() * sizeof(glm::uvec2)), ranges.data(),
                     GL_STREAM_DRAW);
@@ -268,7 +275,7 @@ void GpuLightBuffers::upload(std::span<const Light* const> lights, const LightCl
                     GL_STREAM_DRAW);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightBufferBinding, lights_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClusterRangeBufferBinding, ranges_);
-  glNamedBufferData(spheres_, GLsizeiptr(spheres.size() * sizeof(glm::vec4)), spheres.data(),
+  glNamedBufferData(spheres_, GLsizeiptr(listed.size() * sizeof(GpuListedLight)), listed.data(),
                     GL_STREAM_DRAW);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClusterIndexBufferBinding, indices_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClusterSphereBufferBinding, spheres_);

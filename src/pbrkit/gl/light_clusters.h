@@ -106,11 +106,23 @@ struct GpuLight {
 static_assert(sizeof(GpuLight) == 64);
 GpuLight gpu_light(const Light& light);
 
+/// What the clustered loop reads of the light of each entry of the index list (std430,
+/// beside the entry): its sphere of influence, and all a point light needs besides; a spot
+/// or directional light's direction and cone are read from its GpuLight at `light`.
+struct GpuListedLight {
+  glm::vec3 position{0.0f};
+  float range = 0.0f;  ///< <= 0: reaches everything
+  glm::vec3 radiance{0.0f};
+  std::uint32_t light = 0;  ///< type << 30 | the light's index (GpuLight::type, below 2^30)
+};
+static_assert(sizeof(GpuListedLight) == 32);
+GpuListedLight gpu_listed_light(const GpuLight& light, std::uint32_t index);
+
 /// The frame's light buffers on the GPU: the lights, the cluster ranges, one index list
 /// holding the global lights first and then the clusters' lists (whose offsets are past
-/// the global ones), and beside it each entry's light's (position, range), which the
-/// shader's range test reads without waiting on the index. Needs the current GL context for its
-/// whole life.
+/// the global ones), and beside each entry its GpuListedLight, which the shader's range
+/// test and a point light's shading read without waiting on the index. Needs the current GL context
+/// for its whole life.
 class GpuLightBuffers {
  public:
   GpuLightBuffers();

@@ -128,8 +128,12 @@ uniform int uLightCount;
 // dot(uViewDepth.xyz, p) + uViewDepth.w.
 layout(std430, binding = BINDING_LIGHT_CLUSTER_RANGES) readonly buffer LightClusterRanges { uvec2 uClusterRange[]; };
 layout(std430, binding = BINDING_LIGHT_CLUSTER_INDICES) readonly buffer LightClusterIndices { uint uLightIndex[]; };
-// Beside each entry of uLightIndex, its light's (position, range).
-layout(std430, binding = BINDING_LIGHT_CLUSTER_SPHERES) readonly buffer LightClusterSpheres { vec4 uLightSphere[]; };
+// Beside each entry k of uLightIndex, what the clustered loop reads of its light
+// (light_clusters.h's GpuListedLight), as bits: uListedLight[2k] its (position, range),
+// uListedLight[2k + 1] its (radiance, type << 30 | index into uLights). Whole words of
+// four: llvmpipe reads a storage buffer at a varying index in a loop over the SIMD lanes
+// per load (not per word), so the loop's cost is its number of loads.
+layout(std430, binding = BINDING_LIGHT_CLUSTER_SPHERES) readonly buffer LightClusterSpheres { uvec4 uListedLight[]; };
 uniform int uGlobalLightCount;
 uniform ivec3 uClusterGrid;
 uniform float uClusterTile;
@@ -286,21 +290,36 @@ vec3 punctual_lights(MaterialInputs m, Shading s, float transmission, float thic
     // BRDF per listed light, where it now costs one per light the SIMD group's fragments
     // need: BENCHMARKS.md "Many punctual lights".) The order is unchanged: the global
     // lights, then the cluster's (both ascending: the unclustered loop's order).
-    int index = -1;  // none found yet
+    int found = -1;  // the entry of the next light that reaches the fragment; none yet
     float d = 0.0;
     vec3 to_light = vec3(0.0);
-    while (index < 0 && next < count) {
-      uint entry = next < uGlobalLightCount ? uint(next) : cluster.x + uint(next - uGlobalLightCount);
-      vec4 sphere = uLightSphere[entry];
+    vec4 sphere = vec4(0.0);
+    while (found < 0 && next < count) {
+      int entry = next < uGlobalLightCount ? next : int(cluster.x) + (next - uGlobalLightCount);
+      sphere = uintBitsToFloat(uListedLight[2 * entry]);
       to_light = sphere.xyz - vPosition;
       d = length(to_light);
       // Beyond its range a light adds exactly 0 (the window below); a directional light has
       // no range (0), so it always passes.
-      if (!(sphere.w > 0.0 && d >= sphere.w)) index = int(uLightIndex[entry]);
+      if (!(sphere.w > 0.0 && d >= sphere.w)) found = entry;
       ++next;
     }
-    if (index < 0) break;
-    PunctualLight light = uLights[index];
+    if (found < 0) break;
+    // The light itself: a point light's whole state is beside the entry; a spot or
+    // directional light's direction and cone are read from uLights.
+    uvec4 listed = uListedLight[2 * found + 1];
+    PunctualLight light;
+    light.position = sphere.xyz;
+    light.range = sphere.w;
+    light.radiance = uintBitsToFloat(listed.xyz);
+    light.type = int(listed.w >> 30);
+    light.direction = vec3(0.0, 0.0, -1.0);
+    light.cone = vec2(0.0);
+    if (light.type != 0) {
+      uint index = listed.w & 0x3fffffffu;
+      light.direction = uLights[index].direction;
+      light.cone = uLights[index].cone;
+    }
 #else
   for (int k = 0; k < count; ++k) {
     PunctualLight light = uLights[k];
