@@ -201,6 +201,18 @@ TEST(GlClusteredLights, RangedAndUnrangedLightsMatchTheFullLoop) {
   std::printf("12 lights, the sun among them: largest relative difference %.2e\n", d.largest);
   EXPECT_GT(d.lit, kWidth * kHeight * 3 / 4);
   EXPECT_LT(d.largest, kTolerance);
+
+  // Without spot lights the clustered program reads nothing of the lights themselves (LIGHTS
+  // 2): the sun's direction comes from beside its entry in the index list.
+  std::vector<Light> no_spots;
+  for (const Light& l : lights)
+    if (l.type != Light::Type::kSpot) no_spots.push_back(l);
+  const Comparison e =
+      compare(render_lights(renderer, no_spots, true), render_lights(renderer, no_spots, false));
+  std::printf("%zu lights without spots: largest relative difference %.2e\n", no_spots.size(),
+              e.largest);
+  EXPECT_GT(e.lit, kWidth * kHeight * 3 / 4);
+  EXPECT_LT(e.largest, kTolerance);
 }
 
 ClusterView room_view() {

@@ -231,8 +231,10 @@ GpuLight gpu_light(const Light& l) {
 }
 
 GpuListedLight gpu_listed_light(const GpuLight& light, std::uint32_t index) {
-  return GpuListedLight{light.position, light.range, light.radiance,
-                        std::uint32_t(light.type) << 30 | index};
+  // A directional light's direction where a point light's position is (its range, 0,
+  // passes every range test).
+  return GpuListedLight{light.type == 2 ? light.direction : light.position, light.range,
+                        light.radiance, std::uint32_t(light.type) << 30 | index};
 }
 
 GpuLightBuffers::GpuLightBuffers() {

@@ -107,11 +107,11 @@ static_assert(sizeof(GpuLight) == 64);
 GpuLight gpu_light(const Light& light);
 
 /// What the clustered loop reads of the light of each entry of the index list (std430,
-/// beside the entry): its sphere of influence, and all a point light needs besides; a spot
-/// or directional light's direction and cone are read from its GpuLight at `light`.
+/// beside the entry): its sphere of influence, and all a point or directional light needs
+/// besides; a spot light's direction and cone are read from its GpuLight at `light`.
 struct GpuListedLight {
-  glm::vec3 position{0.0f};
-  float range = 0.0f;  ///< <= 0: reaches everything
+  glm::vec3 position{0.0f};  ///< a directional light's direction
+  float range = 0.0f;        ///< <= 0: reaches everything
   glm::vec3 radiance{0.0f};
   std::uint32_t light = 0;  ///< type << 30 | the light's index (GpuLight::type, below 2^30)
 };

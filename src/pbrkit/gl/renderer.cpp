@@ -291,7 +291,9 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
   f.features.multiscatter = settings.brdf.multiscatter;
   f.features.geometry = int(direct);
   f.features.fresnel = settings.fresnel == FresnelMode::kSchlick ? 0 : 1;
-  f.features.lights = f.lights.empty() ? 0 : f.clustered ? 2 : 1;
+  const bool spots = std::any_of(f.lights.begin(), f.lights.end(),
+                                 [](const Light* l) { return l->type == Light::Type::kSpot; });
+  f.features.lights = f.lights.empty() ? 0 : f.clustered ? (spots ? 3 : 2) : 1;
   if (f.features.lights == 1 && int(f.lights.size()) <= kCompiledLightCount)
     f.features.light_count = int(f.lights.size());
   set_debug_features(settings, f.features);

@@ -30,7 +30,9 @@ struct SurfaceFeatures {
   bool multiscatter = false;
   int geometry = 0;  ///< GeometryModel for punctual lights
   int fresnel = 0;   ///< 0 Schlick, 1 spherical Gaussian
-  int lights = 0;    ///< punctual lights: 0 none, 1 every light, 2 clustered (LIGHTS)
+  /// punctual lights (LIGHTS): 0 none, 1 every light, 2 clustered, 3 clustered with spot
+  /// lights among them
+  int lights = 0;
   /// LIGHTS 1: the number of lights when it is compiled in (up to kCompiledLightCount; the
   /// loop unrolls over constant indices), -1 when the shader reads it (uLightCount).
   int light_count = -1;

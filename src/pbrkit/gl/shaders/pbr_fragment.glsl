@@ -14,7 +14,8 @@
 // and interpolates every varying of every small triangle); ALPHA_MODE 0 opaque, 1 mask,
 // 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1; GEOMETRY (G for lights) and FRESNEL as
 // in brdf.glsl; LIGHTS: the punctual lights, 0 none, 1 every light for every fragment, 2
-// the fragment's cluster's (light_clusters.h); LIGHT_COUNT: with LIGHTS 1, the number of
+// the fragment's cluster's (light_clusters.h), 3 the same with spot lights among them;
+// LIGHT_COUNT: with LIGHTS 1, the number of
 // lights when compiled in (-1: uLightCount).
 // The KHR_materials_* extensions, each its own permutation feature with its
 // texture slots (HAS_SPECULAR_TEXTURE .. HAS_IRIDESCENCE_THICKNESS_TEXTURE): MATERIAL_SPECULAR (ior and
@@ -130,7 +131,8 @@ layout(std430, binding = BINDING_LIGHT_CLUSTER_RANGES) readonly buffer LightClus
 layout(std430, binding = BINDING_LIGHT_CLUSTER_INDICES) readonly buffer LightClusterIndices { uint uLightIndex[]; };
 // Beside each entry k of uLightIndex, what the clustered loop reads of its light
 // (light_clusters.h's GpuListedLight), as bits: uListedLight[2k] its (position, range),
-// uListedLight[2k + 1] its (radiance, type << 30 | index into uLights). Whole words of
+// uListedLight[2k + 1] its (radiance, type << 30 | index into uLights); a directional
+// light's direction in place of the position. Whole words of
 // four: llvmpipe reads a storage buffer at a varying index in a loop over the SIMD lanes
 // per load (not per word), so the loop's cost is its number of loads.
 layout(std430, binding = BINDING_LIGHT_CLUSTER_SPHERES) readonly buffer LightClusterSpheres { uvec4 uListedLight[]; };
@@ -247,12 +249,12 @@ Shading shading_at(MaterialInputs m, vec3 v) {
   return s;
 }
 
-// The number of punctual lights this fragment shades and, with LIGHTS 2, its cluster's
+// The number of punctual lights this fragment shades and, with LIGHTS 2 or 3, its cluster's
 // (first index, count) in uLightIndex (with LIGHT_COUNT >= 0, punctual_lights' loop has
 // the constant count instead).
 int light_count(out uvec2 cluster) {
   cluster = uvec2(0u);
-#if LIGHTS == 2
+#if LIGHTS >= 2
   // The fragment's cluster: a slice of its own view depth, the tile of its pixel centre.
   float depth = max(dot(uViewDepth.xyz, vPosition) + uViewDepth.w, uClusterDepth.x);
   ivec3 cell = ivec3(ivec2(gl_FragCoord.xy / uClusterTile),
@@ -278,7 +280,7 @@ vec3 punctual_lights(MaterialInputs m, Shading s, float transmission, float thic
 #else
   int count = light_count(cluster);
 #endif
-#if LIGHTS == 2
+#if LIGHTS >= 2
   int next = 0;
   for (;;) {
     // The next light of the cluster that reaches this fragment: lights beyond their range
@@ -305,21 +307,26 @@ vec3 punctual_lights(MaterialInputs m, Shading s, float transmission, float thic
       ++next;
     }
     if (found < 0) break;
-    // The light itself: a point light's whole state is beside the entry; a spot or
-    // directional light's direction and cone are read from uLights.
+    // The light itself: a point or directional light's whole state is beside the entry (a
+    // directional light's direction where a point light's position is); a spot light's
+    // direction and cone are read from uLights, in the permutation that has spot lights
+    // (LIGHTS 3: the branch's loads cost llvmpipe a loop over the lanes even where no lane
+    // takes it).
     uvec4 listed = uListedLight[2 * found + 1];
     PunctualLight light;
     light.position = sphere.xyz;
     light.range = sphere.w;
     light.radiance = uintBitsToFloat(listed.xyz);
     light.type = int(listed.w >> 30);
-    light.direction = vec3(0.0, 0.0, -1.0);
+    light.direction = sphere.xyz;
     light.cone = vec2(0.0);
-    if (light.type != 0) {
+#if LIGHTS == 3
+    if (light.type == 1) {
       uint index = listed.w & 0x3fffffffu;
       light.direction = uLights[index].direction;
       light.cone = uLights[index].cone;
     }
+#endif
 #else
   for (int k = 0; k < count; ++k) {
     PunctualLight light = uLights[k];
