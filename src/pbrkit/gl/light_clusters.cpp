@@ -240,15 +240,13 @@ GpuListedLight gpu_listed_light(const GpuLight& light, std::uint32_t index) {
 GpuLightBuffers::GpuLightBuffers() {
   glCreateBuffers(1, &lights_);
   glCreateBuffers(1, &ranges_);
-  glCreateBuffers(1, &indices_);
-  glCreateBuffers(1, &spheres_);
+  glCreateBuffers(1, &listed_);
 }
 
 GpuLightBuffers::~GpuLightBuffers() {
   glDeleteBuffers(1, &lights_);
   glDeleteBuffers(1, &ranges_);
-  glDeleteBuffers(1, &indices_);
-  glDeleteBuffers(1, &spheres_);
+  glDeleteBuffers(1, &listed_);
 }
 
 void GpuLightBuffers::upload(std::span<const Light* const> lights, const LightClusters* clusters) {
@@ -258,29 +256,24 @@ void GpuLightBuffers::upload(std::span<const Light* const> lights, const LightCl
   std::vector<GpuLight> gpu(std::max<std::size_t>(1, lights.size()));
   for (std::size_t i = 0; i < lights.size(); ++i) gpu[i] = gpu_light(*lights[i]);
   std::vector<glm::uvec2> ranges(1, glm::uvec2(0u));
-  std::vector<std::uint32_t> indices;
+  std::vector<GpuListedLight> listed;
   if (clusters) {
     const auto global = std::uint32_t(clusters->global.size());
-    indices = clusters->global;
-    indices.insert(indices.end(), clusters->indices.begin(), clusters->indices.end());
+    listed.reserve(global + clusters->indices.size());
+    for (const std::uint32_t i : clusters->global) listed.push_back(gpu_listed_light(gpu[i], i));
+    for (const std::uint32_t i : clusters->indices) listed.push_back(gpu_listed_light(gpu[i], i));
     if (!clusters->ranges.empty()) ranges = clusters->ranges;
     for (glm::uvec2& r : ranges) r.x += global;
   }
-  if (indices.empty()) indices.push_back(0);
-  std::vector<GpuListedLight> listed(indices.size());
-  for (std::size_t i = 0; i < indices.size(); ++i)
-    listed[i] = gpu_listed_light(gpu[indices[i]], indices[i]);
+  if (listed.empty()) listed.emplace_back();
   glNamedBufferData(lights_, GLsizeiptr(gpu.size() * sizeof(GpuLight)), gpu.data(), GL_STREAM_DRAW);
   glNamedBufferData(ranges_, GLsizeiptr(ranges.size() * sizeof(glm::uvec2)), ranges.data(),
                     GL_STREAM_DRAW);
-  glNamedBufferData(indices_, GLsizeiptr(indices.size() * sizeof(std::uint32_t)), indices.data(),
+  glNamedBufferData(listed_, GLsizeiptr(listed.size() * sizeof(GpuListedLight)), listed.data(),
                     GL_STREAM_DRAW);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kLightBufferBinding, lights_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClusterRangeBufferBinding, ranges_);
-  glNamedBufferData(spheres_, GLsizeiptr(listed.size() * sizeof(GpuListedLight)), listed.data(),
-                    GL_STREAM_DRAW);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClusterIndexBufferBinding, indices_);
-  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kClusterSphereBufferBinding, spheres_);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kListedLightBufferBinding, listed_);
 }
 
 }  // namespace pbrkit::gl

@@ -26,11 +26,10 @@
 namespace pbrkit::gl {
 
 /// The binding points of the light buffers (pbr_fragment.glsl's PunctualLights,
-/// LightClusterRanges, LightClusterIndices and LightClusterSpheres).
+/// LightClusterRanges and ListedLights).
 inline constexpr GLuint kLightBufferBinding = 4;
 inline constexpr GLuint kClusterRangeBufferBinding = 5;
-inline constexpr GLuint kClusterIndexBufferBinding = 6;
-inline constexpr GLuint kClusterSphereBufferBinding = 7;
+inline constexpr GLuint kListedLightBufferBinding = 6;
 
 /// A light's sphere of influence in world space; none for a light that reaches everything
 /// (directional, or no `range`).
@@ -106,9 +105,10 @@ struct GpuLight {
 static_assert(sizeof(GpuLight) == 64);
 GpuLight gpu_light(const Light& light);
 
-/// What the clustered loop reads of the light of each entry of the index list (std430,
-/// beside the entry): its sphere of influence, and all a point or directional light needs
-/// besides; a spot light's direction and cone are read from its GpuLight at `light`.
+/// An entry of the frame's listed lights (pbr_fragment.glsl's ListedLights, std430): what
+/// the clustered loop reads of a light, its sphere of influence and all a point or
+/// directional light needs besides; a spot light's direction and cone are read from its
+/// GpuLight at `light`.
 struct GpuListedLight {
   glm::vec3 position{0.0f};  ///< a directional light's direction
   float range = 0.0f;        ///< <= 0: reaches everything
@@ -118,11 +118,10 @@ struct GpuListedLight {
 static_assert(sizeof(GpuListedLight) == 32);
 GpuListedLight gpu_listed_light(const GpuLight& light, std::uint32_t index);
 
-/// The frame's light buffers on the GPU: the lights, the cluster ranges, one index list
-/// holding the global lights first and then the clusters' lists (whose offsets are past
-/// the global ones), and beside each entry its GpuListedLight, which the shader's range
-/// test and a point light's shading read without waiting on the index. Needs the current GL context
-/// for its whole life.
+/// The frame's light buffers on the GPU: the lights, the cluster ranges, and the listed
+/// lights, one GpuListedLight per entry of the global list and then of each cluster's list
+/// (the ranges' offsets are past the global ones). Needs the current GL context for its
+/// whole life.
 class GpuLightBuffers {
  public:
   GpuLightBuffers();
@@ -134,7 +133,7 @@ class GpuLightBuffers {
   void upload(std::span<const Light* const> lights, const LightClusters* clusters);
 
  private:
-  GLuint lights_ = 0, ranges_ = 0, indices_ = 0, spheres_ = 0;
+  GLuint lights_ = 0, ranges_ = 0, listed_ = 0;
 };
 
 }  // namespace pbrkit::gl

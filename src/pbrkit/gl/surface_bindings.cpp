@@ -57,8 +57,7 @@ std::vector<SurfaceBinding> surface_bindings() {
   b.push_back({"INSTANCE_TRANSFORMS", kInstanceBufferBinding, true});
   b.push_back({"PUNCTUAL_LIGHTS", kLightBufferBinding, true});
   b.push_back({"LIGHT_CLUSTER_RANGES", kClusterRangeBufferBinding, true});
-  b.push_back({"LIGHT_CLUSTER_INDICES", kClusterIndexBufferBinding, true});
-  b.push_back({"LIGHT_CLUSTER_SPHERES", kClusterSphereBufferBinding, true});
+  b.push_back({"LISTED_LIGHTS", kListedLightBufferBinding, true});
   return b;
 }
 

@@ -122,20 +122,19 @@ struct PunctualLight {
 layout(std430, binding = BINDING_PUNCTUAL_LIGHTS) readonly buffer PunctualLights { PunctualLight uLights[]; };
 uniform int uLightCount;
 // Clustered shading (Olsson et al. 2012; light_clusters.h): the lights of cluster c are
-// uLightIndex[uClusterRange[c].x ...][count uClusterRange[c].y]; the first
-// uGlobalLightCount entries of uLightIndex are the lights every fragment shades (no range,
-// or directional). Cluster (x, y, z): pixel tile gl_FragCoord.xy / uClusterTile, slice
+// the entries uClusterRange[c].x ... (count uClusterRange[c].y) of the listed lights; the
+// first uGlobalLightCount entries are the lights every fragment shades (no range, or
+// directional). Cluster (x, y, z): pixel tile gl_FragCoord.xy / uClusterTile, slice
 // floor(log(depth / uClusterDepth.x) * uClusterDepth.y) of the view depth
 // dot(uViewDepth.xyz, p) + uViewDepth.w.
 layout(std430, binding = BINDING_LIGHT_CLUSTER_RANGES) readonly buffer LightClusterRanges { uvec2 uClusterRange[]; };
-layout(std430, binding = BINDING_LIGHT_CLUSTER_INDICES) readonly buffer LightClusterIndices { uint uLightIndex[]; };
-// Beside each entry k of uLightIndex, what the clustered loop reads of its light
+// Entry k of the listed lights, what the clustered loop reads of its light
 // (light_clusters.h's GpuListedLight), as bits: uListedLight[2k] its (position, range),
 // uListedLight[2k + 1] its (radiance, type << 30 | index into uLights); a directional
-// light's direction in place of the position. Whole words of
-// four: llvmpipe reads a storage buffer at a varying index in a loop over the SIMD lanes
-// per load (not per word), so the loop's cost is its number of loads.
-layout(std430, binding = BINDING_LIGHT_CLUSTER_SPHERES) readonly buffer LightClusterSpheres { uvec4 uListedLight[]; };
+// light's direction in place of the position. Whole words of four: llvmpipe reads a
+// storage buffer at a varying index in a loop over the SIMD lanes per load (not per
+// word), so the loop's cost is its number of loads.
+layout(std430, binding = BINDING_LISTED_LIGHTS) readonly buffer ListedLights { uvec4 uListedLight[]; };
 uniform int uGlobalLightCount;
 uniform ivec3 uClusterGrid;
 uniform float uClusterTile;
@@ -250,7 +249,7 @@ Shading shading_at(MaterialInputs m, vec3 v) {
 }
 
 // The number of punctual lights this fragment shades and, with LIGHTS 2 or 3, its cluster's
-// (first index, count) in uLightIndex (with LIGHT_COUNT >= 0, punctual_lights' loop has
+// (first entry, count) in the listed lights (with LIGHT_COUNT >= 0, punctual_lights' loop has
 // the constant count instead).
 int light_count(out uvec2 cluster) {
   cluster = uvec2(0u);
