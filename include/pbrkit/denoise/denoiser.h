@@ -124,6 +124,13 @@ struct DenoiseOptions {
   /// Also offer the unfiltered image as a candidate (last in DenoiseStats::candidate_share);
   /// off: it changed no scene of denoise_bench measurably (BENCHMARKS.md, "the denoiser")
   bool raw_candidate = false;
+  /// Pass through the pixels whose every sample saw the environment directly (depth 0 in
+  /// both halves: no sample hit the scene). Their colour is a lookup of the environment,
+  /// noise-free but for the pixel filter's sampling of its detail, so filtering can only
+  /// blur it; and their variance, smoothed over a box that reaches across a silhouette,
+  /// takes in the scene's, which lets the filters blur them freely (docs/DENOISER.md,
+  /// "Energy": those blocks moved by many of their tiny standard errors).
+  bool keep_direct_environment = true;
 };
 
 /// Diagnostics of one run.

@@ -50,8 +50,12 @@ Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOpt
 /// estimate from their neighbourhood and the other half are scaled down and their excess
 /// is spread over the feature-alike pixels of the window, half into each half buffer, so
 /// the mean of the halves keeps its energy. Returns the number of outliers treated.
+/// `direct_environment` (when set, one flag per pixel, row-major) marks the pixels that saw
+/// only the environment: they are neither treated nor given any other pixel's excess (the
+/// denoiser passes them through, DenoiseOptions::keep_direct_environment).
 int spread_outliers(Channels color[2], const std::vector<const Feature*>& features,
-                    const DenoiseOptions& options);
+                    const DenoiseOptions& options,
+                    const std::vector<unsigned char>* direct_environment = nullptr);
 
 /// The candidates' outputs, per half: each filtered half (RGB) and the error of the
 /// average of the two filtered halves as estimated from that half alone (its SURE less
