@@ -62,7 +62,7 @@ def cycles(args, scene, env, spp, seed, out):
 def pbrkit(args, scene, out, spp, seed, extra):
     cmd = [args.pbrkit, "render", scene, "--renderer", "path", "--width", "256", "--height",
            "256", "--max-bounces", "8", "--threads", "2", "--spp", str(spp), "--seed", str(seed),
-           "-o", out] + extra
+           "--float", "-o", out] + extra
     start = time.monotonic()
     subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     return time.monotonic() - start

@@ -16,7 +16,8 @@
 //                       --feature-tau --normal-tau --first-order k1,k2,...
 //                       --first-order-ridge --first-order-energy-radius
 //                       --cross-selection 0|1 --zero-order-energy-radius
-//                       --symmetric-colour-distance 0|1 --keep-direct-environment 0|1]
+//                       --symmetric-colour-distance 0|1 --keep-direct-environment 0|1
+//                       --variance-level-ratio X]
 //                      [--ablate 1 (the energy of each stage: the 16-spp image denoised
 //                       with one stage or candidate at a time, in raw standard errors)]
 //                      [--energy-block N (block size of the energy columns, default 32)]
@@ -277,6 +278,8 @@ int main(int argc, char** argv) {
       options.patch_radius = std::stoi(v);
     else if (a == "--raw-candidate")
       options.raw_candidate = v == "1";
+    else if (a == "--variance-level-ratio")
+      options.variance_level_ratio = std::stof(v);
     else if (a == "--keep-direct-environment")
       options.keep_direct_environment = v == "1";
     else if (a == "--feature-gradient")

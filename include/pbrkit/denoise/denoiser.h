@@ -114,6 +114,12 @@ struct DenoiseOptions {
   /// Smooth the colour's relative variance and scale it by each pixel's own level
   /// (docs/DENOISER.md), rather than the variance itself
   bool relative_variance = true;
+  /// With relative_variance: smooth each pixel's relative variance only over the pixels
+  /// of the box whose level (plus 0.1) is within this factor of its own (0: the whole box).
+  /// A quiet pixel beside a much brighter or darker noisy one (the edge of a light seen
+  /// directly) otherwise takes in that one's relative variance, and the colour distance
+  /// then lets it average with its neighbours across the edge (docs/DENOISER.md, "Energy")
+  float variance_level_ratio = 1.5f;
   int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
   int error_radius = 2;      ///< box radius smoothing the per-candidate error estimates
   int selection_radius = 1;  ///< box radius smoothing the per-pixel choice of candidate

@@ -154,7 +154,8 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
                                        options.keep_direct_environment ? &environment : nullptr);
   const Channels variance =
       options.relative_variance
-          ? half_variance_relative(color[0], color[1], options.variance_radius)
+          ? half_variance_relative(color[0], color[1], options.variance_radius,
+                                   options.variance_level_ratio)
           : half_variance(color[0], color[1], options.variance_radius);
   // Stopped (progress.h's rule): what it has is the input's mean, the undenoised image.
   auto interrupted = [&] {

@@ -26,7 +26,7 @@ Channels half_variance(const Channels& a, const Channels& b, int r);
 /// floor: Monte Carlo noise grows with the signal, so across an intensity edge the relative
 /// variance is the smoother quantity, and a dim pixel next to a bright one does not take
 /// the bright one's variance.
-Channels half_variance_relative(const Channels& a, const Channels& b, int r);
+Channels half_variance_relative(const Channels& a, const Channels& b, int r, float level_ratio);
 /// The mean over channels of `per_channel` (one plane, same padding).
 Plane channel_mean(const Channels& per_channel);
 
