@@ -16,7 +16,8 @@
 //                       --feature-tau --normal-tau --first-order k1,k2,...
 //                       --first-order-ridge --first-order-energy-radius
 //                       --cross-selection 0|1 --zero-order-energy-radius
-//                       --symmetric-colour-distance 0|1]
+//                       --symmetric-colour-distance 0|1 --keep-direct-environment 0|1
+//                       --variance-level-ratio X]
 //                      [--ablate 1 (the energy of each stage: the 16-spp image denoised
 //                       with one stage or candidate at a time, in raw standard errors)]
 //                      [--energy-block N (block size of the energy columns, default 32)]
@@ -277,6 +278,10 @@ int main(int argc, char** argv) {
       options.patch_radius = std::stoi(v);
     else if (a == "--raw-candidate")
       options.raw_candidate = v == "1";
+    else if (a == "--variance-level-ratio")
+      options.variance_level_ratio = std::stof(v);
+    else if (a == "--keep-direct-environment")
+      options.keep_direct_environment = v == "1";
     else if (a == "--feature-gradient")
       options.feature_gradient = std::stof(v);
     else if (a == "--zero-order-energy-radius")
@@ -355,6 +360,9 @@ int main(int argc, char** argv) {
       // Heavy-tailed: rough metal reflecting the warehouse's small, very bright ceiling
       // lights (the brightest 1% of its pixels hold 64% of the energy).
       {"spheres / warehouse", "spheres", assets + "/hdri/warehouse.exr"},
+      // The street lamps of a night scene (the brightest 1% of its pixels: 19% of the
+      // energy) in the same rough metals.
+      {"spheres / night", "spheres", assets + "/hdri/night.exr"},
   };
   fs::create_directories(cache);
   std::printf("%dx%d, references %u spp, %d threads, raw renders' noise threshold %g%s\n\n", size,

@@ -232,9 +232,6 @@ RenderRunner add_path_render_options(CLI::App& render) {
         fail(
             "--adaptive denoised with --sample-range: each pass's choice of pixels depends on "
             "every sample before it, so a range cannot be rendered alone");
-      if (!po.resume.empty() || !po.checkpoint.empty())
-        fail(
-            "--adaptive denoised with --resume or --checkpoint: a film does not record its passes");
       if (noise_threshold_option->count() > 0 && po.noise_threshold > 0.0f)
         fail(
             "--adaptive denoised with --noise-threshold: the denoised error decides where "
@@ -253,6 +250,9 @@ RenderRunner add_path_render_options(CLI::App& render) {
     std::optional<Film> resume;
     if (!po.resume.empty()) {
       resume = read_accumulation(po.resume);
+      if (!driven && resume->denoiser_passes > 0)
+        fail("--resume {}: the film was rendered with --adaptive denoised; resume it with that",
+             po.resume);
       s.resume = &*resume;
     }
     if (!po.checkpoint.empty()) {

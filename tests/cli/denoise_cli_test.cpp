@@ -155,5 +155,33 @@ TEST(DenoiseCli, AdaptiveDenoisedVariesTheCountsWithinTheBudget) {
   EXPECT_NE(log.find("--sample-range"), std::string::npos) << log;
 }
 
+// --adaptive denoised --checkpoint: the checkpoint resumes to the same image as the
+// uninterrupted render, and only with --adaptive denoised.
+TEST(DenoiseCli, AdaptiveDenoisedCheckpointResumesToTheSameImage) {
+  const fs::path dir = test::scratch_dir();
+  const std::string driven = kRender + "--adaptive denoised --float ";
+  std::string log;
+  ASSERT_EQ(pbrkit_cli(driven + "--checkpoint " + (dir / "c.exr").string() +
+                           " --checkpoint-interval 1e-9 -o " + (dir / "whole.exr").string(),
+                       &log),
+            0)
+      << log;
+  ASSERT_EQ(pbrkit_cli(driven + "--resume " + (dir / "c.exr").string() + " -o " +
+                           (dir / "resumed.exr").string(),
+                       &log),
+            0)
+      << log;
+  const auto whole = read_exr_layers(dir / "whole.exr");
+  const auto resumed = read_exr_layers(dir / "resumed.exr");
+  ASSERT_NE(layer(whole, ""), nullptr);
+  ASSERT_NE(layer(resumed, ""), nullptr);
+  EXPECT_EQ(layer(whole, "")->data, layer(resumed, "")->data);
+  EXPECT_EQ(pbrkit_cli(kRender + "--resume " + (dir / "c.exr").string() + " -o " +
+                           (dir / "n.exr").string(),
+                       &log),
+            1);
+  EXPECT_NE(log.find("--adaptive denoised"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace pbrkit

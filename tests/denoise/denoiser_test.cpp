@@ -217,16 +217,61 @@ TEST(Denoiser, FirstOrderFitKeepsTheEnergyOfCurvedShading) {
     }
     return sum / 4.0;
   };
-  // What the filter moves, as a fraction of the image's level: a quarter of a per cent at
-  // most (the goal for object means is 1%; the box is clamped at the image's
-  // borders, so it is not exactly mass-preserving there).
+  // What the filter moves, as a fraction of the image's level: 0.15% at most (the issue's
+  // goal for object means is 1%; the box is clamped at the image's borders, so it is not
+  // exactly mass-preserving there). Measured: 0.08% with the correction, 0.25% without.
   double level = 0.0;
   for (int x = 0; x < kSize; ++x) level += shading(x);
   level /= kSize;
   const double corrected = mean_error(true) / level, fit_alone = mean_error(false) / level;
-  EXPECT_LT(std::abs(corrected), 0.0025);
+  EXPECT_LT(std::abs(corrected), 0.0015);
   // Without the correction the fit loses more than that: the test can tell.
-  EXPECT_LT(fit_alone, -0.0025);
+  EXPECT_LT(fit_alone, -0.0015);
+}
+
+// A light seen directly, flush with the ceiling around it (the features agree), with the
+// levels and noise of the cornell box's light at 256x256 and 16 spp: a square at 15 with a
+// half-buffer noise of 0.2, its rim of partly covered pixels at 10 with 1.5, the ceiling at
+// 0.25 with 0.2. Smoothed over a box that reaches the rim, the square's relative variance
+// took in the rim's and the ceiling's, and the colour distance then let its pixels take in
+// the rim: the square's mean fell by more than 2 of its raw standard errors (seeds 1 and
+// 2). With the variance smoothed over pixels of its own level it keeps its energy. (A rim
+// three times noisier still pulls it down by 0.15-0.3%: docs/DENOISER.md, "Known limits".)
+TEST(Denoiser, QuietBrightRegionBesideNoisyEdgesKeepsItsEnergy) {
+  constexpr int kLo = 20, kHi = 44;
+  auto kind = [](int x, int y) {
+    const bool in = x >= kLo && x < kHi && y >= kLo && y < kHi;
+    const bool inner = x > kLo && x < kHi - 1 && y > kLo && y < kHi - 1;
+    return inner ? 0 : in ? 1 : 2;  // square, rim, ceiling
+  };
+  const float level[3] = {15.0f, 10.0f, 0.25f}, sigma[3] = {0.2f, 1.5f, 0.2f};
+  for (std::uint32_t seed = 1; seed <= 3; ++seed) {
+    DenoiseInput in =
+        synthetic([](int, int) { return 0.0f; }, [](int, int) { return 0.5f; }, 0.0f, seed);
+    std::mt19937 rng(seed);
+    std::normal_distribution<float> noise(0.0f, 1.0f);
+    for (int h = 0; h < 2; ++h)
+      for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+          const int k = kind(x, y);
+          in.color[h].set_rgb(x, y, glm::vec3(std::max(0.0f, level[k] + sigma[k] * noise(rng))));
+        }
+    const Image out = denoise(in);
+    double raw = 0.0, denoised = 0.0, variance = 0.0;
+    int n = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        if (kind(x, y) == 0) {
+          const double a = in.color[0].pixel(x, y)[0], b = in.color[1].pixel(x, y)[0];
+          raw += 0.5 * (a + b);
+          denoised += out.pixel(x, y)[0];
+          variance += 0.25 * (a - b) * (a - b);
+          ++n;
+        }
+    const double z = (denoised - raw) / std::sqrt(variance);
+    EXPECT_LT(std::abs(z), 2.0) << "seed " << seed << ": raw mean " << raw / n << ", denoised "
+                                << denoised / n;
+  }
 }
 
 TEST(Denoiser, FireflyEnergyIsKeptAndStaysLocal) {

@@ -114,6 +114,12 @@ struct DenoiseOptions {
   /// Smooth the colour's relative variance and scale it by each pixel's own level
   /// (docs/DENOISER.md), rather than the variance itself
   bool relative_variance = true;
+  /// With relative_variance: smooth each pixel's relative variance only over the pixels
+  /// of the box whose level (plus 0.1) is within this factor of its own (0: the whole box).
+  /// A quiet pixel beside a much brighter or darker noisy one (the edge of a light seen
+  /// directly) otherwise takes in that one's relative variance, and the colour distance
+  /// then lets it average with its neighbours across the edge (docs/DENOISER.md, "Energy")
+  float variance_level_ratio = 1.5f;
   int prefilter_radius = 3;  ///< feature prefilter window radius (0: no prefilter)
   int error_radius = 2;      ///< box radius smoothing the per-candidate error estimates
   int selection_radius = 1;  ///< box radius smoothing the per-pixel choice of candidate
@@ -124,6 +130,13 @@ struct DenoiseOptions {
   /// Also offer the unfiltered image as a candidate (last in DenoiseStats::candidate_share);
   /// off: it changed no scene of denoise_bench measurably (BENCHMARKS.md, "the denoiser")
   bool raw_candidate = false;
+  /// Pass through the pixels whose every sample saw the environment directly (depth 0 in
+  /// both halves: no sample hit the scene). Their colour is a lookup of the environment,
+  /// noise-free but for the pixel filter's sampling of its detail, so filtering can only
+  /// blur it; and their variance, smoothed over a box that reaches across a silhouette,
+  /// takes in the scene's, which lets the filters blur them freely (docs/DENOISER.md,
+  /// "Energy": those blocks moved by many of their tiny standard errors).
+  bool keep_direct_environment = true;
 };
 
 /// Diagnostics of one run.

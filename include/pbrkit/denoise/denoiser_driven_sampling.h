@@ -52,11 +52,16 @@ struct DenoiserDrivenSamplingResult {
 /// pass_fraction of the pixels, within the budget left) to a target that doubles every
 /// pass (at most max_spp_factor spp). The last denoise is the output.
 ///
+/// Checkpoints (settings.checkpoint, at most every checkpoint_interval seconds) come after
+/// whole passes, with the film's denoiser_passes set; settings.resume continues from one
+/// exactly as the run that wrote it would have gone on (same seed and threads: the same
+/// bits).
+///
 /// Throws pbrkit::Error for settings it cannot honour: a sample range (split renders
-/// cannot share the decisions), a resume film or a checkpoint callback (a film does not
-/// record the passes' decisions), noise_threshold > 0 (a second stopping rule), or
-/// options out of range. settings.min_spp is not used. A stop (settings.stop, the time
-/// limit, `progress` returning false) ends it with the samples taken so far.
+/// cannot share the decisions: each pass's pixels depend on every sample before it), a
+/// resume film not made by it or of another size, noise_threshold > 0 (a second stopping
+/// rule), or options out of range. settings.min_spp is not used. A stop (settings.stop,
+/// the time limit, `progress` returning false) ends it with the samples taken so far.
 DenoiserDrivenSamplingResult render_denoiser_driven(
     const Scene& scene, const Environment* env, const Camera& camera,
     const PathTracerSettings& settings, const DenoiserDrivenSamplingOptions& options = {},

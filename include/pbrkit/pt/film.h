@@ -40,6 +40,10 @@ struct Film {
   /// kMediumOverflowsAttribute, summed by merge.
   std::uint64_t non_finite_samples = 0;
   std::uint64_t medium_overflows = 0;
+  /// The passes of denoiser-driven sampling (denoise/denoiser_driven_sampling.h) that made
+  /// this film, 0 for any other render: what resuming its checkpoint needs besides the
+  /// counts. Written to its EXRs as kDenoiserPassesAttribute.
+  std::uint32_t denoiser_passes = 0;
 
   Film() = default;
   Film(int w, int h);
@@ -66,7 +70,9 @@ struct Film {
   /// (pt/adaptive_sampling.h).
   float pixel_noise(std::size_t i) const;
 
-  /// Adds `other` (a disjoint sample range of the same image) into this film.
+  /// Adds `other` (a disjoint sample range of the same image) into this film. A film of
+  /// denoiser-driven sampling (denoiser_passes > 0) on either side is an error: its samples
+  /// went where its own earlier samples said, so it is not a sample range.
   void merge(const Film& other);
 };
 
@@ -74,6 +80,8 @@ struct Film {
 /// write_render_exr record Film::non_finite_samples and Film::medium_overflows.
 inline constexpr const char* kNonFiniteSamplesAttribute = "pbrkit:nonFiniteSamples";
 inline constexpr const char* kMediumOverflowsAttribute = "pbrkit:mediumOverflows";
+/// The EXR header attribute recording Film::denoiser_passes (absent: 0).
+inline constexpr const char* kDenoiserPassesAttribute = "pbrkit:denoiserDrivenPasses";
 
 /// Writes the film's buffers as a float EXR ("accumulation" file: layers sum, sum_even,
 /// albedo, normal, depth, their even halves, count, done), atomically.

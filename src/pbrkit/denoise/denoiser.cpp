@@ -68,6 +68,35 @@ denoising::Channels channels_unpadded(const denoising::Channels& color, int w, i
   }
   return out;
 }
+
+// The pixels no sample of which hit the scene: depth 0 (a miss) in both halves.
+std::vector<unsigned char> direct_environment_mask(const DenoiseInput& input) {
+  std::vector<unsigned char> mask(input.depth[0].data.size());
+  for (std::size_t i = 0; i < mask.size(); ++i)
+    mask[i] = input.depth[0].data[i] == 0.0f && input.depth[1].data[i] == 0.0f;
+  return mask;
+}
+
+// Those pixels get the mean of their halves, and, in `error`, that mean's own relative
+// error: the squared half difference over four (the variance of the mean of two halves),
+// relative to the channel mean's level as select_candidates makes it.
+void keep_direct_environment(const std::vector<unsigned char>& mask,
+                             const denoising::Channels color[2], Image& out, Image* error) {
+  const int w = out.width, h = out.height;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t i = std::size_t(y) * std::size_t(w) + std::size_t(x);
+      if (!mask[i]) continue;
+      float level = 0.0f, squared = 0.0f;
+      for (std::size_t c = 0; c < 3; ++c) {
+        const float a = color[0][c].at(x, y), b = color[1][c].at(x, y);
+        out.data[i * 3 + c] = 0.5f * (a + b);
+        level += 0.5f * (a + b) / 3.0f;
+        squared += 0.25f * (a - b) * (a - b) / 3.0f;
+      }
+      if (error && !error->empty()) error->data[i] = squared / (level * level + 0.01f);
+    }
+}
 }  // namespace
 
 Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
@@ -118,10 +147,15 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   Channels color[2] = {channels_from(input.color[0], pad), channels_from(input.color[1], pad)};
   std::vector<const Feature*> feature_list;
   for (const Feature& f : features) feature_list.push_back(&f);
-  const int outliers = spread_outliers(color, feature_list, options);
+  const std::vector<unsigned char> environment = options.keep_direct_environment
+                                                     ? direct_environment_mask(input)
+                                                     : std::vector<unsigned char>{};
+  const int outliers = spread_outliers(color, feature_list, options,
+                                       options.keep_direct_environment ? &environment : nullptr);
   const Channels variance =
       options.relative_variance
-          ? half_variance_relative(color[0], color[1], options.variance_radius)
+          ? half_variance_relative(color[0], color[1], options.variance_radius,
+                                   options.variance_level_ratio)
           : half_variance(color[0], color[1], options.variance_radius);
   // Stopped (progress.h's rule): what it has is the input's mean, the undenoised image.
   auto interrupted = [&] {
@@ -191,6 +225,7 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   }
   std::vector<double> share;
   Image out = select_candidates(candidates, options, &share, error);
+  if (options.keep_direct_environment) keep_direct_environment(environment, color, out, error);
   report(1.0);
   if (stats) {
     stats->seconds =

@@ -21,10 +21,14 @@ void check(const PathTracerSettings& settings, const DenoiserDrivenSamplingOptio
     fail(
         "denoiser-driven sampling: a sample range cannot be rendered alone (each pass's "
         "choice of pixels depends on every sample before it)");
-  if (settings.resume)
-    fail("denoiser-driven sampling: cannot resume from a film (it does not record the passes)");
-  if (settings.checkpoint)
-    fail("denoiser-driven sampling: checkpoints are not supported (a film cannot resume it)");
+  if (settings.resume && settings.resume->denoiser_passes == 0)
+    fail(
+        "denoiser-driven sampling: the film to resume was not rendered by it (it records no "
+        "passes)");
+  if (settings.resume &&
+      (settings.resume->width != settings.width || settings.resume->height != settings.height))
+    fail("denoiser-driven sampling: the film to resume is {}x{} but the render is {}x{}",
+         settings.resume->width, settings.resume->height, settings.width, settings.height);
   if (settings.noise_threshold > 0.0f)
     fail(
         "denoiser-driven sampling: noise_threshold must be 0 (the denoised error decides "
@@ -84,6 +88,7 @@ DenoiserDrivenSamplingResult render_denoiser_driven(const Scene& scene, const En
 
   bool stopped = false, asked_to_stop = false;
   std::uint64_t taken = 0;
+  double last_checkpoint = 0.0;
   // One pass: render_path brings every pixel not marked done to `pass_target` samples.
   auto render_pass = [&](std::uint32_t pass_target, const Film* resume, std::uint64_t cost) {
     PathTracerSettings s = settings;
@@ -91,6 +96,7 @@ DenoiserDrivenSamplingResult render_denoiser_driven(const Scene& scene, const En
     s.min_spp = pass_target;  // one internal pass: the counts are ours to choose
     s.noise_threshold = 0.0f;
     s.resume = resume;
+    s.checkpoint = nullptr;  // ours come at pass boundaries, where they can be resumed
     if (settings.time_limit > 0.0) s.time_limit = std::max(1e-9, settings.time_limit - elapsed());
     const std::uint64_t before = taken;
     ProgressCallback inner;
@@ -110,6 +116,14 @@ DenoiserDrivenSamplingResult render_denoiser_driven(const Scene& scene, const En
     stopped = stopped || r.stats.stopped;
     out.render.film = std::move(r.film);
     ++out.passes;
+    out.render.film.denoiser_passes = std::uint32_t(out.passes);
+    // A checkpoint after a whole pass holds all a resume needs: the counts (their sum is
+    // the samples taken, their largest the pass's target) and the number of passes.
+    if (settings.checkpoint && !r.stats.stopped &&
+        elapsed() - last_checkpoint >= settings.checkpoint_interval) {
+      settings.checkpoint(out.render.film);
+      last_checkpoint = elapsed();
+    }
   };
   const auto keep_going = [&] {
     return !asked_to_stop && !(settings.stop && settings.stop->load()) &&
@@ -124,7 +138,21 @@ DenoiserDrivenSamplingResult render_denoiser_driven(const Scene& scene, const En
     return image;
   };
 
-  render_pass(target, nullptr, std::uint64_t(target) * n);
+  if (settings.resume) {
+    // Where the checkpoint's run stood: each pass brings at least one pixel exactly to its
+    // target, the targets never fall, and the first pass gave every pixel its target.
+    out.render.film = *settings.resume;
+    out.passes = int(settings.resume->denoiser_passes);
+    taken = 0;
+    float largest = 0.0f;
+    for (float c : out.render.film.count) {
+      taken += std::uint64_t(c);
+      largest = std::max(largest, c);
+    }
+    target = std::max(target, std::uint32_t(largest));
+  } else {
+    render_pass(target, nullptr, std::uint64_t(target) * n);
+  }
   Image error;
   std::vector<std::size_t> order(n);
   std::vector<double> priority(n);

@@ -2,6 +2,9 @@
 // independent estimates of its mean, so their squared difference is an unbiased (if
 // noisy: one degree of freedom) estimate of the sum of their variances. A box filter
 // trades resolution for a usable estimate (Rousselle et al. 2012, section 4).
+#include <algorithm>
+#include <cmath>
+
 #include "pbrkit/util/parallel.h"
 #include "stages.h"
 
@@ -33,9 +36,37 @@ Channels half_variance(const Channels& a, const Channels& b, int r) {
   return out;
 }
 
-Channels half_variance_relative(const Channels& a, const Channels& b, int r) {
+namespace {
+constexpr float kFloor = 1e-2f;  // (a level of 0.1): dark pixels keep a variance
+
+// The mean of `d` over the (2r+1)^2 box around each pixel, over the pixels whose level
+// (the mean of the halves a and b, plus the floor's 0.1) is within a factor `ratio` of the
+// pixel's own. A quiet pixel beside a much brighter or darker noisy one (a light's edge, a
+// silhouette) keeps its own relative variance instead of taking in the other's.
+Plane level_guided_box(const Plane& d, const Plane& a, const Plane& b, int r, float ratio) {
+  Plane out(d.width, d.height, d.pad);
+  pbrkit::parallel_for(0, d.height, [&](int y) {
+    for (int x = 0; x < d.width; ++x) {
+      const float lp = std::abs(0.5f * (a.at(x, y) + b.at(x, y))) + 0.1f;
+      float sum = 0.0f;
+      int n = 0;
+      for (int qy = y - r; qy <= y + r; ++qy)
+        for (int qx = x - r; qx <= x + r; ++qx) {
+          const float lq = std::abs(0.5f * (a.at(qx, qy) + b.at(qx, qy))) + 0.1f;
+          if (std::max(lp, lq) > ratio * std::min(lp, lq)) continue;
+          sum += d.at(qx, qy);
+          ++n;
+        }
+      out.at(x, y) = sum / float(std::max(n, 1));
+    }
+  });
+  fill_padding(out);
+  return out;
+}
+}  // namespace
+
+Channels half_variance_relative(const Channels& a, const Channels& b, int r, float level_ratio) {
   Channels out;
-  constexpr float kFloor = 1e-2f;  // (a level of 0.1): dark pixels keep a variance
   for (std::size_t c = 0; c < a.size(); ++c) {
     Plane d(a[c].width, a[c].height, a[c].pad);
     for (int y = 0; y < d.height; ++y) {
@@ -49,7 +80,9 @@ Channels half_variance_relative(const Channels& a, const Channels& b, int r) {
       }
     }
     fill_padding(d);
-    Plane s = r > 0 ? box_filter(d, r) : std::move(d);
+    Plane s = r <= 0              ? std::move(d)
+              : level_ratio > 0.0f ? level_guided_box(d, a[c], b[c], r, level_ratio)
+                                   : box_filter(d, r);
     for (int y = 0; y < s.height; ++y) {
       const float* pa = a[c].row(y);
       const float* pb = b[c].row(y);

@@ -38,10 +38,19 @@ struct Outlier {
 }  // namespace
 
 int spread_outliers(Channels color[2], const std::vector<const Feature*>& features,
-                    const DenoiseOptions& options) {
+                    const DenoiseOptions& options,
+                    const std::vector<unsigned char>* direct_environment) {
   if (options.outlier_k <= 0.0f || options.outlier_radius <= 0) return 0;
   const int w = color[0].front().width, h = color[0].front().height;
   const int r = options.outlier_radius;
+  // A pixel that saw only the environment is a lookup, not a Monte Carlo estimate of the
+  // scene: it has no firefly of its own, and an excess spread into it from a silhouette
+  // beside it would leave the scene's region (the feature weight is weak across a
+  // silhouette, where the features' gradient is steep).
+  auto environment = [&](int x, int y) {
+    return direct_environment &&
+           (*direct_environment)[std::size_t(y) * std::size_t(w) + std::size_t(x)];
+  };
   // The channel mean of each half (scaled before summing: no overflow near FLT_MAX).
   std::vector<float> level[2];
   for (int half = 0; half < 2; ++half) {
@@ -62,7 +71,7 @@ int spread_outliers(Channels color[2], const std::vector<const Feature*>& featur
       for (int half = 0; half < 2; ++half) {
         const float v = level[half][std::size_t(y) * w + x];
         const float other = level[1 - half][std::size_t(y) * w + x];
-        if (!(v > other)) continue;
+        if (!(v > other) || environment(x, y)) continue;
         // The window's values (both halves, without the pixel itself).
         values.clear();
         for (int qy = std::max(0, y - r); qy <= std::min(h - 1, y + r); ++qy)
@@ -114,6 +123,10 @@ int spread_outliers(Channels color[2], const std::vector<const Feature*>& featur
       double total = 0.0;
       for (int qy = qy0; qy <= qy1; ++qy)
         for (int qx = qx0; qx <= qx1; ++qx) {
+          if (environment(qx, qy)) {
+            weight.push_back(0.0f);
+            continue;
+          }
           // The cross filter's feature weight (Rousselle et al. 2013, eq. 9).
           float d = 0.0f;
           for (const Feature* f : features) {

@@ -26,7 +26,7 @@ Channels half_variance(const Channels& a, const Channels& b, int r);
 /// floor: Monte Carlo noise grows with the signal, so across an intensity edge the relative
 /// variance is the smoother quantity, and a dim pixel next to a bright one does not take
 /// the bright one's variance.
-Channels half_variance_relative(const Channels& a, const Channels& b, int r);
+Channels half_variance_relative(const Channels& a, const Channels& b, int r, float level_ratio);
 /// The mean over channels of `per_channel` (one plane, same padding).
 Plane channel_mean(const Channels& per_channel);
 
@@ -50,8 +50,12 @@ Feature prefilter_feature(const Channels& a, const Channels& b, const DenoiseOpt
 /// estimate from their neighbourhood and the other half are scaled down and their excess
 /// is spread over the feature-alike pixels of the window, half into each half buffer, so
 /// the mean of the halves keeps its energy. Returns the number of outliers treated.
+/// `direct_environment` (when set, one flag per pixel, row-major) marks the pixels that saw
+/// only the environment: they are neither treated nor given any other pixel's excess (the
+/// denoiser passes them through, DenoiseOptions::keep_direct_environment).
 int spread_outliers(Channels color[2], const std::vector<const Feature*>& features,
-                    const DenoiseOptions& options);
+                    const DenoiseOptions& options,
+                    const std::vector<unsigned char>* direct_environment = nullptr);
 
 /// The candidates' outputs, per half: each filtered half (RGB) and the error of the
 /// average of the two filtered halves as estimated from that half alone (its SURE less

@@ -135,6 +135,10 @@ float Film::pixel_noise(std::size_t i) const {
 void Film::merge(const Film& other) {
   if (other.width != width || other.height != height)
     fail("cannot merge a {}x{} film into a {}x{} one", other.width, other.height, width, height);
+  if (denoiser_passes > 0 || other.denoiser_passes > 0)
+    fail(
+        "cannot merge a film of denoiser-driven sampling: its samples went where its own "
+        "earlier samples said, so it is not a sample range");
   for (std::size_t i = 0; i < pixel_count(); ++i) {
     sum[i] += other.sum[i];
     sum_even[i] += other.sum_even[i];
@@ -162,6 +166,7 @@ ExrAttributes film_attributes(const Film& film) {
     a[kNonFiniteSamplesAttribute] = std::to_string(film.non_finite_samples);
   if (film.medium_overflows > 0)
     a[kMediumOverflowsAttribute] = std::to_string(film.medium_overflows);
+  if (film.denoiser_passes > 0) a[kDenoiserPassesAttribute] = std::to_string(film.denoiser_passes);
   return a;
 }
 
@@ -270,6 +275,11 @@ Film read_film(const std::filesystem::path& path) {
   }
   film.non_finite_samples = count_attribute(attributes, kNonFiniteSamplesAttribute, path);
   film.medium_overflows = count_attribute(attributes, kMediumOverflowsAttribute, path);
+  const std::uint64_t passes = count_attribute(attributes, kDenoiserPassesAttribute, path);
+  if (passes > 1000000)
+    fail("{}: attribute {} is {}, not a number of passes", path.string(), kDenoiserPassesAttribute,
+         passes);
+  film.denoiser_passes = std::uint32_t(passes);
   return film;
 }
 

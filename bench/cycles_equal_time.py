@@ -1,0 +1,122 @@
+#!/usr/bin/python3
+"""The denoiser at equal time against Blender Cycles (BENCHMARKS.md, "The denoiser at equal
+time against Cycles"): the built-in `spheres` under the default environment, 256x256, 8
+bounces, 2 threads. Cycles renders 256 spp; its render call's wall time T is the budget.
+pbrkit gets T for its whole process (start-up, render, denoise, write): `pbrkit render
+--denoise --time t` with t = T less its measured overhead. Each image is compared with its
+own renderer's reference, rendered twice with different seeds (r1, r2), with the
+reference's own variance subtracted (../shared/peers/README.md):
+
+    relMSE = mean(((x - r)^2 - (r1 - r2)^2 / 4) / (r^2 + 0.01)),  r = (r1 + r2) / 2
+
+Measuring only (Blender and the shared peers folder are not dependencies of the build or
+the tests). Usage:
+
+    bench/cycles_equal_time.py [--pbrkit build/release/bin/pbrkit] [--runs 3]
+                               [--cache build/cycles_equal_time] [--ref-spp 2048]
+(PBRKIT_PEERS=DIR: the peers folder when it is not ../shared/peers beside the checkout)
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+# The shared peers folder beside the checkout (PBRKIT_PEERS elsewhere).
+PEERS = os.environ.get("PBRKIT_PEERS",
+                       os.path.normpath(os.path.join(HERE, "..", "..", "shared", "peers")))
+
+
+def read_exr(path):
+    sys.path.insert(0, PEERS)
+    import exrio
+    return exrio.read_exr(path)
+
+
+def rgb(path, layer=""):
+    arr, order, _, _ = read_exr(path)
+    prefix = layer + "." if layer else ""
+    return np.stack([arr[..., order.index(prefix + c)] for c in "RGB"], axis=-1).astype(np.float64)
+
+
+def rel_mse(x, r1, r2):
+    r = 0.5 * (r1 + r2)
+    return float(np.mean(((x - r) ** 2 - (r1 - r2) ** 2 / 4.0) / (r * r + 0.01)))
+
+
+def cycles(args, scene, env, spp, seed, out):
+    stats = out + ".json"
+    cmd = ["blender", "-b", "--factory-startup", "--python", os.path.join(PEERS, "cycles_render.py"),
+           "--", "--scene", scene, "--env", env, "--env-convention", "pbrkit", "--width", "256",
+           "--height", "256", "--spp", str(spp), "--max-bounces", "8", "--threads", "2",
+           "--camera", "0", "--seed", str(seed), "--out", out, "--stats", stats]
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with open(stats) as f:
+        return json.load(f)["render_wall_s"]
+
+
+def pbrkit(args, scene, out, spp, seed, extra):
+    cmd = [args.pbrkit, "render", scene, "--renderer", "path", "--width", "256", "--height",
+           "256", "--max-bounces", "8", "--threads", "2", "--spp", str(spp), "--seed", str(seed),
+           "--float", "-o", out] + extra
+    start = time.monotonic()
+    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    return time.monotonic() - start
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--pbrkit", default="build/release/bin/pbrkit")
+    ap.add_argument("--cache", default="build/cycles_equal_time")
+    ap.add_argument("--env", default="data/env/city.exr")
+    ap.add_argument("--runs", type=int, default=3)
+    ap.add_argument("--ref-spp", type=int, default=2048, help="Cycles' references (pbrkit: twice)")
+    ap.add_argument("--refs-only", action="store_true", help="render the cached references, stop")
+    args = ap.parse_args()
+    os.makedirs(args.cache, exist_ok=True)
+    c = lambda name: os.path.join(args.cache, name)  # noqa: E731
+    scene = c("spheres.glb")
+    subprocess.run([args.pbrkit, "scene", "write", "spheres", scene], check=True,
+                   stdout=subprocess.DEVNULL)
+    refs = {}
+    for who in ("cycles", "pbrkit"):
+        for seed in (101, 102):
+            path = c(f"{who}_ref_{seed}.exr")
+            if not os.path.exists(path):
+                print(f"rendering {who}'s reference, seed {seed}...", file=sys.stderr, flush=True)
+                if who == "cycles":
+                    cycles(args, scene, args.env, args.ref_spp, seed, path)
+                else:
+                    pbrkit(args, scene, path, 2 * args.ref_spp, seed, ["--noise-threshold", "0"])
+            refs.setdefault(who, []).append(rgb(path))
+    if args.refs_only:
+        return
+    # pbrkit's overhead (load, BVH, denoise, write) at the budget: one run with a short limit.
+    overhead = pbrkit(args, scene, c("overhead.exr"), 1000000, 7, ["--denoise", "--noise-threshold", "0", "--time", "1"]) - 1
+    print(f"pbrkit's start-up + denoise + write: {overhead:.2f} s", flush=True)
+    print("| run | Cycles 256 spp: render s | relMSE | pbrkit whole process s | raw relMSE | "
+          "denoised relMSE | raw / Cycles | denoised / Cycles |")
+    print("|---|---|---|---|---|---|---|---|")
+    rows = []
+    for run in range(args.runs):
+        t = cycles(args, scene, args.env, 256, 200 + run, c("cycles.exr"))
+        e_c = rel_mse(rgb(c("cycles.exr")), *refs["cycles"])
+        wall = pbrkit(args, scene, c("pbrkit.exr"), 1000000, 200 + run,
+                      ["--denoise", "--noise-threshold", "0", "--time",
+                       f"{max(0.1, t - overhead):.3f}"])
+        e_raw = rel_mse(rgb(c("pbrkit.exr"), "raw"), *refs["pbrkit"])
+        e_dn = rel_mse(rgb(c("pbrkit.exr")), *refs["pbrkit"])
+        rows.append((e_raw / e_c, e_dn / e_c))
+        print(f"| {run + 1} | {t:.2f} | {e_c:.3g} | {wall:.2f} | {e_raw:.3g} | {e_dn:.3g} | "
+              f"{e_raw / e_c:.2f}x | {e_dn / e_c:.2f}x |", flush=True)
+    med = lambda v: sorted(v)[len(v) // 2]  # noqa: E731
+    print(f"median: raw {med([r[0] for r in rows]):.2f}x, denoised {med([r[1] for r in rows]):.2f}x "
+          "Cycles' relative MSE")
+
+
+if __name__ == "__main__":
+    main()
