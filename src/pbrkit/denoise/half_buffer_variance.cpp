@@ -80,7 +80,7 @@ Channels half_variance_relative(const Channels& a, const Channels& b, int r, flo
       }
     }
     fill_padding(d);
-    Plane s = r <= 0              ? std::move(d)
+    Plane s = r <= 0               ? std::move(d)
               : level_ratio > 0.0f ? level_guided_box(d, a[c], b[c], r, level_ratio)
                                    : box_filter(d, r);
     for (int y = 0; y < s.height; ++y) {
