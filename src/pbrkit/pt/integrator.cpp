@@ -125,11 +125,9 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   // textures are read at level 0, unfiltered: a rough lobe's spread is no cone, and level 0
   // keeps indirect lighting unbiased.
   float cone = settings_.texture_lod && !scene_.textures.empty() ? pixel_cone_.width : -1.0f;
-  // Outside the loop: each bounce's closest_hit overwrites them, and a SurfaceHit
-  // constructed per bounce was zero-filled each time (a `rep stos`, 1-2% of the run).
-  SurfaceHit hit;
-  const Material* material = nullptr;
   for (int depth = 0;; ++depth) {
+    SurfaceHit hit;
+    const Material* material = nullptr;
     const glm::vec3 segment_start = origin;
     const bool found = closest_hit(origin, direction, pixel, index, depth, rays, hit, material,
                                    depth == 0 ? &primary : nullptr);
