@@ -32,7 +32,8 @@ PEERS = os.environ.get("PBRKIT_PEERS",
 
 
 def read_exr(path):
-    sys.path.insert(0, PEERS)
+    if PEERS not in sys.path:
+        sys.path.insert(0, PEERS)
     import exrio
     return exrio.read_exr(path)
 

@@ -44,15 +44,21 @@ constexpr float kFloor = 1e-2f;  // (a level of 0.1): dark pixels keep a varianc
 // pixel's own. A quiet pixel beside a much brighter or darker noisy one (a light's edge, a
 // silhouette) keeps its own relative variance instead of taking in the other's.
 Plane level_guided_box(const Plane& d, const Plane& a, const Plane& b, int r, float ratio) {
+  // Each pixel's level once (the padding too: a and b are padded at least r), not once per
+  // tap of every box that reads it.
+  Plane level(d.width, d.height, d.pad);
+  for (int y = -d.pad; y < d.height + d.pad; ++y)
+    for (int x = -d.pad; x < d.width + d.pad; ++x)
+      level.at(x, y) = std::abs(0.5f * (a.at(x, y) + b.at(x, y))) + 0.1f;
   Plane out(d.width, d.height, d.pad);
   pbrkit::parallel_for(0, d.height, [&](int y) {
     for (int x = 0; x < d.width; ++x) {
-      const float lp = std::abs(0.5f * (a.at(x, y) + b.at(x, y))) + 0.1f;
+      const float lp = level.at(x, y);
       float sum = 0.0f;
       int n = 0;
       for (int qy = y - r; qy <= y + r; ++qy)
         for (int qx = x - r; qx <= x + r; ++qx) {
-          const float lq = std::abs(0.5f * (a.at(qx, qy) + b.at(qx, qy))) + 0.1f;
+          const float lq = level.at(qx, qy);
           if (std::max(lp, lq) > ratio * std::min(lp, lq)) continue;
           sum += d.at(qx, qy);
           ++n;
