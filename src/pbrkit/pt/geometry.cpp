@@ -181,7 +181,13 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
       std::int64_t(std::min<std::size_t>(limit - std::min(limit, estimate.geometry),
                                          std::size_t(std::numeric_limits<std::int64_t>::max())));
 
-  device_ = rtcNewDevice(nullptr);
+  // At most AVX2 kernels: on AVX-512 machines Embree 3 otherwise picks its AVX-512 ones,
+  // which traced this path tracer's rays (single rays, incoherent after the first bounce)
+  // more slowly on the development VM: 5-11% more samples per CPU second on the built-in
+  // `spheres` with AVX2 (BENCHMARKS.md, "spheres throughput"), although Embree then has no
+  // 16-wide packet kernel and passes the camera packets to its ray-stream code. Machines
+  // without AVX2 keep their best kernels (a maximum, not a choice).
+  device_ = rtcNewDevice("max_isa=avx2");
   if (!device_)
     fail("{}: cannot create an Embree device (error {})", scene.source,
          int(rtcGetDeviceError(nullptr)));

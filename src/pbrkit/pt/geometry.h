@@ -133,10 +133,12 @@ class SceneGeometry {
   static constexpr std::uint32_t kNoHit = RTC_INVALID_GEOMETRY_ID;
   static constexpr int kPacketSize = 16;
   /// Closest hits of kPacketSize rays, t in (0, inf), all geometry, through Embree's
-  /// packet traversal (rtcIntersect16: about 2.5x the single-ray rate for coherent rays,
-  /// ../shared/PLATFORM.md section 4). A lane's result may depend on the whole packet
-  /// (the order in which nodes are visited decides between hits at exactly equal t), so
-  /// a caller that needs reproducible results must always trace the same packets.
+  /// packet interface (rtcIntersect16: with AVX-512 kernels about 2.5x the single-ray rate
+  /// for coherent rays, ../shared/PLATFORM.md section 4; with the AVX2 kernels the device
+  /// is limited to, see geometry.cpp, Embree has no 16-wide kernel and passes the packet to
+  /// its ray-stream code). A lane's result may depend on the whole packet (the order in
+  /// which nodes are visited decides between hits at exactly equal t), so a caller that
+  /// needs reproducible results must always trace the same packets.
   void intersect_packet(const glm::vec3* origins, const glm::vec3* directions,
                         PacketHit* hits) const;
   /// Any opaque hit in (0, tfar)?
