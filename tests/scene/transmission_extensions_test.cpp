@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -41,6 +42,20 @@ struct CaptureLog {
   }
   ~CaptureLog() { set_log_sink(previous); }
 };
+
+// The fixture's four primitives are two shapes with two materials each, so their faces
+// coincide by construction and load_scene warns about that (scene/coincident_faces.h);
+// these tests are about the extensions' warnings and leave those aside.
+bool coincident_faces_warning(const std::string& w) {
+  return w.find("share a plane and an area") != std::string::npos ||
+         w.find("shares a plane and an area") != std::string::npos;
+}
+std::vector<std::string> extension_warnings(const std::vector<std::string>& all) {
+  std::vector<std::string> out;
+  for (const std::string& w : all)
+    if (!coincident_faces_warning(w)) out.push_back(w);
+  return out;
+}
 
 fs::path fixture() {
   return test::test_data("gltf/valid/transmission_extensions.gltf");
@@ -72,7 +87,7 @@ void expect_fixture_transform(const TextureRef& ref) {
 
 TEST(TransmissionExtensions, LoaderReadsEveryValueOfTheFixture) {
   const Scene s = load_scene(fixture().string());
-  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+  EXPECT_TRUE(extension_warnings(s.warnings).empty()) << extension_warnings(s.warnings).front();
   const Material& m = material(s, "all_extensions");
   EXPECT_FLOAT_EQ(m.ior, 1.33f);
 
@@ -149,7 +164,8 @@ TEST(TransmissionExtensions, InfoShowsThemAndListsNoneAsUnsupported) {
   const json j = json::parse(out.substr(out.find('{')));
   EXPECT_EQ(j["extensions_unsupported"], json::array());
   EXPECT_EQ(j["extensions_used"].size(), 6u);
-  EXPECT_EQ(j["warnings"], json::array());
+  EXPECT_EQ(extension_warnings(j["warnings"].get<std::vector<std::string>>()),
+            std::vector<std::string>{});
   const json& e = j["material_list"][0]["extensions"];
   EXPECT_NEAR(e["KHR_materials_transmission"]["transmissionFactor"].get<double>(), 0.8, 1e-6);
   EXPECT_EQ(e["KHR_materials_transmission"]["transmissionTexture"]["texCoord"], 1);
@@ -433,13 +449,15 @@ TEST(TransmissionExtensions, OutOfRangeValuesAndIneffectiveCombinationsAreWarnin
     });
     const Scene s = load_scene(path.string());
     const Material& m = material(s, "all_extensions");
+    const std::vector<std::string> warnings = extension_warnings(s.warnings);
+    const std::vector<std::string> lines = extension_warnings(log.lines);
     if (std::string(c.warning).empty()) {
-      EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+      EXPECT_TRUE(warnings.empty()) << warnings.front();
     } else {
-      ASSERT_EQ(s.warnings.size(), 1u) << s.warnings.front();
-      EXPECT_EQ(s.warnings[0].rfind(c.warning, 0), 0u) << s.warnings[0];
-      ASSERT_EQ(log.lines.size(), 1u);
-      EXPECT_EQ(log.lines[0], path.string() + ": " + s.warnings[0]);  // names the file
+      ASSERT_EQ(warnings.size(), 1u) << warnings.front();
+      EXPECT_EQ(warnings[0].rfind(c.warning, 0), 0u) << warnings[0];
+      ASSERT_EQ(lines.size(), 1u);
+      EXPECT_EQ(lines[0], path.string() + ": " + warnings[0]);  // names the file
     }
     c.check(m);
   }
@@ -452,13 +470,15 @@ TEST(TransmissionExtensions, AVolumeOnAnOpenMeshIsAWarningAndRenderedThinWalled)
       variant("open", json::parse(std::ifstream(fixture()))["materials"][0]["extensions"], 0,
               [](json& g) { g["meshes"][0]["primitives"][2]["material"] = 0; });
   const Scene s = load_scene(path.string());
-  ASSERT_EQ(s.warnings.size(), 1u);
-  EXPECT_EQ(s.warnings[0],
+  const std::vector<std::string> warnings = extension_warnings(s.warnings);
+  const std::vector<std::string> lines = extension_warnings(log.lines);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_EQ(warnings[0],
             "meshes[0].primitives[2]: the material (materials[0]) has KHR_materials_volume, but "
             "the primitive is not closed, alone or with the mesh's other primitives of that "
             "material (4 edges not shared by exactly two triangles); it is rendered thin-walled");
-  ASSERT_EQ(log.lines.size(), 1u);
-  EXPECT_EQ(log.lines[0].rfind(path.string() + ": meshes[0].primitives[2]", 0), 0u) << log.lines[0];
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_EQ(lines[0].rfind(path.string() + ": meshes[0].primitives[2]", 0), 0u) << lines[0];
   int closed = 0, open = 0;
   for (const Mesh& mesh : s.meshes)
     if (mesh.material == 0) (mesh.closed ? closed : open)++;

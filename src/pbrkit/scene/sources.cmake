@@ -2,6 +2,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/asset_uri.cpp
   ${CMAKE_CURRENT_LIST_DIR}/builtin_scenes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/camera.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/coincident_faces.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/accessors.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/cameras.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/draco.cpp
