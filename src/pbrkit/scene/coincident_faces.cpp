@@ -118,6 +118,10 @@ CoincidentFacesResult find_coincident_faces(const Scene& scene, std::size_t max_
     // round more coarsely than that.
     const double eps =
         1e-6 * std::max(glm::length(gb.max - gb.min), glm::length(0.5 * (gb.max + gb.min)));
+    if (work + gm.triangle_count() > max_comparisons) {
+      result.incomplete = true;
+      return result;
+    }
     std::vector<PlaneTriangle> tris;
     tris.reserve(gm.triangle_count());
     const glm::dmat4 gmat(gi.transform);
