@@ -15,10 +15,10 @@ namespace {
 constexpr int kStrip = 8;  // rows per parallel work item
 
 // s[x] += a[x] * b[x] over [x0, x1): the first-order fit's normal-equation sums, most of
-// the denoiser's time. Built twice, and the CPU's best runs (GCC's target_clones): AVX2's
-// eight lanes where there are, SSE2's four elsewhere. Each element sees the same multiply
-// and add in either (no fused multiply-add: -ffp-contract=off), so the image is the same
-// bit for bit on any x86-64.
+// the denoiser's time. Built twice (target_clones), and the loader picks the build for the
+// CPU: AVX2's eight lanes where the CPU has AVX2, SSE2's four elsewhere. Each element sees
+// the same multiply and add in either (no fused multiply-add: -ffp-contract=off), so the
+// image is the same bit for bit on any x86-64.
 [[gnu::target_clones("avx2", "default")]] void add_products(float* __restrict s,
                                                             const float* __restrict a,
                                                             const float* __restrict b, int x0,
