@@ -15,15 +15,25 @@ namespace {
 constexpr int kStrip = 8;  // rows per parallel work item
 
 // s[x] += a[x] * b[x] over [x0, x1): the first-order fit's normal-equation sums, most of
-// the denoiser's time. Built twice (target_clones), and the loader picks the build for the
-// CPU: AVX2's eight lanes where the CPU has AVX2, SSE2's four elsewhere. Each element sees
-// the same multiply and add in either (no fused multiply-add: -ffp-contract=off), so the
-// image is the same bit for bit on any x86-64.
-[[gnu::target_clones("avx2", "default")]] void add_products(float* __restrict s,
-                                                            const float* __restrict a,
-                                                            const float* __restrict b, int x0,
-                                                            int x1) {
+// the denoiser's time. Built twice, for AVX2's eight lanes and for x86-64's SSE2 four, and
+// the first call picks the one the CPU runs (a branch, not target_clones' ifunc, whose
+// resolver crashed the ThreadSanitizer build at start-up). Each element sees the same
+// multiply and add in either (no fused multiply-add: -ffp-contract=off), so the image is
+// the same bit for bit on any x86-64.
+[[gnu::target("avx2")]] void add_products_avx2(float* __restrict s, const float* __restrict a,
+                                               const float* __restrict b, int x0, int x1) {
   for (int x = x0; x < x1; ++x) s[x] += a[x] * b[x];
+}
+void add_products_sse2(float* __restrict s, const float* __restrict a, const float* __restrict b,
+                       int x0, int x1) {
+  for (int x = x0; x < x1; ++x) s[x] += a[x] * b[x];
+}
+void add_products(float* s, const float* a, const float* b, int x0, int x1) {
+  static const bool avx2 = [] {
+    __builtin_cpu_init();
+    return __builtin_cpu_supports("avx2") != 0;
+  }();
+  (avx2 ? add_products_avx2 : add_products_sse2)(s, a, b, x0, x1);
 }
 
 // One filtered half at one pixel: its colour, its derivative in the pixel's own value and
