@@ -87,9 +87,40 @@ TEST(CoincidentFaces, TwoGlassesFaceToFaceAreOnePair) {
   EXPECT_EQ(r.pairs[0].triangles, 2u);
 }
 
+// A field of 10,000 glass tiles over one floor, each 1 mm above it but the last, which lies
+// in its plane: found, and the search completes within its default bound, which comparing
+// every tile with every instance (10^8 comparisons) would pass long before the last tile.
+TEST(CoincidentFaces, AFieldOfGlassesIsSearchedWhole) {
+  Scene s;
+  s.source = "test";
+  const int floor = add_material(s, false);
+  const int glass = add_material(s, true);
+  Mesh quad = make_quad({-60, 0, 60}, {120, 0, 0}, {0, 0, -120});
+  quad.name = "floor";
+  add_mesh_instance(s, std::move(quad), floor);
+  Mesh tile = make_quad({-0.25f, 0, 0.25f}, {0.5f, 0, 0}, {0, 0, -0.5f});
+  tile.name = "tile";
+  constexpr int kSide = 100;
+  for (int i = 0; i < kSide * kSide; ++i) {
+    const bool last = i + 1 == kSide * kSide;
+    const glm::vec3 at(float(i % kSide - kSide / 2), last ? 0.0f : 0.001f,
+                       float(i / kSide - kSide / 2));
+    add_mesh_instance(s, tile, glass, glm::translate(glm::mat4(1.0f), at));
+  }
+  const CoincidentFacesResult r = find_coincident_faces(s);
+  EXPECT_FALSE(r.incomplete);
+  EXPECT_EQ(r.checked, std::size_t(kSide * kSide));
+  ASSERT_EQ(r.pairs.size(), 1u);
+  EXPECT_EQ(r.pairs[0].transmissive, std::size_t(kSide * kSide));
+  EXPECT_EQ(r.pairs[0].other, 0u);
+  EXPECT_EQ(r.pairs[0].triangles, 2u);
+}
+
 TEST(CoincidentFaces, StopsAtItsWorkBound) {
   const CoincidentFacesResult r = find_coincident_faces(box_on_floor(0.0f, true), 5);
   EXPECT_TRUE(r.incomplete);
+  EXPECT_EQ(r.transmissive, 1u);
+  EXPECT_EQ(r.checked, 0u);
 }
 
 TEST(CoincidentFaces, LoadingAFileWarnsNamingBothNodes) {

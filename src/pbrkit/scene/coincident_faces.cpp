@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -72,6 +75,60 @@ struct DBounds {
   }
 };
 
+// The instances whose bounds may meet a query box, without comparing the box with every
+// instance (a sweep along one axis, as in sort-and-sweep broad phases): the instances
+// sorted by their bounds' lower end on the axis along which their centres spread most, so
+// a query reads only those whose lower end lies within `reach` below its own range, where
+// `reach` is the widest of them on that axis. The few much wider than most (a floor, a
+// wall) would make that window the whole scene; they are kept apart and offered to every
+// query.
+class SweepCandidates {
+ public:
+  explicit SweepCandidates(const std::vector<DBounds>& bounds) {
+    std::vector<std::size_t> valid;
+    for (std::size_t i = 0; i < bounds.size(); ++i)
+      if (bounds[i].min.x <= bounds[i].max.x) valid.push_back(i);
+    if (valid.empty()) return;
+    DBounds centres;
+    for (const std::size_t i : valid) centres.extend(0.5 * (bounds[i].min + bounds[i].max));
+    const glm::dvec3 spread = centres.max - centres.min;
+    axis_ = spread.x >= spread.y && spread.x >= spread.z ? 0 : spread.y >= spread.z ? 1 : 2;
+    // "Much wider": beyond 4 times the 90th percentile of the widths on the axis.
+    std::vector<double> widths;
+    widths.reserve(valid.size());
+    for (const std::size_t i : valid) widths.push_back(bounds[i].max[axis_] - bounds[i].min[axis_]);
+    const std::size_t k = valid.size() * 9 / 10;
+    std::nth_element(widths.begin(), widths.begin() + std::ptrdiff_t(k), widths.end());
+    const double wide = 4.0 * widths[k];
+    for (const std::size_t i : valid) {
+      const double w = bounds[i].max[axis_] - bounds[i].min[axis_];
+      if (w > wide) {
+        wide_.push_back(i);
+      } else {
+        sorted_.push_back({bounds[i].min[axis_], i});
+        reach_ = std::max(reach_, w);
+      }
+    }
+    std::sort(sorted_.begin(), sorted_.end());
+  }
+
+  /// The instances that may overlap `q` (widened by eps) on the sweep axis, ascending.
+  std::vector<std::size_t> near(const DBounds& q, double eps) const {
+    std::vector<std::size_t> out = wide_;
+    const double lo = q.min[axis_] - reach_ - eps, hi = q.max[axis_] + eps;
+    auto it = std::lower_bound(sorted_.begin(), sorted_.end(), std::make_pair(lo, std::size_t(0)));
+    for (; it != sorted_.end() && it->first <= hi; ++it) out.push_back(it->second);
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+
+ private:
+  int axis_ = 0;
+  double reach_ = 0.0;
+  std::vector<std::pair<double, std::size_t>> sorted_;  // (lower end on the axis, instance)
+  std::vector<std::size_t> wide_;
+};
+
 bool transmissive(const Material& m) {
   return m.transmission.has_value() || m.diffuse_transmission.has_value() || m.volume.has_value();
 }
@@ -90,6 +147,7 @@ CoincidentFacesResult find_coincident_faces(const Scene& scene, std::size_t max_
       is_glass[i] = true;
     }
   }
+  result.transmissive = glass.size();
   if (glass.empty()) return result;
 
   // Each mesh's own bounds once, then each instance's world bounds from their corners.
@@ -109,6 +167,7 @@ CoincidentFacesResult find_coincident_faces(const Scene& scene, std::size_t max_
                                     c & 4 ? b.max.z : b.min.z, 1.0)));
   }
 
+  const SweepCandidates candidates(bounds);
   std::size_t work = 0;
   for (const std::size_t g : glass) {
     const Instance& gi = scene.instances[g];
@@ -132,7 +191,7 @@ CoincidentFacesResult find_coincident_faces(const Scene& scene, std::size_t max_
     std::sort(tris.begin(), tris.end(),
               [](const PlaneTriangle& a, const PlaneTriangle& b) { return a.d < b.d; });
     work += tris.size();
-    for (std::size_t o = 0; o < scene.instances.size(); ++o) {
+    for (const std::size_t o : candidates.near(gb, eps)) {
       if (++work > max_comparisons) {
         result.incomplete = true;
         return result;
@@ -172,6 +231,7 @@ CoincidentFacesResult find_coincident_faces(const Scene& scene, std::size_t max_
       }
       if (count > 0) result.pairs.push_back({g, o, count});
     }
+    ++result.checked;
   }
   return result;
 }

@@ -24,12 +24,16 @@ struct CoincidentFacesResult {
   /// The search stopped at its work bound (a scene of very many transmissive instances or
   /// triangles near them): `pairs` holds what was found until then.
   bool incomplete = false;
+  std::size_t transmissive = 0;  ///< transmissive instances in the scene
+  std::size_t checked = 0;       ///< of them, those compared with all their neighbours
 };
 
 /// Pairs of instances, one of them transmissive (KHR_materials_transmission,
 /// diffuse_transmission or volume), whose faces share a plane (within 1e-6 of the
-/// transmissive instance's size) and an area. The work is bounded: `max_comparisons`
-/// instance-bounds and triangle tests, each a few tens of nanoseconds.
+/// transmissive instance's size) and an area. Each transmissive instance is compared only
+/// with the instances near it (a sweep over the instances' bounds), so a scene of many
+/// instances costs about what its neighbourhoods hold. The work is bounded:
+/// `max_comparisons` instance-bounds and triangle tests, each a few tens of nanoseconds.
 CoincidentFacesResult find_coincident_faces(const Scene& scene,
                                             std::size_t max_comparisons = 50'000'000);
 

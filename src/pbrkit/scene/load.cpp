@@ -13,13 +13,18 @@ Scene load_scene(const std::string& path_or_name, const LoadOptions& options) {
                 : is_builtin_scene(path_or_name) ? builtin_scene(path_or_name)
                                                  : load_gltf(path_or_name, options);
   // A scene cut short by its progress callback is partial anyway. A search that reached
-  // its work bound warns about what it found before it.
+  // its work bound warns about what it found before it and says how far it got.
   if (!scene.interrupted) {
     const CoincidentFacesResult coincident = find_coincident_faces(scene);
     for (std::string& w : coincident_face_warnings(scene, coincident)) {
       warn("{}: {}", scene.source, w);
       scene.warnings.push_back(std::move(w));
     }
+    if (coincident.incomplete)
+      note(
+          "{}: the check for transmissive faces lying on other objects' faces stopped at its "
+          "work bound after {} of {} transmissive instances",
+          scene.source, coincident.checked, coincident.transmissive);
   }
   return scene;
 }
