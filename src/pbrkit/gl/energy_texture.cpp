@@ -8,6 +8,7 @@
 
 #include "pbrkit/core/energy.h"
 #include "pbrkit/core/sheen.h"
+#include "pbrkit/ibl/anisotropic_albedo.h"
 
 namespace pbrkit::gl {
 
@@ -107,6 +108,35 @@ unsigned create_sheen_lut_texture() {
       c[0] = q0.z, c[1] = q1.z, c[2] = second(i, j + 1).z, c[3] = second(i + 1, j + 1).z;
     }
   return create_rgba32f(nx, 5 * ny, texels);
+}
+
+unsigned create_anisotropic_albedo_texture() {
+  using Table = AnisotropicAlbedoTable;
+  const Table& table = Table::get();
+  constexpr int kDepth = Table::kR * (Table::kS - 1);
+  std::vector<float> texels(std::size_t(Table::kMu) * Table::kPhi * kDepth * 2);
+  for (int l = 0; l + 1 < Table::kS; ++l)
+    for (int k = 0; k < Table::kR; ++k)
+      for (int j = 0; j < Table::kPhi; ++j)
+        for (int i = 0; i < Table::kMu; ++i) {
+          float* t = &texels[((std::size_t(l * Table::kR + k) * Table::kPhi + std::size_t(j)) *
+                                  Table::kMu +
+                              std::size_t(i)) *
+                             2];
+          t[0] = table.node(i, j, k, l);
+          t[1] = table.node(i, j, k, l + 1);
+        }
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_3D, 1, &texture);
+  glTextureStorage3D(texture, 1, GL_RG32F, Table::kMu, Table::kPhi, kDepth);
+  glTextureSubImage3D(texture, 0, 0, 0, 0, Table::kMu, Table::kPhi, kDepth, GL_RG, GL_FLOAT,
+                      texels.data());
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  return texture;
 }
 
 }  // namespace pbrkit::gl

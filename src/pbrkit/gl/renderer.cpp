@@ -213,6 +213,8 @@ struct Renderer::State {
   GpuEnvironment environment;
   GLuint white_texture = 0;
   GLuint sheen_lut = 0;  // core/sheen.h's SheenTable
+  // ibl/anisotropic_albedo.h's table, made for the first frame with an anisotropic material.
+  GLuint anisotropic_albedo = 0;
   GLuint empty_vao = 0;  // the background's full-screen triangle has no attributes
   RenderTargets targets;
   GpuTimer timer;
@@ -304,6 +306,11 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
   glBindTextureUnit(kCoatEnergyUnit, energy[std::size_t(GeometryModel::kReference)]);
   glBindTextureUnit(kSheenCubeUnit, environment.sheen_cube);
   glBindTextureUnit(kSheenLutUnit, sheen_lut);
+  if (!anisotropic_albedo &&
+      std::any_of(scene.materials.begin(), scene.materials.end(),
+                  [](const Material& m) { return m.anisotropy.has_value(); }))
+    anisotropic_albedo = create_anisotropic_albedo_texture();
+  glBindTextureUnit(kAnisotropicAlbedoUnit, anisotropic_albedo);
   f.inverse_view_projection = glm::inverse(f.view_projection);
   return f;
 }
@@ -561,6 +568,7 @@ Renderer::~Renderer() {
   glDeleteTextures(3, s.energy.data());
   glDeleteTextures(1, &s.white_texture);
   glDeleteTextures(1, &s.sheen_lut);
+  glDeleteTextures(1, &s.anisotropic_albedo);
   glDeleteVertexArrays(1, &s.empty_vao);
 }
 

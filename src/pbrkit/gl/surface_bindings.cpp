@@ -15,7 +15,7 @@ GLuint texture_unit(TextureSlot slot) {
   if (t < int(kFirstExtensionTextureSlot)) return GLuint(t);
   if (t < int(TextureSlot::kTransmission)) return GLuint(t + 4);
   if (t <= int(kLastInterleavedSlot)) return GLuint(t + 7);
-  return kFrameDepthUnit + GLuint(t - int(kLastInterleavedSlot));
+  return kAnisotropicAlbedoUnit + GLuint(t - int(kLastInterleavedSlot));
 }
 
 std::string texture_slot_macro(TextureSlot slot) {
@@ -54,6 +54,7 @@ std::vector<SurfaceBinding> surface_bindings() {
   b.push_back({"BACK_POSITION", kBackPositionUnit, false});
   b.push_back({"BACK_NORMAL", kBackNormalUnit, false});
   b.push_back({"FRAME_DEPTH", kFrameDepthUnit, false});
+  b.push_back({"ANISOTROPIC_ALBEDO", kAnisotropicAlbedoUnit, false});
   b.push_back({"INSTANCE_TRANSFORMS", kInstanceBufferBinding, true});
   b.push_back({"PUNCTUAL_LIGHTS", kLightBufferBinding, true});
   b.push_back({"LIGHT_CLUSTER_RANGES", kClusterRangeBufferBinding, true});

@@ -17,12 +17,12 @@
 namespace pbrkit::gl {
 
 /// The last slot whose unit lies among the other units below; the slots after it take
-/// the units after kFrameDepthUnit, so that a new slot needs no unit chosen by hand.
+/// the units after kAnisotropicAlbedoUnit, so that a new slot needs no unit chosen by hand.
 inline constexpr TextureSlot kLastInterleavedSlot = TextureSlot::kDiffuseTransmissionColor;
 
 /// The texture unit of a material texture slot: the core slots on 0..4, kSpecular ..
 /// kIridescenceThickness on 9..18, the transmission extensions' on 22..25 (the units
-/// between hold the tables and cubes below), any later slot from 30 on.
+/// between hold the tables and cubes below), any later slot from 31 on.
 GLuint texture_unit(TextureSlot slot);
 
 // The surface program's other texture units.
@@ -35,9 +35,10 @@ inline constexpr GLuint kSheenCubeUnit = 20;
 inline constexpr GLuint kSheenLutUnit = 21;
 inline constexpr GLuint kTransmissionFrameUnit = 26;
 inline constexpr GLuint kBackPositionUnit = 27, kBackNormalUnit = 28, kFrameDepthUnit = 29;
+inline constexpr GLuint kAnisotropicAlbedoUnit = 30;  ///< AnisotropicAlbedoTable (3D)
 /// The highest unit the surface program samples.
 inline constexpr GLuint kLastSurfaceUnit =
-    kFrameDepthUnit + GLuint(kTextureSlotCount - 1 - int(kLastInterleavedSlot));
+    kAnisotropicAlbedoUnit + GLuint(kTextureSlotCount - 1 - int(kLastInterleavedSlot));
 
 /// One binding of a program (the surface's, the background's, the display's) as its
 /// prelude names it: BINDING_<name>.

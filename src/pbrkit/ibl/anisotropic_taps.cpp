@@ -9,16 +9,11 @@
 namespace pbrkit {
 
 glm::vec2 anisotropic_tap_point(int i) {
-  // Four arms at 112.5 + k 90 degrees from the lobe's +X, two radii each: of the rank-1
-  // lattices (i / K, frac(i g + o)) tried (g the golden ratio's 0.618 and 0.382, 1/8 ..
-  // 3/4; o in sixteenths), the one whose albedo, averaged over the built-in anisotropy
-  // scene's spheres, was nearest the path tracer's (largest error 2.7%, 8.5% with the
-  // golden ratio at o = 1/2), and the best per view (RMS 3.6% over 8 lobes x 72 views).
-  const float u2 = float(i) * 0.25f + 0.3125f;
-  return {(float(i) + 0.5f) / float(kAnisotropicTaps), u2 - std::floor(u2)};
+  constexpr float kRadius = 0.75f;
+  return {i == 0 ? 0.0f : (i == 1 ? kRadius : -kRadius), 0.0f};
 }
 
-glm::vec3 anisotropic_visible_normal(glm::vec3 wo, glm::vec2 u, float alpha_x, float alpha_y) {
+glm::vec3 anisotropic_visible_normal(glm::vec3 wo, glm::vec2 d, float alpha_x, float alpha_y) {
   // Heitz 2018, listing 1 (core/microfacet.h's sample_ggx_visible_normal), with the disk
   // point d measured from the lobe's +X and then expressed in the sampler's (T1, T2).
   const glm::vec3 Vh = glm::normalize(glm::vec3(alpha_x * wo.x, alpha_y * wo.y, wo.z));
@@ -27,9 +22,6 @@ glm::vec3 anisotropic_visible_normal(glm::vec3 wo, glm::vec2 u, float alpha_x, f
   const glm::vec3 T1 =
       lensq > 0.0f ? glm::vec3(-Vh.y, Vh.x, 0.0f) * inv_len : glm::vec3(1.0f, 0.0f, 0.0f);
   const glm::vec3 T2 = glm::cross(Vh, T1);
-  const float r = std::sqrt(u.x);
-  const float phi = 2.0f * kPi * u.y;
-  const glm::vec2 d = r * glm::vec2(std::cos(phi), std::sin(phi));
   const glm::vec2 cs = lensq > 0.0f ? glm::vec2(-Vh.y, Vh.x) * inv_len : glm::vec2(1.0f, 0.0f);
   const float t1 = d.x * cs.x + d.y * cs.y;
   float t2 = d.y * cs.x - d.x * cs.y;
@@ -50,13 +42,14 @@ AnisotropicTap anisotropic_tap(glm::vec3 wo, float alpha_x, float alpha_y, int i
   if (tap.wi.z > 0.0f)
     tap.weight =
         (1.0f + lambda_o) / (1.0f + lambda_o + SmithLambdaGGXAniso(tap.wi, alpha_x, alpha_y));
-  // The tap's share of the solid angle, 1 / (K pdf(wi)) with pdf = G1(wo) D(h) / (4 n.v),
-  // equated to the reflected lobe of an isotropic GGX at its peak, 4 pi alpha^2 (the cube's
-  // level is prefiltered with D(n) = 1 / (pi alpha^2) and the reflection's Jacobian 1/4):
-  // alpha^2 = n.v (1 + Lambda_o) / (pi K D(h)). Clamped to the cube's roughness range.
-  const float d = DistributionGGXAniso(h, alpha_x, alpha_y);
-  const float alpha2 =
-      wo.z * (1.0f + lambda_o) / (kPi * float(kAnisotropicTaps) * std::max(d, 1e-6f));
+  // The taps' lookups cover a third each of the lobe's solid angle at normal incidence,
+  // 1 / (K pdf(wi)) with pdf = G1(wo) D(h) / (4 n.v) = D(n) / 4 = 1 / (4 pi alpha_x alpha_y)
+  // there, equated to the reflected lobe of an isotropic GGX at its peak, 4 pi alpha^2 (the
+  // cube's level is prefiltered with D(n) = 1 / (pi alpha^2) and the reflection's Jacobian
+  // 1/4): alpha^2 = alpha_x alpha_y / K. From the material alone, not the view: one cube
+  // level per draw (the view's own solid angle measured no more accurate, and a level per
+  // pixel costs llvmpipe 4% of the frame). Clamped to the cube's roughness range.
+  const float alpha2 = alpha_x * alpha_y / float(kAnisotropicTaps);
   tap.roughness = std::clamp(std::sqrt(std::sqrt(alpha2)), kMinRoughness, 1.0f);
   return tap;
 }

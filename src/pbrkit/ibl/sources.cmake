@@ -14,4 +14,5 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/prefilter_validation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/ktx2.cpp
   ${CMAKE_CURRENT_LIST_DIR}/bake_output.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/anisotropic_taps.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/anisotropic_taps.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/anisotropic_albedo.cpp)

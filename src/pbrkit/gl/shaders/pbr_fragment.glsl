@@ -107,6 +107,10 @@ layout(binding = BINDING_ENERGY_COAT) uniform sampler2D uEnergyCoat;  // EnergyT
 layout(binding = BINDING_SHEEN_CUBE) uniform samplerCube uSheenCube;
 layout(binding = BINDING_SHEEN_LUT) uniform sampler2D uSheenLut;
 uniform int uSheenLevels;
+#if MATERIAL_ANISOTROPY
+// The anisotropic lobe's albedo (ibl/anisotropic_albedo.h; gl/energy_texture.h).
+layout(binding = BINDING_ANISOTROPIC_ALBEDO) uniform sampler3D uAnisotropicAlbedo;
+#endif
 
 // Lights (KHR_lights_punctual), world space, in light_clusters.h's GpuLight layout.
 struct PunctualLight {
@@ -392,9 +396,14 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
   // back (through F0 A + B), so the single scattering is the lobe's and the
   // multiple-scattering and diffuse terms keep the table's, as in the path tracer.
   if (m.layer.anisotropy > 0.0) {
+#if GEOMETRY == 0 && MULTISCATTER
+    vec2 ab_aniso = s.brdf.ab_o;  // the IBL's table is the bound Brdf's (see below)
+#else
     vec2 ab_aniso = energy_AB(uEnergyIBL, max(wo.z, 1e-4), s.brdf.table_roughness);
-    prefiltered = anisotropic_ibl_radiance(uSpecularCube, uSpecularLevels, m.frame, uIblRotation, wo,
-                                           s.brdf.alpha_x, s.brdf.alpha_y) /
+#endif
+    prefiltered = anisotropic_ibl_radiance(uSpecularCube, uSpecularLevels, uAnisotropicAlbedo,
+                                           m.frame, uIblRotation, wo, s.brdf.alpha_x,
+                                           s.brdf.alpha_y) /
                   max(ab_aniso.x + ab_aniso.y, 1e-4);
   } else
 #endif

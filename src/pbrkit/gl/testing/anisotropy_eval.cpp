@@ -2,6 +2,7 @@
 
 #include <epoxy/gl.h>
 
+#include "pbrkit/gl/energy_texture.h"
 #include "pbrkit/gl/program.h"
 #include "pbrkit/gl/testing/compute_eval.h"
 
@@ -35,9 +36,12 @@ std::vector<glm::vec4> eval_anisotropy_glsl(const std::vector<AnisotropyCase>& c
   program.set("uCount", int(cases.size()));
   program.set("uFunction", int(function));
   program.set("uRotation", rotation);
+  const GLuint albedo = create_anisotropic_albedo_texture();
   glBindTextureUnit(0, cube);
+  glBindTextureUnit(1, albedo);
   std::vector<glm::vec4> output = detail::dispatch_cases(input, cases.size());
   glDeleteTextures(1, &cube);
+  glDeleteTextures(1, &albedo);
   return output;
 }
 

@@ -22,12 +22,15 @@ enum class AnisotropyFunction {
   kTapPoint = 0,   ///< anisotropic_tap_point(tap) -> xy
   kTapWi = 1,      ///< anisotropic_tap(...)'s wi -> xyz
   kTapWeight = 2,  ///< anisotropic_tap(...)'s (weight, roughness) -> xy
-  kRadiance = 3,   ///< anisotropic_ibl_radiance(cube, 1 level, frame, rotation, wo, ax, ay) -> rgb
+  kRadiance =
+      3,  ///< anisotropic_ibl_radiance(cube, 1 level, albedo, frame, rotation, wo, ax, ay) -> rgb
+  kAlbedo = 4,  ///< (anisotropic_albedo(albedo texture, wo, ax, ay), 0, 0, 0)
 };
 
 /// `function` of anisotropy_ibl.glsl for every case, read back as one vec4 each. kRadiance
 /// reads a one-level cube of 1x1 faces coloured `face_colors` (+X, -X, +Y, -Y, +Z, -Z) with
-/// the environment rotation `rotation` (world_to_env's (cos, sin)).
+/// the environment rotation `rotation` (world_to_env's (cos, sin)); kRadiance and kAlbedo
+/// read the renderer's albedo texture (create_anisotropic_albedo_texture).
 std::vector<glm::vec4> eval_anisotropy_glsl(const std::vector<AnisotropyCase>& cases,
                                             AnisotropyFunction function,
                                             const std::array<glm::vec3, 6>& face_colors = {},

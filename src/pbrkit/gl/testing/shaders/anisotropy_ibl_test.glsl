@@ -21,6 +21,7 @@ uniform int uCount;
 uniform int uFunction;  // anisotropy_eval.h's AnisotropyFunction
 uniform vec2 uRotation;
 layout(binding = 0) uniform samplerCube uCube;
+layout(binding = 1) uniform sampler3D uAlbedo;  // gl/energy_texture.h's anisotropic albedo
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -35,9 +36,12 @@ void main() {
   } else if (uFunction == 2) {
     vec3 wi;
     anisotropic_tap(c.wo_tap.xyz, c.alpha.x, c.alpha.y, int(c.wo_tap.w), wi, r.x, r.y);
-  } else {
+  } else if (uFunction == 3) {
     mat3 frame = mat3(c.frame_t.xyz, c.frame_b.xyz, c.frame_n.xyz);
-    r.rgb = anisotropic_ibl_radiance(uCube, 1, frame, uRotation, c.wo_tap.xyz, c.alpha.x, c.alpha.y);
+    r.rgb = anisotropic_ibl_radiance(uCube, 1, uAlbedo, frame, uRotation, c.wo_tap.xyz, c.alpha.x,
+                                     c.alpha.y);
+  } else {
+    r.x = anisotropic_albedo(uAlbedo, c.wo_tap.xyz, c.alpha.x, c.alpha.y);
   }
   results[i] = r;
 }
