@@ -36,8 +36,12 @@ class AnisotropicAlbedoTable {
  public:
   static constexpr int kMu = 16, kPhi = 8, kR = 16, kS = 8;  ///< nodes per coordinate
 
-  /// The process's table, computed on first use (about 0.2 s of CPU time).
+  /// The process's table: compute()'s nodes, baked into the library
+  /// (anisotropic_albedo_data.inc; about 2 s of CPU time to make).
   static const AnisotropicAlbedoTable& get();
+
+  /// Every node's anisotropic_albedo, in values()'s order.
+  static std::vector<float> compute();
 
   /// The table's coordinates in [0, 1] for wo and the two alphas.
   static glm::vec4 coordinates(glm::vec3 wo, float alpha_x, float alpha_y);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/microfacet.h"
@@ -64,7 +65,8 @@ void AnisotropicAlbedoTable::node_lobe(int i, int j, int k, int l, glm::vec3& wo
   alpha_x = alpha_y + (1.0f - alpha_y) * strength * strength;
 }
 
-AnisotropicAlbedoTable::AnisotropicAlbedoTable() : values_(std::size_t(kMu) * kPhi * kR * kS) {
+std::vector<float> AnisotropicAlbedoTable::compute() {
+  std::vector<float> values(std::size_t(kMu) * kPhi * kR * kS);
   pbrkit::parallel_for(0, kR * kS, [&](int kl) {
     const int k = kl % kR, l = kl / kR;
     for (int j = 0; j < kPhi; ++j)
@@ -72,10 +74,20 @@ AnisotropicAlbedoTable::AnisotropicAlbedoTable() : values_(std::size_t(kMu) * kP
         glm::vec3 wo;
         float ax = 0.0f, ay = 0.0f;
         node_lobe(i, j, k, l, wo, ax, ay);
-        values_[((std::size_t(l) * kR + std::size_t(k)) * kPhi + std::size_t(j)) * kMu +
-                std::size_t(i)] = anisotropic_albedo(wo, ax, ay);
+        values[((std::size_t(l) * kR + std::size_t(k)) * kPhi + std::size_t(j)) * kMu +
+               std::size_t(i)] = anisotropic_albedo(wo, ax, ay);
       }
   });
+  return values;
+}
+
+namespace {
+#include "anisotropic_albedo_data.inc"  // kBakedAlbedo: compute()
+}  // namespace
+
+AnisotropicAlbedoTable::AnisotropicAlbedoTable()
+    : values_(std::begin(kBakedAlbedo), std::end(kBakedAlbedo)) {
+  static_assert(std::size(kBakedAlbedo) == std::size_t(kMu) * kPhi * kR * kS);
 }
 
 const AnisotropicAlbedoTable& AnisotropicAlbedoTable::get() {

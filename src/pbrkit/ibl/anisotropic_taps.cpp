@@ -9,8 +9,10 @@
 namespace pbrkit {
 
 glm::vec2 anisotropic_tap_point(int i) {
-  constexpr float kRadius = 0.75f;
-  return {i == 0 ? 0.0f : (i == 1 ? kRadius : -kRadius), 0.0f};
+  // Three equal weights at 0 and +-r hold the uniform disk's second moment along x,
+  // integral of x^2 / pi = 1/4, when 2 r^2 / 3 = 1/4.
+  const float radius = std::sqrt(3.0f / 8.0f);
+  return {i == 0 ? 0.0f : (i == 1 ? radius : -radius), 0.0f};
 }
 
 glm::vec3 anisotropic_visible_normal(glm::vec3 wo, glm::vec2 d, float alpha_x, float alpha_y) {
@@ -47,7 +49,7 @@ AnisotropicTap anisotropic_tap(glm::vec3 wo, float alpha_x, float alpha_y, int i
   // there, equated to the reflected lobe of an isotropic GGX at its peak, 4 pi alpha^2 (the
   // cube's level is prefiltered with D(n) = 1 / (pi alpha^2) and the reflection's Jacobian
   // 1/4): alpha^2 = alpha_x alpha_y / K. From the material alone, not the view: one cube
-  // level per draw (the view's own solid angle measured no more accurate, and a level per
+  // level per draw (the view's own solid angle measured about as accurate, and a level per
   // pixel costs llvmpipe 4% of the frame). Clamped to the cube's roughness range.
   const float alpha2 = alpha_x * alpha_y / float(kAnisotropicTaps);
   tap.roughness = std::clamp(std::sqrt(std::sqrt(alpha2)), kMinRoughness, 1.0f);

@@ -52,9 +52,12 @@ vec3 anisotropic_visible_normal(vec3 wo, vec2 d, float ax, float ay) {
   return visible_normal_at(visible_normal_frame(wo, ax, ay), d, ax, ay);
 }
 
-// anisotropic_tap_point: the centre, then (+-0.75, 0) along the lobe's long axis
-// (anisotropic_taps.h says how the radius was chosen).
-vec2 anisotropic_tap_point(int i) { return vec2(i == 0 ? 0.0 : (i == 1 ? 0.75 : -0.75), 0.0); }
+// anisotropic_tap_point: the centre, then (+-sqrt(3/8), 0) along the lobe's long axis
+// (anisotropic_taps.h says why).
+const float kTapRadius = 0.61237244;  // sqrt(3/8)
+vec2 anisotropic_tap_point(int i) {
+  return vec2(i == 0 ? 0.0 : (i == 1 ? kTapRadius : -kTapRadius), 0.0);
+}
 
 // What every tap of a pixel shares: the sampler's frame, Lambda(wo) and the perceptual
 // roughness of the lookups, whose lobe covers a third of the lobe's solid angle at normal
