@@ -6,7 +6,6 @@
 // (ibl/anisotropic_taps.h): a handful of taps estimates where the lobe gathers light well
 // but its albedo badly (the horizon cuts the stretched lobe), so the albedo comes from
 // this table, tabulated once from many points and read with one interpolation per pixel.
-#include <array>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -37,7 +36,7 @@ class AnisotropicAlbedoTable {
   static constexpr int kMu = 16, kPhi = 8, kR = 16, kS = 8;  ///< nodes per coordinate
 
   /// The process's table: compute()'s nodes, baked into the library
-  /// (anisotropic_albedo_data.inc; about 2 s of CPU time to make).
+  /// (anisotropic_albedo_data.inc; about 1 s of CPU time to make).
   static const AnisotropicAlbedoTable& get();
 
   /// Every node's anisotropic_albedo, in values()'s order.

@@ -21,9 +21,9 @@ unsigned create_sheen_lut_texture();
 
 /// The anisotropic GGX lobe's albedo (ibl/anisotropic_albedo.h AnisotropicAlbedoTable) for
 /// anisotropy_ibl.glsl: a kMu x kPhi x (kR (kS - 1)) GL_RG32F 3D texture, linear filtering,
-/// clamped at the edges (its nodes at texel centres, as the table's); block l of kR slices
-/// holds the nodes s = l in .r and s = l + 1 in .g, so one fetch reads both neighbours along
-/// s. Computes the table on first use. The caller owns the texture name.
+/// clamped at the edges (node i of n at the texel centre (i + 0.5) / n); block l of kR
+/// slices holds the nodes s = l in .r and s = l + 1 in .g, so one fetch reads both
+/// neighbours along s. The caller owns the texture name.
 unsigned create_anisotropic_albedo_texture();
 
 }  // namespace pbrkit::gl

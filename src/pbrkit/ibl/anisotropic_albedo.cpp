@@ -58,7 +58,8 @@ void AnisotropicAlbedoTable::node_lobe(int i, int j, int k, int l, glm::vec3& wo
   const float s = std::sqrt(std::max(1.0f - mu * mu, 0.0f));
   const glm::vec2 xy = s * glm::normalize(glm::vec2(1.0f - p, p));
   wo = glm::vec3(xy, mu);
-  // The renderers' smallest roughness (kMinRoughness) is where r's first node stands for.
+  // r's first node stands for the renderers' smallest roughness, kMinRoughness (at 0 the
+  // lobe is a mirror, whose D is no function).
   const float r = std::max(node_at(k, kR), kMinRoughness);
   alpha_y = r * r;
   const float strength = node_at(l, kS);

@@ -3,8 +3,9 @@
 // holds them equal). Three directions drawn from the anisotropic lobe's visible normals
 // (Heitz 2018) at fixed points of its disk held to the lobe's axes (the centre and two
 // points along the long axis), each looked up in the prefiltered cube at the roughness whose
-// lobe covers a third of the central direction's solid angle (filtered importance sampling:
-// Colbert & Krivanek, GPU Gems 3 ch. 20, 2007); their mean, weighted by the VNDF estimator's
+// lobe covers a third of the lobe's solid angle at normal incidence (filtered importance
+// sampling: Colbert & Krivanek, GPU Gems 3 ch. 20, 2007); their mean, weighted by the VNDF
+// estimator's
 // G2 / G1(wo), is scaled by the lobe's albedo from the tabulated integral. The taps follow the
 // stretched lobe, and the scale is the lobe's own albedo, the one the path tracer integrates
 // (the isotropic table at the geometric-mean roughness is far brighter on a strongly
