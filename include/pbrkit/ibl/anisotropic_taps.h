@@ -2,8 +2,8 @@
 // The image-based lighting of an anisotropic GGX lobe (KHR_materials_anisotropy) in the
 // OpenGL renderer: three directions drawn from the lobe's distribution of visible normals
 // (Heitz 2018's sampler at fixed points of its disk: the centre and two points along the
-// lobe's long axis), each looked up in the prefiltered specular cube at the roughness
-// whose lobe covers a third of the lobe's solid angle at normal incidence ("filtered
+// lobe's long axis), each looked up in the prefiltered specular cube at the roughness of
+// the isotropic lobe with the whole lobe's solid angle at normal incidence ("filtered
 // importance sampling", Colbert & Krivanek, GPU Gems 3 ch. 20, 2007). The taps' mean, weighted by
 // the VNDF estimator's G2 / G1, says where the stretched lobe gathers light; its scale is the
 // lobe's albedo from ibl/anisotropic_albedo.h, since three weights estimate the albedo

@@ -44,14 +44,17 @@ AnisotropicTap anisotropic_tap(glm::vec3 wo, float alpha_x, float alpha_y, int i
   if (tap.wi.z > 0.0f)
     tap.weight =
         (1.0f + lambda_o) / (1.0f + lambda_o + SmithLambdaGGXAniso(tap.wi, alpha_x, alpha_y));
-  // The taps' lookups cover a third each of the lobe's solid angle at normal incidence,
-  // 1 / (K pdf(wi)) with pdf = G1(wo) D(h) / (4 n.v) = D(n) / 4 = 1 / (4 pi alpha_x alpha_y)
-  // there, equated to the reflected lobe of an isotropic GGX at its peak, 4 pi alpha^2 (the
-  // cube's level is prefiltered with D(n) = 1 / (pi alpha^2) and the reflection's Jacobian
-  // 1/4): alpha^2 = alpha_x alpha_y / K. From the material alone, not the view: one cube
-  // level per draw (the view's own solid angle measured about as accurate, and a level per
-  // pixel costs llvmpipe 4% of the frame). Clamped to the cube's roughness range.
-  const float alpha2 = alpha_x * alpha_y / float(kAnisotropicTaps);
+  // The taps' lookups are the isotropic GGX lobe with the whole lobe's solid angle at
+  // normal incidence, 1 / pdf(wi) with pdf = G1(wo) D(h) / (4 n.v) = D(n) / 4 = 1 / (4 pi
+  // alpha_x alpha_y) there, equated to the reflected lobe of an isotropic GGX at its peak,
+  // 4 pi alpha^2 (the cube's level is prefiltered with D(n) = 1 / (pi alpha^2) and the
+  // reflection's Jacobian 1/4): alpha^2 = alpha_x alpha_y, the energy tables' roughness.
+  // Each blurs across the short axis more than the lobe does, and the three spread it along
+  // the long one; lookups a third as wide left ghosts of an environment's hard edges between
+  // the taps, for no smaller error. From the material alone, not the view: one cube level
+  // per draw (the view's own solid angle measured about as accurate, and a level per pixel
+  // costs llvmpipe 4% of the frame). Clamped to the cube's roughness range.
+  const float alpha2 = alpha_x * alpha_y;
   tap.roughness = std::clamp(std::sqrt(std::sqrt(alpha2)), kMinRoughness, 1.0f);
   return tap;
 }

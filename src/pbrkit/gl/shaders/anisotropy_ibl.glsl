@@ -2,8 +2,8 @@
 // ibl/anisotropic_albedo.h in GLSL (the C++ is the reference; tests/gl/anisotropy_glsl_test.cpp
 // holds them equal). Three directions drawn from the anisotropic lobe's visible normals
 // (Heitz 2018) at fixed points of its disk held to the lobe's axes (the centre and two
-// points along the long axis), each looked up in the prefiltered cube at the roughness whose
-// lobe covers a third of the lobe's solid angle at normal incidence (filtered importance
+// points along the long axis), each looked up in the prefiltered cube at the roughness of the
+// isotropic lobe with the whole lobe's solid angle at normal incidence (filtered importance
 // sampling: Colbert & Krivanek, GPU Gems 3 ch. 20, 2007); their mean, weighted by the VNDF
 // estimator's
 // G2 / G1(wo), is scaled by the lobe's albedo from the tabulated integral. The taps follow the
@@ -61,10 +61,13 @@ vec2 anisotropic_tap_point(int i) {
 }
 
 // What every tap of a pixel shares: the sampler's frame, Lambda(wo) and the perceptual
-// roughness of the lookups, whose lobe covers a third of the lobe's solid angle at normal
-// incidence, 1 / (K pdf) = 4 pi alpha^2 with pdf = D(n) / 4 = 1 / (4 pi alpha_x alpha_y):
-// alpha^2 = alpha_x alpha_y / K. It depends on the material alone, so llvmpipe reads each
-// tap at one level for the whole draw (a per-pixel level costs it 4% of the frame).
+// roughness of the lookups, that of the isotropic lobe with the whole lobe's solid angle at
+// normal incidence, 1 / pdf = 4 pi alpha^2 with pdf = D(n) / 4 = 1 / (4 pi alpha_x alpha_y):
+// alpha^2 = alpha_x alpha_y (the energy tables' roughness, Brdf's table_roughness). Each
+// tap so blurs across the short axis more than the lobe does, and the three spread it along
+// the long one; a third of that solid angle each left ghosts of hard edges between the taps.
+// It depends on the material alone, so llvmpipe reads each tap at one level for the whole
+// draw (a per-pixel level costs it 4% of the frame).
 struct AnisotropicTaps {
   VisibleNormalFrame frame;
   float lambda_o;
@@ -75,7 +78,7 @@ AnisotropicTaps anisotropic_taps(vec3 wo, float ax, float ay) {
   AnisotropicTaps t;
   t.frame = visible_normal_frame(wo, ax, ay);
   t.lambda_o = SmithLambdaGGXAniso(wo, ax, ay);
-  t.roughness = clamp(sqrt(sqrt(ax * ay / float(kAnisotropicTaps))), kMinRoughness, 1.0);
+  t.roughness = clamp(sqrt(sqrt(ax * ay)), kMinRoughness, 1.0);
   return t;
 }
 
