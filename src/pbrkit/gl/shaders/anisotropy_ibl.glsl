@@ -2,14 +2,14 @@
 // ibl/anisotropic_albedo.h in GLSL (the C++ is the reference; tests/gl/anisotropy_glsl_test.cpp
 // holds them equal). Three directions drawn from the anisotropic lobe's visible normals
 // (Heitz 2018) at fixed points of its disk held to the lobe's axes (the centre and two
-// points along the long axis), each looked up in the prefiltered cube at the roughness of the
-// isotropic lobe with the whole lobe's solid angle at normal incidence (filtered importance
-// sampling: Colbert & Krivanek, GPU Gems 3 ch. 20, 2007); their mean, weighted by the VNDF
-// estimator's
-// G2 / G1(wo), is scaled by the lobe's albedo from the tabulated integral. The taps follow the
-// stretched lobe, and the scale is the lobe's own albedo, the one the path tracer integrates
-// (the isotropic table at the geometric-mean roughness is far brighter on a strongly
-// stretched lobe: 0.88 against 0.53 at alpha 1 x 0.09, normal incidence).
+// points along the long axis), each looked up in the prefiltered cube at the roughness of
+// the isotropic lobe with the whole lobe's solid angle at normal incidence (filtered
+// importance sampling: Colbert & Krivanek, GPU Gems 3 ch. 20, 2007); their mean, weighted by
+// the VNDF estimator's G2 / G1(wo), is scaled by the lobe's albedo from the tabulated
+// integral. The taps follow the stretched lobe, and the scale is the lobe's own albedo, the
+// one the path tracer integrates (the isotropic table at the geometric-mean roughness is far
+// brighter on a strongly stretched lobe: 0.88 against 0.53 at alpha 1 x 0.09, normal
+// incidence).
 #include "brdf.glsl"
 #include "equirect.glsl"
 
