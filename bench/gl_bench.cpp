@@ -191,6 +191,18 @@ void BM_GlFrameAnisotropy(benchmark::State& state) {
 }
 BENCHMARK(BM_GlFrameAnisotropy)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
+// The cost of KHR_materials_sheen's image-based light (the environment's SH averaged over the
+// Charlie lobe from its tabulated moments, sheen.glsl): the built-in `sheen` scene's 1280x720
+// frame (MSAA 1). Goal: at most 1.3x the frame with the Charlie-prefiltered lookup along the
+// reflection.
+void BM_GlFrameSheen(benchmark::State& state) {
+  gl::HeadlessContext context;
+  gl::RenderSettings settings;
+  settings.msaa = 1;
+  time_frames(state, builtin_scene("sheen"), 1280, 720, settings);
+}
+BENCHMARK(BM_GlFrameSheen)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
+
 // The cost of the transmission pass (BENCHMARKS.md, "glass and liquids"). The 1280x720 frame (MSAA
 // 1) of `spheres` as is (0: no transmissive material, so no capture and no mip chain), with every
 // other sphere thin-walled glass (1: the opaque frame captured, its mip chain built, the glass
