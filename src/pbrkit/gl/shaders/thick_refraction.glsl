@@ -54,19 +54,6 @@ vec3 refract_twice(vec3 v, vec3 n, vec3 n_back, float ior, out bool tir) {
   return exit_direction(normalize(t1), n_back, ior, tir);
 }
 
-// The window-space depth (GL's default [0, 1] depth range) and screen position of p; false
-// when p is behind the camera or off the screen.
-bool project_with_depth(mat4 view_projection, vec3 p, out vec2 uv, out float depth) {
-  vec4 clip = view_projection * vec4(p, 1.0);
-  uv = vec2(0.0);
-  depth = 1.0;
-  if (clip.w <= 0.0) return false;
-  vec3 ndc = clip.xyz / clip.w;
-  uv = ndc.xy * 0.5 + 0.5;
-  depth = ndc.z * 0.5 + 0.5;
-  return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
-}
-
 // The texel of a single-level target at texture coordinates uv, unfiltered: a blend of two
 // texels would be a position or depth between two surfaces, on neither.
 vec4 texel_at(sampler2D target, vec2 uv) {
@@ -86,15 +73,17 @@ const int kFrameHitIterations = 4;
 bool frame_hit(vec3 origin, vec3 dir, mat4 view_projection, mat4 inverse_view_projection,
                sampler2D frame_depth, out vec2 uv, out float d) {
   d = 0.0;
-  float depth;
+  // The ray's clip-space point is linear in d: one projection of each end, not one per step.
+  vec4 o = view_projection * vec4(origin, 1.0);
+  vec4 e = view_projection * vec4(dir, 0.0);
   for (int k = 0; k < kFrameHitIterations; ++k) {
-    if (!project_with_depth(view_projection, origin + d * dir, uv, depth)) return false;
+    if (!clip_to_screen(o + d * e, uv)) return false;
     float scene = texel_at(frame_depth, uv).r;
     if (scene >= 1.0) return false;
     vec4 b = inverse_view_projection * vec4(vec3(uv, scene) * 2.0 - 1.0, 1.0);
     d = distance(b.xyz / b.w, origin);
   }
-  return project_with_depth(view_projection, origin + d * dir, uv, depth);
+  return clip_to_screen(o + d * e, uv);
 }
 
 // The back faces of the object being drawn (renderer.cpp's back-face pass): world position

@@ -60,13 +60,17 @@ vec3 volume_attenuation(float distance, vec3 attenuation_color, float attenuatio
 }
 
 // The screen position ([0, 1]^2, GL's row order: the colour target's texture coordinates)
-// of world point p; false when p is behind the camera or off the screen.
-bool project_to_screen(mat4 view_projection, vec3 p, out vec2 uv) {
-  vec4 clip = view_projection * vec4(p, 1.0);
+// of the clip-space point `clip`; false when it is behind the camera or off the screen.
+bool clip_to_screen(vec4 clip, out vec2 uv) {
   uv = vec2(0.0);
   if (clip.w <= 0.0) return false;
   uv = clip.xy / clip.w * 0.5 + 0.5;
   return all(greaterThanEqual(uv, vec2(0.0))) && all(lessThanEqual(uv, vec2(1.0)));
+}
+
+// The same for world point p.
+bool project_to_screen(mat4 view_projection, vec3 p, out vec2 uv) {
+  return clip_to_screen(view_projection * vec4(p, 1.0), uv);
 }
 
 // What the camera would see through the surface at `position`: per channel (three iors
