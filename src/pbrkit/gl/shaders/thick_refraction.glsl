@@ -68,14 +68,13 @@ vec4 texel_at(sampler2D target, vec2 uv) {
 // object (a floor, a wall) it converges to the ray's intersection with it in a few steps,
 // with one depth fetch each where a march needs one per step. Returns the frame's texture
 // coordinates and the distance; false where the ray leaves the screen, goes behind the
-// camera or meets the background (the environment is what it sees then).
+// camera or meets the background (the environment is what it sees then). `o` and `e` are
+// origin and dir in clip space (view_projection times (origin, 1) and (dir, 0)): the ray's
+// point at d projects from o + d e, one multiply-add per step instead of a projection.
 const int kFrameHitIterations = 4;
-bool frame_hit(vec3 origin, vec3 dir, mat4 view_projection, mat4 inverse_view_projection,
-               sampler2D frame_depth, out vec2 uv, out float d) {
+bool frame_hit(vec3 origin, vec4 o, vec4 e, mat4 inverse_view_projection, sampler2D frame_depth,
+               out vec2 uv, out float d) {
   d = 0.0;
-  // The ray's clip-space point is linear in d: one projection of each end, not one per step.
-  vec4 o = view_projection * vec4(origin, 1.0);
-  vec4 e = view_projection * vec4(dir, 0.0);
   for (int k = 0; k < kFrameHitIterations; ++k) {
     if (!clip_to_screen(o + d * e, uv)) return false;
     float scene = texel_at(frame_depth, uv).r;
@@ -111,16 +110,17 @@ const int kBackFaceRefinements = 2;
 // down to its bottom face); past these, the light leaves along the last reflected ray.
 const int kInsideSegments = 2;
 
-// From `origin` along `dir` inside the object, the distance `d` to its back face (from the
-// estimate `d` on: back_plane_distance at the back face seen where the ray's point at d
-// projects) and that face's normal; false where no back face the ray heads for is seen there.
-bool to_back_face(vec3 origin, vec3 dir, mat4 view_projection, sampler2D back_position,
+// From `origin` along `dir` inside the object (`o`, `e`: both in clip space, as frame_hit
+// takes them), the distance `d` to its back face (from the estimate `d` on:
+// back_plane_distance at the back face seen where the ray's point at d projects) and that
+// face's normal; false where no back face the ray heads for is seen there.
+bool to_back_face(vec3 origin, vec3 dir, vec4 o, vec4 e, sampler2D back_position,
                   sampler2D back_normal, vec4 rect, inout float d, out vec3 n_back) {
   n_back = vec3(0.0);
   bool found = false;
   for (int k = 0; k < kBackFaceRefinements; ++k) {
     vec2 uv;
-    if (!project_to_screen(view_projection, origin + d * dir, uv)) break;
+    if (!clip_to_screen(o + d * e, uv)) break;
     BackFaceHit h = back_face_at(back_position, back_normal, rect, uv);
     // A face the ray runs away from (or along) is not where it leaves: a reflected ray in a
     // thin curved wall heads for the outer wall's front face, which the pass does not hold.
@@ -136,10 +136,11 @@ bool to_back_face(vec3 origin, vec3 dir, mat4 view_projection, sampler2D back_po
 // with dispersion), the view ray refracted at the entry, carried to the back face (Wyman's
 // estimate, then to_back_face), refracted out of it (or reflected inside, kInsideSegments)
 // and followed to the frame's surface (frame_hit; with dispersion once, for green: the
-// other channels' exit rays are read at the same distance along them); Beer-Lambert over the path
-// inside. Where the back-face
-// pass holds nothing at the fragment's own pixel (a silhouette), or has not run for this
-// draw (`back_faces` false), transmission.glsl's one refraction through the thickness.
+// other channels' exit rays are read at the same distance along them); Beer-Lambert over
+// the path inside. Where the back-face pass holds nothing at the fragment's own pixel (a
+// silhouette), or has not run for this draw (`back_faces` false), transmission.glsl's one
+// refraction through the thickness. The rays are carried in clip space alongside world
+// space (clip = view_projection x world is linear), so each direction is projected once.
 vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D frame,
                               sampler2D frame_depth, vec2 frame_size, sampler2D back_position,
                               sampler2D back_normal, vec4 back_rect, vec2 pixel_uv,
@@ -155,6 +156,7 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
   int channels = dispersion ? 3 : 1;
   bool hit = false;
   float t_hit = 0.0;
+  vec4 entry = view_projection * vec4(t.position, 1.0);
   for (int k = 0; k < channels; ++k) {
     int c = dispersion ? (k + 1) % 3 : 0;  // green first: its search serves the others
     float ior = t.iors[c];
@@ -163,21 +165,24 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
     float d_n = length(volume_transmission_ray(t.n, t.v, t.thickness, ior, t.model_scale));
     float d = wyman_distance(d_v, d_n, saturate(dot(t.n, t.v)), ior);
     vec3 origin = t.position;
+    vec4 o = entry;
+    vec4 e = view_projection * vec4(dir, 0.0);
     float inside = 0.0;  // the path length inside, for Beer-Lambert
     for (int segment = 0; segment < kInsideSegments; ++segment) {
       vec3 n_back;
-      bool found =
-          to_back_face(origin, dir, view_projection, back_position, back_normal, back_rect, d, n_back);
+      bool found = to_back_face(origin, dir, o, e, back_position, back_normal, back_rect, d, n_back);
       // The first segment keeps Wyman's estimate and the fragment's own back face where the
       // refined point sees none. A reflected ray that meets no back face heads for a front
       // face (which the pass does not hold): it is taken to cross the object once more, as
       // long as the segment before, and to leave along its direction.
       if (!found && segment == 0) n_back = own.normal;
       origin += d * dir;
+      o += d * e;
       inside += d;
       if (!found && segment > 0) break;
       bool tir;
       dir = exit_direction(dir, n_back, ior, tir);
+      e = view_projection * vec4(dir, 0.0);
       if (!tir) break;
     }
     float rough = transmission_roughness(t.roughness, ior);
@@ -185,10 +190,10 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
     vec3 seen;
     bool on;
     if (k == 0) {
-      hit = frame_hit(origin, dir, view_projection, inverse_view_projection, frame_depth, uv, t_hit);
+      hit = frame_hit(origin, o, e, inverse_view_projection, frame_depth, uv, t_hit);
       on = hit;
     } else {
-      on = hit && project_to_screen(view_projection, origin + t_hit * dir, uv);
+      on = hit && clip_to_screen(o + t_hit * e, uv);
     }
     if (on) {
       seen = textureLod(frame, uv, log2(frame_size.x) * rough).rgb;
