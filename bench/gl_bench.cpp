@@ -179,27 +179,28 @@ BENCHMARK(BM_GlFrameLayers)
     ->UseRealTime()
     ->MinTime(3.0);
 
-// The cost of KHR_materials_anisotropy's image-based lighting (three prefiltered lookups
-// along the stretched lobe and its tabulated albedo, anisotropy_ibl.glsl): the built-in
-// `anisotropy` scene's 1280x720 frame (MSAA 1), 16 of its 18 spheres anisotropic. Goal: at
-// most 1.3x the frame with one lookup along the bent reflection.
-void BM_GlFrameAnisotropy(benchmark::State& state) {
+// A built-in scene's 1280x720 frame (MSAA 1) from its own camera.
+void time_builtin_frame(benchmark::State& state, const char* name) {
   gl::HeadlessContext context;
   gl::RenderSettings settings;
   settings.msaa = 1;
-  time_frames(state, builtin_scene("anisotropy"), 1280, 720, settings);
+  time_frames(state, builtin_scene(name), 1280, 720, settings);
+}
+
+// The cost of KHR_materials_anisotropy's image-based lighting (three prefiltered lookups
+// along the stretched lobe and its tabulated albedo, anisotropy_ibl.glsl): the built-in
+// `anisotropy` scene, 16 of its 18 spheres anisotropic. Goal: at most 1.3x the frame with
+// one lookup along the bent reflection.
+void BM_GlFrameAnisotropy(benchmark::State& state) {
+  time_builtin_frame(state, "anisotropy");
 }
 BENCHMARK(BM_GlFrameAnisotropy)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
 // The cost of KHR_materials_sheen's image-based light (the environment's SH averaged over the
-// Charlie lobe from its tabulated moments, sheen.glsl): the built-in `sheen` scene's 1280x720
-// frame (MSAA 1). Goal: at most 1.3x the frame with the Charlie-prefiltered lookup along the
-// reflection.
+// Charlie lobe from its tabulated moments, sheen.glsl): the built-in `sheen` scene. Goal: at
+// most 1.3x the frame with the Charlie-prefiltered lookup along the reflection.
 void BM_GlFrameSheen(benchmark::State& state) {
-  gl::HeadlessContext context;
-  gl::RenderSettings settings;
-  settings.msaa = 1;
-  time_frames(state, builtin_scene("sheen"), 1280, 720, settings);
+  time_builtin_frame(state, "sheen");
 }
 BENCHMARK(BM_GlFrameSheen)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
