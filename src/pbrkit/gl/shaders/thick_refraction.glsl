@@ -138,9 +138,13 @@ bool to_back_face(vec3 origin, vec3 dir, vec4 o, vec4 e, sampler2D back_position
 // and followed to the frame's surface (frame_hit; with dispersion once, for green: the
 // other channels' exit rays are read at the same distance along them); Beer-Lambert over
 // the path inside. Where the back-face pass holds nothing at the fragment's own pixel (a
-// silhouette), or has not run for this draw (`back_faces` false), transmission.glsl's one
-// refraction through the thickness. The rays are carried in clip space alongside world
-// space (clip = view_projection x world is linear), so each direction is projected once.
+// silhouette), or has not run for this draw (`back_faces` false), one refraction: the ray
+// crosses the material's thickness (transmission.glsl's volume_transmission_ray) unbent and
+// is followed to the frame from there. That case runs through the same code rather than a
+// branch of its own: a software rasteriser (llvmpipe) runs both sides of a branch its lanes
+// disagree on, so a separate fallback cost every fragment its work. The rays are carried
+// in clip space alongside world space (clip = view_projection x world is linear), so each
+// direction is projected once.
 vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D frame,
                               sampler2D frame_depth, vec2 frame_size, sampler2D back_position,
                               sampler2D back_normal, vec4 back_rect, vec2 pixel_uv,
@@ -148,9 +152,7 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
                               vec3 camera, samplerCube env_cube, vec2 env_rotation,
                               int env_levels, float env_scale, bool dispersion) {
   BackFaceHit own = back_face_at(back_position, back_normal, back_rect, pixel_uv);
-  if (!back_faces || !own.found)
-    return refracted_radiance(t, frame, frame_size, view_projection, camera, env_cube,
-                              env_rotation, env_levels, env_scale, dispersion);
+  bool two_faces = back_faces && own.found;
   float d_v = distance(own.position, t.position);
   vec3 result = vec3(0.0);
   int channels = dispersion ? 3 : 1;
@@ -163,14 +165,15 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
     vec3 dir = refract(-t.v, t.n, 1.0 / ior);
     dir = dot(dir, dir) > 0.0 ? normalize(dir) : -t.v;
     float d_n = length(volume_transmission_ray(t.n, t.v, t.thickness, ior, t.model_scale));
-    float d = wyman_distance(d_v, d_n, saturate(dot(t.n, t.v)), ior);
+    float d = two_faces ? wyman_distance(d_v, d_n, saturate(dot(t.n, t.v)), ior) : d_n;
     vec3 origin = t.position;
     vec4 o = entry;
     vec4 e = view_projection * vec4(dir, 0.0);
     float inside = 0.0;  // the path length inside, for Beer-Lambert
     for (int segment = 0; segment < kInsideSegments; ++segment) {
-      vec3 n_back;
-      bool found = to_back_face(origin, dir, o, e, back_position, back_normal, back_rect, d, n_back);
+      vec3 n_back = own.normal;
+      bool found = two_faces &&
+                   to_back_face(origin, dir, o, e, back_position, back_normal, back_rect, d, n_back);
       // The first segment keeps Wyman's estimate and the fragment's own back face where the
       // refined point sees none. A reflected ray that meets no back face heads for a front
       // face (which the pass does not hold): it is taken to cross the object once more, as
@@ -179,7 +182,7 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
       origin += d * dir;
       o += d * e;
       inside += d;
-      if (!found && segment > 0) break;
+      if ((!found && segment > 0) || !two_faces) break;
       bool tir;
       dir = exit_direction(dir, n_back, ior, tir);
       e = view_projection * vec4(dir, 0.0);
