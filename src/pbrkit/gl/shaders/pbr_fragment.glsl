@@ -492,8 +492,8 @@ vec3 transmitted_light(MaterialInputs m, Shading s, float transmission, float th
   vec3 seen = thick_refracted_radiance(
       t, uBackFaces != 0, uTransmissionFrame, uTransmissionDepth, uTransmissionFrameSize,
       uBackPosition, uBackNormal, uBackFaceRect, gl_FragCoord.xy / uTransmissionFrameSize,
-      uViewProjection, uInverseViewProjection, uCameraPosition, uSpecularCube, uIblRotation,
-      uSpecularLevels, IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
+      uViewProjection, uInverseViewProjection, uSpecularCube, uIblRotation, uSpecularLevels,
+      IBL != 0 ? uIblScale : 0.0, MATERIAL_DISPERSION != 0);
 #else
   vec3 seen = refracted_radiance(t, uTransmissionFrame, uTransmissionFrameSize, uViewProjection,
                                  uCameraPosition, uSpecularCube, uIblRotation, uSpecularLevels,

@@ -149,8 +149,8 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
                               sampler2D frame_depth, vec2 frame_size, sampler2D back_position,
                               sampler2D back_normal, vec4 back_rect, vec2 pixel_uv,
                               mat4 view_projection, mat4 inverse_view_projection,
-                              vec3 camera, samplerCube env_cube, vec2 env_rotation,
-                              int env_levels, float env_scale, bool dispersion) {
+                              samplerCube env_cube, vec2 env_rotation, int env_levels,
+                              float env_scale, bool dispersion) {
   BackFaceHit own = back_face_at(back_position, back_normal, back_rect, pixel_uv);
   bool two_faces = back_faces && own.found;
   float d_v = distance(own.position, t.position);
