@@ -14,6 +14,7 @@
 
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/energy.h"
+#include "pbrkit/core/math.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/ibl/anisotropic_albedo.h"
 
@@ -37,12 +38,12 @@ Estimate hemisphere_albedo(glm::vec3 wo, float ax, float ay) {
   const double lambda_o = SmithLambdaGGXAniso(wo, ax, ay);
   double sum = 0.0, sum2 = 0.0;
   for (int i = 0; i < kN; ++i) {
-    const double z = u(rng), phi = 2.0 * 3.14159265358979 * u(rng);
+    const double z = u(rng), phi = 2.0 * double(kPi) * u(rng);
     const double r = std::sqrt(std::max(1.0 - z * z, 0.0));
     const glm::vec3 wi(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
     const glm::vec3 h = glm::normalize(wo + wi);
     const double g2 = 1.0 / (1.0 + lambda_o + SmithLambdaGGXAniso(wi, ax, ay));
-    const double x = DistributionGGXAniso(h, ax, ay) * g2 / (4.0 * wo.z) * 2.0 * 3.14159265358979;
+    const double x = DistributionGGXAniso(h, ax, ay) * g2 / (4.0 * wo.z) * 2.0 * double(kPi);
     sum += x;
     sum2 += x * x;
   }

@@ -6,6 +6,7 @@
 // (ibl/anisotropic_taps.h): a handful of taps estimates where the lobe gathers light well
 // but its albedo badly (the horizon cuts the stretched lobe), so the albedo comes from
 // this table, tabulated once from many points and read with one interpolation per pixel.
+#include <cstddef>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -49,9 +50,10 @@ class AnisotropicAlbedoTable {
   float lookup(glm::vec3 wo, float alpha_x, float alpha_y) const;
 
   /// The node (i, j, k, l): sqrt(n.v), p, r and s's indices.
-  float node(int i, int j, int k, int l) const {
-    return values_[((std::size_t(l) * kR + std::size_t(k)) * kPhi + std::size_t(j)) * kMu +
-                   std::size_t(i)];
+  float node(int i, int j, int k, int l) const { return values_[index(i, j, k, l)]; }
+  /// Where node (i, j, k, l) lies in values().
+  static std::size_t index(int i, int j, int k, int l) {
+    return ((std::size_t(l) * kR + std::size_t(k)) * kPhi + std::size_t(j)) * kMu + std::size_t(i);
   }
   /// All nodes, mu fastest, then p, r and s.
   const std::vector<float>& values() const { return values_; }

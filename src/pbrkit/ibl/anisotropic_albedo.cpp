@@ -75,8 +75,7 @@ std::vector<float> AnisotropicAlbedoTable::compute() {
         glm::vec3 wo;
         float ax = 0.0f, ay = 0.0f;
         node_lobe(i, j, k, l, wo, ax, ay);
-        values[((std::size_t(l) * kR + std::size_t(k)) * kPhi + std::size_t(j)) * kMu +
-               std::size_t(i)] = anisotropic_albedo(wo, ax, ay);
+        values[index(i, j, k, l)] = anisotropic_albedo(wo, ax, ay);
       }
   });
   return values;
