@@ -68,13 +68,26 @@ Environment orientation_probe() {
   return env;
 }
 
-// A sphere's per-channel mean radiance in both images over its pixels with n.v >= min_mu,
-// and the variance of the path tracer's means from its two interleaved half buffers (per
-// pixel ((even - odd) / 2)^2 is the variance of the pixel's mean, as for adaptive sampling).
+// A sphere's per-channel mean radiance in both images over its pixels with n.v >= min_mu
+// whose eight neighbours' rays hit the sphere too, and the variance of the path tracer's
+// means from its two interleaved half buffers (per pixel ((even - odd) / 2)^2 is the
+// variance of the pixel's mean, as for adaptive sampling). The neighbours' test keeps the
+// silhouette out: the path tracer's box filter averages over the whole pixel, so there its
+// mean holds some of what lies behind the sphere, where the OpenGL renderer (MSAA off)
+// shades the pixel's centre alone; that difference is the filter's, not the split sum's.
 struct ChannelMeans {
   glm::dvec3 gl{0.0}, pt{0.0}, pt_variance{0.0};
   int pixels = 0;
 };
+bool interior_pixel(const Camera& camera, int x, int y, int width, int height, glm::vec3 centre,
+                    float radius) {
+  for (int dy = -1; dy <= 1; ++dy)
+    for (int dx = -1; dx <= 1; ++dx)
+      if (!testing::sphere_hit_cosine(testing::pixel_ray(camera, x + dx, y + dy, width, height),
+                                      centre, radius))
+        return false;
+  return true;
+}
 ChannelMeans channel_means(const Image& gl, const Film& film, const Camera& camera,
                            glm::vec3 centre, float radius, float min_mu) {
   ChannelMeans m;
@@ -83,6 +96,7 @@ ChannelMeans channel_means(const Image& gl, const Film& film, const Camera& came
       const auto mu = testing::sphere_hit_cosine(
           testing::pixel_ray(camera, x, y, gl.width, gl.height), centre, radius);
       if (!mu || *mu < min_mu) continue;
+      if (!interior_pixel(camera, x, y, gl.width, gl.height, centre, radius)) continue;
       const std::size_t i = std::size_t(y) * std::size_t(gl.width) + std::size_t(x);
       const double half = double(film.count[i]) / 2.0;
       const glm::dvec3 sum(film.sum[i]), even(film.sum_even[i]);
@@ -164,7 +178,7 @@ TEST_P(ExtensionTruthTable, SplitSumErrorPerChannelAsMeasured) {
     const SphereError want =
         tc.measured.empty() ? SphereError{mat.name.c_str(), 0, 0, 0} : tc.measured[i];
     ASSERT_EQ(mat.name, want.material);
-    ASSERT_GE(m.pixels, 50) << mat.name;
+    ASSERT_GE(m.pixels, 40) << mat.name;
     const glm::dvec3 expected(want.r, want.g, want.b);
     glm::dvec3 e, sigma;
     for (int c = 0; c < 3; ++c) {
@@ -178,6 +192,15 @@ TEST_P(ExtensionTruthTable, SplitSumErrorPerChannelAsMeasured) {
       EXPECT_NEAR(e[c], expected[c], 4.0 * std::sqrt(2.0) * sigma[c] + kAllowance)
           << mat.name << " channel "
           << "RGB"[c];
+    // KHR_materials_unlit: both renderers show the base colour itself, so over the sphere's
+    // inner pixels the means agree to float rounding, independently of any recorded value.
+    // A silhouette pixel in the mask (the box filter's mix with the background) or a
+    // camera that frames the two images differently moves them apart by percents.
+    if (mat.unlit) {
+      for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(e[c], 0.0, 1e-4) << mat.name << " channel "
+                                     << "RGB"[c];
+    }
     ++counted;
   }
   EXPECT_EQ(counted, int(centres.size()));
@@ -186,129 +209,129 @@ TEST_P(ExtensionTruthTable, SplitSumErrorPerChannelAsMeasured) {
 // Measured on the 2-core Debian 12 machine with llvmpipe at 128 spp (docs/SPLIT_SUM_ERRORS.md
 // prints the same tables with each value's standard error).
 const std::vector<SphereError> kClearcoat = {
-    {"clearcoat_factor_0", +0.032, -0.058, -0.052},
-    {"clearcoat_factor_1", +0.027, -0.026, -0.024},
-    {"clearcoat_factor_2", +0.041, -0.008, -0.005},
-    {"clearcoat_factor_3", +0.048, -0.011, -0.007},
-    {"clearcoat_factor_4", +0.051, +0.009, +0.012},
-    {"clearcoat_factor_5", +0.063, -0.026, -0.023},
-    {"clearcoat_roughness_0", +0.038, -0.015, -0.011},
-    {"clearcoat_roughness_1", +0.083, +0.018, +0.021},
-    {"clearcoat_roughness_2", +0.090, +0.031, +0.039},
-    {"clearcoat_roughness_3", +0.088, -0.017, -0.003},
-    {"clearcoat_roughness_4", +0.082, -0.014, -0.006},
-    {"clearcoat_roughness_5", +0.082, -0.025, -0.017},
-    {"clearcoat_metal_0", -0.013, -0.018, -0.028},
-    {"clearcoat_metal_1", -0.028, -0.036, -0.053},
-    {"clearcoat_metal_2", +0.003, -0.005, -0.023},
-    {"clearcoat_metal_3", +0.004, -0.004, -0.015},
-    {"clearcoat_metal_4", +0.011, +0.004, -0.002},
-    {"clearcoat_metal_5", +0.011, +0.003, -0.001},
+    {"clearcoat_factor_0", -0.001, -0.007, -0.008},
+    {"clearcoat_factor_1", +0.003, -0.002, -0.002},
+    {"clearcoat_factor_2", +0.012, +0.005, +0.004},
+    {"clearcoat_factor_3", +0.016, -0.002, -0.003},
+    {"clearcoat_factor_4", +0.034, +0.023, +0.023},
+    {"clearcoat_factor_5", +0.048, +0.021, +0.020},
+    {"clearcoat_roughness_0", +0.024, +0.018, +0.018},
+    {"clearcoat_roughness_1", +0.067, +0.035, +0.035},
+    {"clearcoat_roughness_2", +0.069, +0.069, +0.069},
+    {"clearcoat_roughness_3", +0.069, +0.047, +0.047},
+    {"clearcoat_roughness_4", +0.077, +0.050, +0.049},
+    {"clearcoat_roughness_5", +0.072, +0.043, +0.041},
+    {"clearcoat_metal_0", +0.019, +0.019, +0.018},
+    {"clearcoat_metal_1", +0.015, +0.014, +0.013},
+    {"clearcoat_metal_2", +0.050, +0.049, +0.046},
+    {"clearcoat_metal_3", +0.045, +0.044, +0.041},
+    {"clearcoat_metal_4", +0.052, +0.050, +0.045},
+    {"clearcoat_metal_5", +0.051, +0.049, +0.045},
 };
 const std::vector<SphereError> kSheen = {
-    {"sheen_color_0", -0.075, -0.074, -0.039},     {"sheen_color_1", -0.043, -0.044, -0.024},
-    {"sheen_color_2", -0.012, -0.012, -0.002},     {"sheen_color_3", +0.014, +0.015, +0.020},
-    {"sheen_color_4", +0.007, +0.007, +0.010},     {"sheen_color_5", +0.055, +0.057, +0.058},
-    {"sheen_roughness_0", -0.033, -0.033, -0.011}, {"sheen_roughness_1", -0.019, -0.018, -0.005},
-    {"sheen_roughness_2", +0.039, +0.040, +0.045}, {"sheen_roughness_3", +0.032, +0.034, +0.043},
-    {"sheen_roughness_4", +0.024, +0.025, +0.029}, {"sheen_roughness_5", +0.028, +0.029, +0.033},
-    {"sheen_tint_0", -0.038, -0.036, -0.004},      {"sheen_tint_1", +0.028, -0.092, -0.045},
-    {"sheen_tint_2", +0.027, +0.007, -0.042},      {"sheen_tint_3", -0.046, +0.046, +0.003},
-    {"sheen_tint_4", +0.027, +0.069, +0.083},      {"sheen_tint_5", +0.073, +0.036, +0.077},
+    {"sheen_color_0", -0.005, -0.007, -0.006},     {"sheen_color_1", -0.003, -0.005, -0.004},
+    {"sheen_color_2", -0.017, -0.018, -0.018},     {"sheen_color_3", -0.020, -0.021, -0.019},
+    {"sheen_color_4", -0.011, -0.013, -0.012},     {"sheen_color_5", -0.014, -0.014, -0.014},
+    {"sheen_roughness_0", +0.008, +0.007, +0.011}, {"sheen_roughness_1", -0.000, -0.002, +0.002},
+    {"sheen_roughness_2", -0.005, -0.006, -0.004}, {"sheen_roughness_3", +0.012, +0.011, +0.012},
+    {"sheen_roughness_4", +0.016, +0.017, +0.018}, {"sheen_roughness_5", +0.022, +0.022, +0.021},
+    {"sheen_tint_0", +0.010, +0.010, +0.016},      {"sheen_tint_1", +0.012, -0.001, +0.001},
+    {"sheen_tint_2", +0.020, +0.017, +0.012},      {"sheen_tint_3", +0.008, +0.021, +0.013},
+    {"sheen_tint_4", +0.014, +0.026, +0.031},      {"sheen_tint_5", +0.028, +0.013, +0.029},
 };
 const std::vector<SphereError> kAnisotropy = {
-    {"anisotropy_strength_0", -0.008, -0.009, -0.009},
-    {"anisotropy_strength_1", +0.005, +0.002, +0.000},
-    {"anisotropy_strength_2", +0.020, +0.017, +0.017},
-    {"anisotropy_strength_3", +0.035, +0.035, +0.036},
-    {"anisotropy_strength_4", -0.019, -0.021, -0.023},
-    {"anisotropy_strength_5", +0.025, +0.025, +0.024},
-    {"anisotropy_strength_rotated_0", +0.024, +0.023, +0.024},
-    {"anisotropy_strength_rotated_1", +0.030, +0.029, +0.028},
-    {"anisotropy_strength_rotated_2", +0.033, +0.032, +0.033},
-    {"anisotropy_strength_rotated_3", +0.023, +0.023, +0.025},
-    {"anisotropy_strength_rotated_4", +0.059, +0.059, +0.061},
-    {"anisotropy_strength_rotated_5", -0.002, -0.005, -0.005},
-    {"anisotropy_rotation_0", +0.006, +0.005, +0.004},
-    {"anisotropy_rotation_1", +0.066, +0.069, +0.073},
-    {"anisotropy_rotation_2", +0.031, +0.032, +0.033},
-    {"anisotropy_rotation_3", -0.001, -0.004, -0.005},
-    {"anisotropy_rotation_4", +0.078, +0.076, +0.072},
-    {"anisotropy_rotation_5", +0.082, +0.084, +0.084},
+    {"anisotropy_strength_0", +0.016, +0.015, +0.015},
+    {"anisotropy_strength_1", +0.005, +0.004, +0.004},
+    {"anisotropy_strength_2", +0.004, +0.003, +0.003},
+    {"anisotropy_strength_3", +0.007, +0.007, +0.007},
+    {"anisotropy_strength_4", -0.036, -0.039, -0.041},
+    {"anisotropy_strength_5", -0.013, -0.012, -0.014},
+    {"anisotropy_strength_rotated_0", +0.028, +0.029, +0.029},
+    {"anisotropy_strength_rotated_1", +0.037, +0.038, +0.038},
+    {"anisotropy_strength_rotated_2", +0.045, +0.047, +0.048},
+    {"anisotropy_strength_rotated_3", +0.027, +0.028, +0.026},
+    {"anisotropy_strength_rotated_4", +0.052, +0.051, +0.050},
+    {"anisotropy_strength_rotated_5", -0.023, -0.025, -0.027},
+    {"anisotropy_rotation_0", +0.014, +0.015, +0.015},
+    {"anisotropy_rotation_1", +0.021, +0.022, +0.021},
+    {"anisotropy_rotation_2", +0.005, +0.003, -0.000},
+    {"anisotropy_rotation_3", -0.011, -0.015, -0.018},
+    {"anisotropy_rotation_4", +0.038, +0.034, +0.030},
+    {"anisotropy_rotation_5", +0.044, +0.045, +0.044},
 };
 // anisotropy under orientation_probe().
 const std::vector<SphereError> kAnisotropyProbe = {
-    {"anisotropy_strength_0", +0.046, -0.003, +0.013},
-    {"anisotropy_strength_1", +0.045, +0.002, +0.011},
-    {"anisotropy_strength_2", +0.055, -0.019, +0.012},
-    {"anisotropy_strength_3", -0.002, +0.052, +0.037},
-    {"anisotropy_strength_4", -0.001, +0.039, -0.012},
-    {"anisotropy_strength_5", -0.048, +0.089, -0.019},
-    {"anisotropy_strength_rotated_0", +0.053, -0.001, +0.038},
-    {"anisotropy_strength_rotated_1", +0.058, +0.019, +0.032},
-    {"anisotropy_strength_rotated_2", +0.061, +0.023, +0.042},
-    {"anisotropy_strength_rotated_3", +0.029, +0.066, +0.059},
-    {"anisotropy_strength_rotated_4", +0.039, +0.068, +0.051},
-    {"anisotropy_strength_rotated_5", +0.012, +0.044, +0.027},
-    {"anisotropy_rotation_0", +0.057, -0.002, +0.046},
-    {"anisotropy_rotation_1", +0.096, -0.012, +0.022},
-    {"anisotropy_rotation_2", +0.050, -0.048, +0.034},
-    {"anisotropy_rotation_3", -0.008, +0.058, +0.019},
-    {"anisotropy_rotation_4", +0.003, +0.098, -0.043},
-    {"anisotropy_rotation_5", -0.025, +0.098, +0.003},
+    {"anisotropy_strength_0", +0.038, +0.005, +0.018},
+    {"anisotropy_strength_1", +0.047, +0.012, +0.023},
+    {"anisotropy_strength_2", +0.041, +0.022, +0.040},
+    {"anisotropy_strength_3", +0.005, +0.006, -0.016},
+    {"anisotropy_strength_4", +0.011, +0.020, -0.055},
+    {"anisotropy_strength_5", -0.019, +0.047, -0.060},
+    {"anisotropy_strength_rotated_0", +0.054, +0.020, +0.061},
+    {"anisotropy_strength_rotated_1", +0.061, +0.047, +0.058},
+    {"anisotropy_strength_rotated_2", +0.064, +0.062, +0.068},
+    {"anisotropy_strength_rotated_3", +0.034, +0.032, +0.013},
+    {"anisotropy_strength_rotated_4", +0.051, +0.056, +0.015},
+    {"anisotropy_strength_rotated_5", +0.041, +0.034, +0.002},
+    {"anisotropy_rotation_0", +0.060, +0.024, +0.060},
+    {"anisotropy_rotation_1", +0.064, +0.006, -0.029},
+    {"anisotropy_rotation_2", -0.012, -0.052, -0.003},
+    {"anisotropy_rotation_3", +0.021, +0.015, -0.023},
+    {"anisotropy_rotation_4", +0.067, +0.095, -0.091},
+    {"anisotropy_rotation_5", +0.004, +0.063, -0.040},
 };
 const std::vector<SphereError> kIridescence = {
-    {"iridescence_factor_0", -0.051, -0.046, -0.036},
-    {"iridescence_factor_1", +0.003, +0.000, +0.001},
-    {"iridescence_factor_2", -0.003, -0.008, -0.005},
-    {"iridescence_factor_3", -0.023, -0.029, -0.024},
-    {"iridescence_factor_4", +0.004, -0.014, -0.009},
-    {"iridescence_factor_5", -0.086, -0.079, -0.054},
-    {"iridescence_thickness_0", +0.003, +0.005, +0.014},
-    {"iridescence_thickness_1", -0.034, -0.016, +0.002},
-    {"iridescence_thickness_2", -0.036, -0.055, -0.076},
-    {"iridescence_thickness_3", -0.163, -0.129, -0.064},
-    {"iridescence_thickness_4", -0.046, -0.056, -0.024},
-    {"iridescence_thickness_5", -0.058, -0.052, -0.031},
-    {"iridescence_metal_0", +0.011, +0.010, +0.010},
-    {"iridescence_metal_1", +0.023, +0.027, +0.033},
-    {"iridescence_metal_2", +0.037, +0.032, +0.033},
-    {"iridescence_metal_3", +0.073, +0.068, +0.073},
-    {"iridescence_metal_4", +0.037, +0.036, +0.037},
-    {"iridescence_metal_5", +0.051, +0.051, +0.049},
+    {"iridescence_factor_0", +0.012, +0.011, +0.011},
+    {"iridescence_factor_1", +0.002, +0.001, +0.002},
+    {"iridescence_factor_2", -0.013, -0.008, -0.011},
+    {"iridescence_factor_3", -0.017, -0.008, -0.010},
+    {"iridescence_factor_4", -0.016, -0.005, -0.002},
+    {"iridescence_factor_5", -0.030, -0.005, +0.006},
+    {"iridescence_thickness_0", +0.027, +0.028, +0.030},
+    {"iridescence_thickness_1", +0.016, +0.021, +0.027},
+    {"iridescence_thickness_2", +0.034, +0.023, -0.012},
+    {"iridescence_thickness_3", -0.020, +0.041, +0.066},
+    {"iridescence_thickness_4", +0.046, +0.014, +0.084},
+    {"iridescence_thickness_5", +0.094, +0.019, +0.072},
+    {"iridescence_metal_0", +0.021, +0.021, +0.020},
+    {"iridescence_metal_1", +0.056, +0.058, +0.060},
+    {"iridescence_metal_2", +0.042, +0.045, +0.048},
+    {"iridescence_metal_3", +0.061, +0.068, +0.071},
+    {"iridescence_metal_4", +0.044, +0.050, +0.055},
+    {"iridescence_metal_5", +0.067, +0.074, +0.081},
 };
 const std::vector<SphereError> kSpecular = {
-    {"specular_factor_0", -0.037, -0.015, +0.023}, {"specular_factor_1", -0.076, -0.023, +0.020},
-    {"specular_factor_2", -0.071, -0.026, +0.022}, {"specular_factor_3", -0.035, -0.007, +0.025},
-    {"specular_factor_4", -0.005, +0.005, +0.020}, {"specular_factor_5", -0.025, -0.009, +0.020},
-    {"specular_color_0", +0.008, +0.019, +0.035},  {"specular_color_1", +0.008, +0.025, +0.041},
-    {"specular_color_2", -0.025, +0.004, +0.043},  {"specular_color_3", -0.062, -0.026, +0.040},
-    {"specular_color_4", -0.005, +0.011, +0.039},  {"specular_color_5", +0.015, +0.025, +0.043},
-    {"specular_tint_0", +0.010, +0.025, +0.048},   {"specular_tint_1", -0.077, -0.052, +0.036},
-    {"specular_tint_2", -0.070, -0.033, +0.043},   {"specular_tint_3", -0.036, +0.024, +0.052},
-    {"specular_tint_4", +0.078, +0.070, +0.070},   {"specular_tint_5", +0.059, +0.074, +0.073},
+    {"specular_factor_0", +0.003, +0.004, +0.006}, {"specular_factor_1", +0.003, +0.002, +0.002},
+    {"specular_factor_2", -0.003, -0.000, +0.002}, {"specular_factor_3", -0.006, -0.006, -0.006},
+    {"specular_factor_4", -0.006, -0.003, +0.001}, {"specular_factor_5", +0.011, +0.007, +0.000},
+    {"specular_color_0", +0.022, +0.020, +0.017},  {"specular_color_1", +0.020, +0.022, +0.023},
+    {"specular_color_2", +0.034, +0.031, +0.026},  {"specular_color_3", +0.047, +0.043, +0.037},
+    {"specular_color_4", +0.043, +0.040, +0.033},  {"specular_color_5", +0.061, +0.056, +0.042},
+    {"specular_tint_0", +0.020, +0.022, +0.023},   {"specular_tint_1", +0.024, +0.027, +0.028},
+    {"specular_tint_2", +0.038, +0.040, +0.041},   {"specular_tint_3", +0.037, +0.053, +0.030},
+    {"specular_tint_4", +0.044, +0.050, +0.043},   {"specular_tint_5", +0.065, +0.050, +0.049},
 };
 const std::vector<SphereError> kIor = {
-    {"ior_roughness5_0", -0.054, -0.031, -0.010},  {"ior_roughness5_1", -0.035, -0.009, +0.007},
-    {"ior_roughness5_2", +0.017, +0.025, +0.030},  {"ior_roughness5_3", -0.015, -0.001, +0.012},
-    {"ior_roughness5_4", +0.003, +0.005, +0.009},  {"ior_roughness5_5", -0.044, -0.038, -0.027},
-    {"ior_roughness30_0", +0.015, +0.022, +0.030}, {"ior_roughness30_1", -0.001, +0.019, +0.031},
-    {"ior_roughness30_2", -0.002, +0.017, +0.035}, {"ior_roughness30_3", -0.044, -0.013, +0.020},
-    {"ior_roughness30_4", +0.010, +0.018, +0.030}, {"ior_roughness30_5", +0.035, +0.038, +0.043},
-    {"ior_roughness60_0", -0.010, +0.012, +0.029}, {"ior_roughness60_1", -0.118, -0.050, +0.003},
-    {"ior_roughness60_2", -0.076, -0.026, +0.017}, {"ior_roughness60_3", -0.025, +0.006, +0.034},
-    {"ior_roughness60_4", -0.004, +0.009, +0.023}, {"ior_roughness60_5", -0.029, -0.019, -0.006},
+    {"ior_roughness5_0", +0.013, +0.011, +0.010},  {"ior_roughness5_1", +0.003, +0.002, +0.002},
+    {"ior_roughness5_2", -0.000, -0.001, -0.002},  {"ior_roughness5_3", -0.010, -0.008, -0.007},
+    {"ior_roughness5_4", +0.005, +0.004, +0.002},  {"ior_roughness5_5", -0.010, -0.009, -0.008},
+    {"ior_roughness30_0", +0.022, +0.020, +0.019}, {"ior_roughness30_1", +0.025, +0.026, +0.026},
+    {"ior_roughness30_2", +0.028, +0.026, +0.025}, {"ior_roughness30_3", +0.034, +0.033, +0.033},
+    {"ior_roughness30_4", +0.043, +0.042, +0.041}, {"ior_roughness30_5", +0.064, +0.062, +0.059},
+    {"ior_roughness60_0", +0.025, +0.028, +0.030}, {"ior_roughness60_1", +0.031, +0.032, +0.032},
+    {"ior_roughness60_2", +0.043, +0.044, +0.045}, {"ior_roughness60_3", +0.036, +0.037, +0.038},
+    {"ior_roughness60_4", +0.024, +0.028, +0.032}, {"ior_roughness60_5", +0.016, +0.019, +0.021},
 };
 const std::vector<SphereError> kUnlit = {
-    {"unlit_row0_0", +0.018, -0.034, -0.029}, {"unlit_row0_1", +0.020, +0.001, -0.000},
-    {"unlit_row0_2", -0.026, +0.019, -0.019}, {"unlit_row0_3", +0.001, +0.031, +0.004},
-    {"unlit_row0_4", -0.021, -0.007, +0.014}, {"unlit_row0_5", +0.003, +0.022, +0.035},
-    {"unlit_row1_0", -0.009, +0.023, +0.026}, {"unlit_row1_1", +0.001, +0.015, +0.015},
-    {"unlit_row1_2", +0.039, -0.014, +0.040}, {"unlit_row1_3", +0.020, -0.032, +0.021},
-    {"unlit_row1_4", +0.034, +0.035, -0.009}, {"unlit_row1_5", +0.014, +0.014, -0.011},
-    {"unlit_row2_0", +0.043, +0.042, +0.045}, {"unlit_row2_1", +0.021, +0.022, +0.023},
-    {"unlit_row2_2", -0.007, -0.005, +0.005}, {"unlit_row2_3", +0.005, +0.006, +0.007},
-    {"unlit_row2_4", -0.023, -0.024, -0.024}, {"unlit_row2_5", -0.006, -0.003, -0.002},
+    {"unlit_row0_0", -0.014, -0.010, -0.010}, {"unlit_row0_1", -0.000, -0.000, -0.000},
+    {"unlit_row0_2", -0.014, -0.008, -0.012}, {"unlit_row0_3", -0.000, +0.000, -0.000},
+    {"unlit_row0_4", -0.009, -0.010, -0.004}, {"unlit_row0_5", -0.000, -0.000, -0.000},
+    {"unlit_row1_0", +0.007, +0.011, +0.013}, {"unlit_row1_1", -0.000, +0.000, +0.000},
+    {"unlit_row1_2", +0.017, +0.010, +0.018}, {"unlit_row1_3", +0.000, -0.000, +0.000},
+    {"unlit_row1_4", +0.030, +0.032, +0.023}, {"unlit_row1_5", -0.000, +0.000, -0.000},
+    {"unlit_row2_0", +0.014, +0.014, +0.016}, {"unlit_row2_1", -0.000, -0.000, -0.000},
+    {"unlit_row2_2", +0.025, +0.026, +0.026}, {"unlit_row2_3", -0.000, -0.000, -0.000},
+    {"unlit_row2_4", +0.005, +0.006, +0.005}, {"unlit_row2_5", +0.000, +0.000, +0.000},
 };
 
 INSTANTIATE_TEST_SUITE_P(
