@@ -132,19 +132,79 @@ bool to_back_face(vec3 origin, vec3 dir, vec4 o, vec4 e, sampler2D back_position
   return found;
 }
 
+// One channel's ray out of the object (ior `ior`): the view ray refracted at the entry,
+// carried to the back face (Wyman's estimate, then to_back_face), refracted out of it (or
+// reflected inside, kInsideSegments); where it leaves (`origin`, and `o` in clip space), its
+// direction (`dir`, and `e` in clip space) and the path length inside, for Beer-Lambert.
+// Where the back-face pass holds nothing at the fragment's own pixel (a silhouette), or has
+// not run for this draw (`two_faces` false), one refraction: the ray crosses the material's
+// thickness (transmission.glsl's volume_transmission_ray) unbent.
+struct ExitRay {
+  vec3 origin, dir;
+  vec4 o, e;
+  float inside;
+};
+
+ExitRay exit_ray(TransmissionInputs t, float ior, bool two_faces, BackFaceHit own, float d_v,
+                 vec4 entry, sampler2D back_position, sampler2D back_normal, vec4 back_rect,
+                 mat4 view_projection) {
+  ExitRay r;
+  r.dir = refract(-t.v, t.n, 1.0 / ior);
+  r.dir = dot(r.dir, r.dir) > 0.0 ? normalize(r.dir) : -t.v;
+  float d_n = length(volume_transmission_ray(t.n, t.v, t.thickness, ior, t.model_scale));
+  float d = two_faces ? wyman_distance(d_v, d_n, saturate(dot(t.n, t.v)), ior) : d_n;
+  r.origin = t.position;
+  r.o = entry;
+  r.e = view_projection * vec4(r.dir, 0.0);
+  r.inside = 0.0;
+  for (int segment = 0; segment < kInsideSegments; ++segment) {
+    vec3 n_back = own.normal;
+    bool found = two_faces && to_back_face(r.origin, r.dir, r.o, r.e, back_position, back_normal,
+                                           back_rect, d, n_back);
+    // The first segment keeps Wyman's estimate and the fragment's own back face where the
+    // refined point sees none. A reflected ray that meets no back face heads for a front
+    // face (which the pass does not hold): it is taken to cross the object once more, as
+    // long as the segment before, and to leave along its direction.
+    if (!found && segment == 0) n_back = own.normal;
+    r.origin += d * r.dir;
+    r.o += d * r.e;
+    r.inside += d;
+    if ((!found && segment > 0) || !two_faces) break;
+    bool tir;
+    r.dir = exit_direction(r.dir, n_back, ior, tir);
+    r.e = view_projection * vec4(r.dir, 0.0);
+    if (!tir) break;
+  }
+  return r;
+}
+
+// What the exit ray `r` of a channel of ior `ior` sees: the frame at `uv` where `on`, else
+// the environment along it, at the rough interface's blur, attenuated along the path inside.
+vec3 exit_radiance(TransmissionInputs t, ExitRay r, float ior, bool on, vec2 uv, sampler2D frame,
+                   vec2 frame_size, samplerCube env_cube, vec2 env_rotation, int env_levels,
+                   float env_scale) {
+  float rough = transmission_roughness(t.roughness, ior);
+  vec3 seen;
+  if (on) {
+    seen = textureLod(frame, uv, log2(frame_size.x) * rough).rgb;
+  } else {
+    seen = env_scale * textureLod(env_cube, world_to_env(r.dir, env_rotation),
+                                  rough * float(env_levels - 1)).rgb;
+  }
+  return seen * volume_attenuation(r.inside, t.attenuation_color, t.attenuation_distance);
+}
+
 // refracted_radiance (transmission.glsl) through both interfaces: per channel (three iors
-// with dispersion), the view ray refracted at the entry, carried to the back face (Wyman's
-// estimate, then to_back_face), refracted out of it (or reflected inside, kInsideSegments)
-// and followed to the frame's surface (frame_hit; with dispersion once, for green: the
-// other channels' exit rays are read at the same distance along them); Beer-Lambert over
-// the path inside. Where the back-face pass holds nothing at the fragment's own pixel (a
-// silhouette), or has not run for this draw (`back_faces` false), one refraction: the ray
-// crosses the material's thickness (transmission.glsl's volume_transmission_ray) unbent and
-// is followed to the frame from there. That case runs through the same code rather than a
-// branch of its own: a software rasteriser (llvmpipe) runs both sides of a branch its lanes
-// disagree on, so a separate fallback cost every fragment its work. The rays are carried
-// in clip space alongside world space (clip = view_projection x world is linear), so each
-// direction is projected once.
+// with dispersion) the exit ray (exit_ray), followed to the frame's surface (frame_hit) for
+// green, or the one ior, alone: the other channels' exit rays are read at the same distance
+// along them, so the search runs once per fragment. Their exit rays are traced after green's
+// search, which sits outside the loop over channels rather than in a branch on the channel:
+// a software rasteriser (llvmpipe) runs both sides of a branch, so in the loop it would run
+// masked for every channel (5% of a frame of thick dispersive spheres on llvmpipe). The
+// silhouette case (no back face at the fragment's own pixel) runs through the same code
+// rather than a branch of its own, for the same reason. The rays are carried in clip space
+// alongside world space (clip = view_projection x world is linear), so each direction is
+// projected once.
 vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D frame,
                               sampler2D frame_depth, vec2 frame_size, sampler2D back_position,
                               sampler2D back_normal, vec4 back_rect, vec2 pixel_uv,
@@ -154,61 +214,25 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
   BackFaceHit own = back_face_at(back_position, back_normal, back_rect, pixel_uv);
   bool two_faces = back_faces && own.found;
   float d_v = distance(own.position, t.position);
-  vec3 result = vec3(0.0);
-  int channels = dispersion ? 3 : 1;
-  bool hit = false;
-  float t_hit = 0.0;
   vec4 entry = view_projection * vec4(t.position, 1.0);
-  for (int k = 0; k < channels; ++k) {
-    int c = dispersion ? (k + 1) % 3 : 0;  // green first: its search serves the others
-    float ior = t.iors[c];
-    vec3 dir = refract(-t.v, t.n, 1.0 / ior);
-    dir = dot(dir, dir) > 0.0 ? normalize(dir) : -t.v;
-    float d_n = length(volume_transmission_ray(t.n, t.v, t.thickness, ior, t.model_scale));
-    float d = two_faces ? wyman_distance(d_v, d_n, saturate(dot(t.n, t.v)), ior) : d_n;
-    vec3 origin = t.position;
-    vec4 o = entry;
-    vec4 e = view_projection * vec4(dir, 0.0);
-    float inside = 0.0;  // the path length inside, for Beer-Lambert
-    for (int segment = 0; segment < kInsideSegments; ++segment) {
-      vec3 n_back = own.normal;
-      bool found = two_faces &&
-                   to_back_face(origin, dir, o, e, back_position, back_normal, back_rect, d, n_back);
-      // The first segment keeps Wyman's estimate and the fragment's own back face where the
-      // refined point sees none. A reflected ray that meets no back face heads for a front
-      // face (which the pass does not hold): it is taken to cross the object once more, as
-      // long as the segment before, and to leave along its direction.
-      if (!found && segment == 0) n_back = own.normal;
-      origin += d * dir;
-      o += d * e;
-      inside += d;
-      if ((!found && segment > 0) || !two_faces) break;
-      bool tir;
-      dir = exit_direction(dir, n_back, ior, tir);
-      e = view_projection * vec4(dir, 0.0);
-      if (!tir) break;
+  int first = dispersion ? 1 : 0;  // green first: its search serves the others
+  float ior = t.iors[first];
+  ExitRay r = exit_ray(t, ior, two_faces, own, d_v, entry, back_position, back_normal, back_rect,
+                       view_projection);
+  vec2 uv;
+  float t_hit;
+  bool hit = frame_hit(r.origin, r.o, r.e, inverse_view_projection, frame_depth, uv, t_hit);
+  vec3 result = exit_radiance(t, r, ior, hit, uv, frame, frame_size, env_cube, env_rotation,
+                              env_levels, env_scale);
+  if (dispersion) {
+    for (int c = 0; c < 3; c += 2) {
+      ExitRay rc = exit_ray(t, t.iors[c], two_faces, own, d_v, entry, back_position, back_normal,
+                            back_rect, view_projection);
+      vec2 uv_c;
+      bool on = hit && clip_to_screen(rc.o + t_hit * rc.e, uv_c);
+      result[c] = exit_radiance(t, rc, t.iors[c], on, uv_c, frame, frame_size, env_cube,
+                                env_rotation, env_levels, env_scale)[c];
     }
-    float rough = transmission_roughness(t.roughness, ior);
-    vec2 uv;
-    vec3 seen;
-    bool on;
-    if (k == 0) {
-      hit = frame_hit(origin, o, e, inverse_view_projection, frame_depth, uv, t_hit);
-      on = hit;
-    } else {
-      on = hit && clip_to_screen(o + t_hit * e, uv);
-    }
-    if (on) {
-      seen = textureLod(frame, uv, log2(frame_size.x) * rough).rgb;
-    } else {
-      seen = env_scale * textureLod(env_cube, world_to_env(dir, env_rotation),
-                                    rough * float(env_levels - 1)).rgb;
-    }
-    seen *= volume_attenuation(inside, t.attenuation_color, t.attenuation_distance);
-    if (dispersion)
-      result[c] = seen[c];
-    else
-      result = seen;
   }
   return result;
 }
