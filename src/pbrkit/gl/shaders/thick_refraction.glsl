@@ -66,7 +66,11 @@ vec4 texel_at(sampler2D target, vec2 uv) {
 // field): from d = 0, the distance to the frame's surface point seen where the ray's point at
 // d projects (unprojected from the frame's depth), repeated; for a smooth surface behind the
 // object (a floor, a wall) it converges to the ray's intersection with it in a few steps,
-// with one depth fetch each where a march needs one per step. Returns the frame's texture
+// with one depth fetch each where a march needs one per step. It converges where the step
+// contracts: on a plane of normal n, g'(d) = 1 - (n.e)(e.w) / (n.w) (e the ray, w the view
+// direction to its hit), near 0 for a ray close to the view direction; past |g'| = 1 (a ray
+// bent steeply onto a surface seen at a grazing angle) the steps oscillate about the hit
+// (tests/gl/thick_refraction_glsl_test.cpp). Returns the frame's texture
 // coordinates and the distance; false where the ray leaves the screen, goes behind the
 // camera or meets the background (the environment is what it sees then). `o` and `e` are
 // origin and dir in clip space (view_projection times (origin, 1) and (dir, 0)): the ray's

@@ -1,14 +1,16 @@
 #include "pbrkit/gl/testing/transmission_eval.h"
 
+#include <epoxy/gl.h>
+
 #include "pbrkit/gl/program.h"
 #include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 
-std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase>& cases,
-                                              TransmissionFunction function,
-                                              const glm::mat4& view_projection) {
-  if (cases.empty()) return {};
+namespace {
+
+std::vector<glm::vec4> eval(const std::vector<TransmissionCase>& cases,
+                            TransmissionFunction function, const glm::mat4& view_projection) {
   const Program program = detail::test_program("transmission_test.glsl");
   // std430 layout of transmission_test.glsl's TransmissionCase: eight vec4.
   std::vector<glm::vec4> input;
@@ -27,7 +29,33 @@ std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase
   program.set("uCount", int(cases.size()));
   program.set("uFunction", int(function));
   program.set("uViewProjection", view_projection);
+  program.set("uInverseViewProjection", glm::inverse(view_projection));
   return detail::dispatch_cases(input, cases.size());
+}
+
+}  // namespace
+
+std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase>& cases,
+                                              TransmissionFunction function,
+                                              const glm::mat4& view_projection) {
+  if (cases.empty()) return {};
+  return eval(cases, function, view_projection);
+}
+
+std::vector<glm::vec4> eval_frame_hit_glsl(const std::vector<TransmissionCase>& cases,
+                                           const FrameDepth& depth,
+                                           const glm::mat4& view_projection) {
+  if (cases.empty()) return {};
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, 1, GL_R32F, depth.width, depth.height);
+  glTextureSubImage2D(texture, 0, 0, 0, depth.width, depth.height, GL_RED, GL_FLOAT,
+                      depth.depth.data());
+  glBindTextureUnit(1, texture);
+  std::vector<glm::vec4> out = eval(cases, TransmissionFunction::kFrameHit, view_projection);
+  glBindTextureUnit(1, 0);
+  glDeleteTextures(1, &texture);
+  return out;
 }
 
 }  // namespace pbrkit::gl

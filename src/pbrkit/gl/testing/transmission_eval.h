@@ -42,11 +42,27 @@ enum class TransmissionFunction {
   kWymanDistance = 7,
   /// (back_plane_distance(p = n, t1 = v, distance, back_point, back_normal), 0, 0, 0)
   kBackPlaneDistance = 8,
+  /// frame_hit(origin = n, direction = v, eval_frame_hit_glsl's depth) -> (uv, d, 1 where
+  /// it meets the frame)
+  kFrameHit = 9,
 };
 
 /// `function` of transmission.glsl for every case, read back as one vec4 each.
 std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase>& cases,
                                               TransmissionFunction function,
                                               const glm::mat4& view_projection = glm::mat4(1.0f));
+
+/// A depth buffer for frame_hit: `width` x `height` window-space depths in [0, 1] (1: the
+/// background), row 0 at the bottom as GL stores it.
+struct FrameDepth {
+  int width = 0, height = 0;
+  std::vector<float> depth;
+};
+
+/// thick_refraction.glsl's frame_hit for every case (origin `n`, unit direction `v`) against
+/// `depth`, seen through `view_projection`: (uv, d, 1 where the ray meets the frame).
+std::vector<glm::vec4> eval_frame_hit_glsl(const std::vector<TransmissionCase>& cases,
+                                           const FrameDepth& depth,
+                                           const glm::mat4& view_projection);
 
 }  // namespace pbrkit::gl

@@ -24,7 +24,9 @@ layout(std430, binding = 1) writeonly buffer Results { vec4 results[]; };
 uniform int uCount;
 uniform int uFunction;  // transmission_eval.h's TransmissionFunction
 uniform mat4 uViewProjection;
-layout(binding = 0) uniform sampler2D uEnergy;  // make_brdf's argument; not read
+uniform mat4 uInverseViewProjection;
+layout(binding = 0) uniform sampler2D uEnergy;      // make_brdf's argument; not read
+layout(binding = 1) uniform sampler2D uFrameDepth;  // frame_hit's depth (function 9)
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -56,6 +58,14 @@ void main() {
   } else if (uFunction == 8) {
     r.x = back_plane_distance(c.n_ior.xyz, c.v_thickness.xyz, c.rough.z, c.back_point.xyz,
                               c.back_normal.xyz);
+  } else if (uFunction == 9) {
+    vec3 origin = c.n_ior.xyz, dir = c.v_thickness.xyz;
+    vec2 uv;
+    float d;
+    bool hit = frame_hit(origin, uViewProjection * vec4(origin, 1.0),
+                         uViewProjection * vec4(dir, 0.0), uInverseViewProjection, uFrameDepth,
+                         uv, d);
+    r = vec4(uv, d, hit ? 1.0 : 0.0);
   } else {
     vec2 uv;
     r.z = project_to_screen(uViewProjection, c.n_ior.xyz, uv) ? 1.0 : 0.0;
