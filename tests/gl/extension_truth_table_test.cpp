@@ -71,23 +71,13 @@ Environment orientation_probe() {
 // A sphere's per-channel mean radiance in both images over its pixels with n.v >= min_mu
 // whose eight neighbours' rays hit the sphere too, and the variance of the path tracer's
 // means from its two interleaved half buffers (per pixel ((even - odd) / 2)^2 is the
-// variance of the pixel's mean, as for adaptive sampling). The neighbours' test keeps the
-// silhouette out: the path tracer's box filter averages over the whole pixel, so there its
-// mean holds some of what lies behind the sphere, where the OpenGL renderer (MSAA off)
-// shades the pixel's centre alone; that difference is the filter's, not the split sum's.
+// variance of the pixel's mean, as for adaptive sampling). The neighbours' test
+// (testing::interior_pixel) keeps the silhouette out: there the path tracer's box filter
+// and GL's pixel centre differ.
 struct ChannelMeans {
   glm::dvec3 gl{0.0}, pt{0.0}, pt_variance{0.0};
   int pixels = 0;
 };
-bool interior_pixel(const Camera& camera, int x, int y, int width, int height, glm::vec3 centre,
-                    float radius) {
-  for (int dy = -1; dy <= 1; ++dy)
-    for (int dx = -1; dx <= 1; ++dx)
-      if (!testing::sphere_hit_cosine(testing::pixel_ray(camera, x + dx, y + dy, width, height),
-                                      centre, radius))
-        return false;
-  return true;
-}
 ChannelMeans channel_means(const Image& gl, const Film& film, const Camera& camera,
                            glm::vec3 centre, float radius, float min_mu) {
   ChannelMeans m;
@@ -96,7 +86,7 @@ ChannelMeans channel_means(const Image& gl, const Film& film, const Camera& came
       const auto mu = testing::sphere_hit_cosine(
           testing::pixel_ray(camera, x, y, gl.width, gl.height), centre, radius);
       if (!mu || *mu < min_mu) continue;
-      if (!interior_pixel(camera, x, y, gl.width, gl.height, centre, radius)) continue;
+      if (!testing::interior_pixel(camera, x, y, gl.width, gl.height, centre, radius)) continue;
       const std::size_t i = std::size_t(y) * std::size_t(gl.width) + std::size_t(x);
       const double half = double(film.count[i]) / 2.0;
       const glm::dvec3 sum(film.sum[i]), even(film.sum_even[i]);
