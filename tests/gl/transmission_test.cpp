@@ -7,8 +7,10 @@
 // seen through it; a white non-absorbing glass object in a white furnace disappears whatever the
 // environment fallback or the screen reads (the split sum's reflected + transmitted energy is 1);
 // no image ever holds NaN or Inf.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -91,6 +93,62 @@ TEST(GlTransmission, ThinWallOfIorOneIsInvisible) {
   // ior 1 takes the roughness away), and nothing is reflected.
   const glm::vec3 c = image.rgb(kSize / 2, kSize / 2);
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c[k], kBackdrop[k], 1e-6f);
+}
+
+// A thin wall of ior 1.5 over a fine emissive checker, against the checker alone: per pixel
+// the wall passes a share of the pixel behind it. Smooth, it reads the captured frame's
+// level 0 alone (roughness 0 blurs nothing, whatever the BRDF's kMinRoughness), so that
+// share varies only with the angle, smoothly, and a checker edge does not show in it; rough,
+// it reads the frame's mip chain, whose blur mixes neighbouring checks into each pixel. The
+// renderer builds the chain only for frames with a rough transmissive surface: both walls
+// are drawn in one frame, side by side, so a chain wrongly left out shows as a sharp rough
+// wall, and a blur wrongly applied as a varying smooth one.
+TEST(GlTransmission, SmoothWallReadsTheFrameUnblurredAndARoughOneBlurred) {
+  auto scene_with = [](bool walls) {
+    Scene scene;
+    scene.textures.push_back(make_checker_texture(512, 64, glm::vec3(1.0f), glm::vec3(0.05f)));
+    Material backdrop;
+    backdrop.base_color_factor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+    backdrop.emissive_factor = glm::vec3(1.0f);
+    backdrop.emissive_texture.texture = 0;
+    scene.materials.push_back(backdrop);
+    add_mesh_instance(
+        scene, make_quad(glm::vec3(-5, -5, -2), glm::vec3(10, 0, 0), glm::vec3(0, 10, 0)), 0);
+    if (walls) {
+      for (float roughness : {0.0f, 0.5f}) {
+        Material wall = clear_glass();
+        wall.ior = 1.5f;
+        wall.roughness_factor = roughness;
+        scene.materials.push_back(wall);
+        const float x = roughness > 0.0f ? 0.0f : -1.0f;  // smooth left, rough right
+        add_mesh_instance(scene,
+                          make_quad(glm::vec3(x, -1, 0), glm::vec3(1, 0, 0), glm::vec3(0, 2, 0)),
+                          int(scene.materials.size()) - 1);
+      }
+    }
+    return scene;
+  };
+  const Image through = render(scene_with(true));
+  const Image behind = render(scene_with(false));
+  expect_finite(through);
+  // The share passed in green over a band of rows, each half's pixels away from the seam.
+  auto share_range = [&](int x0, int x1) {
+    float lo = 1e30f, hi = 0.0f;
+    for (int y = kSize / 4; y < 3 * kSize / 4; ++y)
+      for (int x = x0; x < x1; ++x) {
+        const float share = through.rgb(x, y).g / behind.rgb(x, y).g;
+        lo = std::min(lo, share);
+        hi = std::max(hi, share);
+      }
+    return std::pair<float, float>(lo, hi);
+  };
+  const auto [smooth_lo, smooth_hi] = share_range(4, kSize / 2 - 2);
+  const auto [rough_lo, rough_hi] = share_range(kSize / 2 + 2, kSize - 4);
+  std::printf("share through the smooth wall %.4f..%.4f, the rough one %.4f..%.4f\n", smooth_lo,
+              smooth_hi, rough_lo, rough_hi);
+  EXPECT_GT(smooth_lo, 0.5f);
+  EXPECT_LT(smooth_hi / smooth_lo, 1.01f);
+  EXPECT_GT(rough_hi / rough_lo, 1.5f);
 }
 
 // A box of `material` from z = -0.5 to 0 (thickness 0.5 in object space) under `scale`.

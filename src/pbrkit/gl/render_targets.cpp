@@ -92,10 +92,10 @@ void RenderTargets::begin_back_faces(int x0, int y0, int x1, int y1) {
   glClearNamedFramebufferfv(back_fbo, GL_DEPTH, 0, &far_depth);
 }
 
-void RenderTargets::capture_frame(bool depth) {
+void RenderTargets::capture_frame(bool depth, bool mips) {
+  int levels = 1;
+  while ((std::max(width, height) >> levels) > 0) ++levels;
   if (!transmission_fbo) {
-    int levels = 1;
-    while ((std::max(width, height) >> levels) > 0) ++levels;
     glCreateTextures(GL_TEXTURE_2D, 1, &transmission_color);
     glTextureStorage2D(transmission_color, levels, GL_RGBA32F, width, height);
     glTextureParameteri(transmission_color, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
@@ -115,7 +115,8 @@ void RenderTargets::capture_frame(bool depth) {
   }
   glBlitNamedFramebuffer(msaa_fbo, transmission_fbo, 0, 0, width, height, 0, 0, width, height,
                          GL_COLOR_BUFFER_BIT | (depth ? GL_DEPTH_BUFFER_BIT : 0u), GL_NEAREST);
-  glGenerateTextureMipmap(transmission_color);
+  glTextureParameteri(transmission_color, GL_TEXTURE_MAX_LEVEL, mips ? levels - 1 : 0);
+  if (mips) glGenerateTextureMipmap(transmission_color);
 }
 
 Image RenderTargets::read_back() const {

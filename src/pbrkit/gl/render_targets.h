@@ -37,9 +37,10 @@ struct RenderTargets {
   /// Resolves the samples into the single-sample float target.
   void resolve() const;
   /// Resolves what the multisampled target holds now into transmission_color's level 0
-  /// and builds its mip chain (a box-filter chain: glGenerateMipmap); with `depth`, also
-  /// its depth into transmission_depth.
-  void capture_frame(bool depth = false);
+  /// and, with `mips`, builds its mip chain (a box-filter chain: glGenerateMipmap; without,
+  /// the texture's levels are limited to 0, so no stale level can be read); with `depth`,
+  /// also its depth into transmission_depth.
+  void capture_frame(bool depth = false, bool mips = true);
   /// Binds the back-face target (made on first use) and clears the pixels [x0, x1) x [y0, y1)
   /// (GL's rows): no back face there. Leaves the scissor test on over that rectangle.
   void begin_back_faces(int x0, int y0, int x1, int y1);

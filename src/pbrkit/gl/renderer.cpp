@@ -130,6 +130,15 @@ void set_debug_features(const RenderSettings& settings, SurfaceFeatures& f) {
 
 // Whether `m` on a mesh refracts through two interfaces (thick_refraction.glsl): a specular
 // transmission through a volume of thickness > 0; only these pay for the back-face pass.
+// Whether a transmissive surface of material `m` may read the captured frame above its level
+// 0: its refraction blurs with the perceptual roughness (transmission.glsl's
+// transmission_lod), which is the factor times the texture's G (glTF 2.0, 3.9.2), or the
+// override; a factor of 0 is smooth everywhere and reads level 0 alone.
+bool blurs_frame(const Material& m, const RenderSettings& settings) {
+  if (settings.roughness_override >= 0.0f) return settings.roughness_override > 0.0f;
+  return m.roughness_factor > 0.0f;
+}
+
 bool refracts_thick(const Material& m, bool closed) {
   SurfaceFeatures f;
   set_transmission_features(m, closed, f);
@@ -199,6 +208,7 @@ struct QueuedDraws {
   std::vector<TransmissiveDraw> transmissive;          // surfaces that read the opaque frame
   std::vector<std::pair<float, std::size_t>> blended;  // (view-space z, instance)
   bool frame_read = false;                             // a blended surface reads the frame too
+  bool frame_blurred = false;  // a surface that reads the frame may read above its level 0
 };
 
 }  // namespace
@@ -423,6 +433,7 @@ QueuedDraws Renderer::State::draw_opaque(Frame& f) {
       draw(f, scene.at_slot[run.first_slot], 0, run.count);
       continue;
     }
+    queued.frame_blurred = queued.frame_blurred || (transmits && blurs_frame(m, *f.settings));
     for (std::size_t slot = run.first_slot; slot < run.first_slot + run.count; ++slot) {
       const std::size_t i = scene.at_slot[slot];
       const Instance& inst = scene.instances[i];
@@ -485,7 +496,7 @@ void Renderer::State::draw_transmissive(Frame& f, QueuedDraws& queued) {
     const GpuMesh& mesh = scene.meshes[std::size_t(scene.instances[t.index].mesh)];
     return refracts_thick(scene.material_of(mesh), mesh.closed);
   });
-  targets.capture_frame(thick);
+  targets.capture_frame(thick, queued.frame_blurred);
   if (thick) glBindTextureUnit(kFrameDepthUnit, targets.transmission_depth);
   int captures = 1;
   glBindTextureUnit(kTransmissionFrameUnit, targets.transmission_color);
@@ -497,7 +508,7 @@ void Renderer::State::draw_transmissive(Frame& f, QueuedDraws& queued) {
     const bool covers = std::any_of(since_capture.begin(), since_capture.end(),
                                     [&](const TransmissiveDraw* o) { return t.overlaps(*o); });
     if (covers && captures < kMaxTransmissionCaptures) {
-      targets.capture_frame(thick);
+      targets.capture_frame(thick, queued.frame_blurred);
       ++captures;
       since_capture.clear();
     } else if (covers && !capture_limit_warned) {

@@ -478,7 +478,11 @@ vec3 transmitted_light(MaterialInputs m, Shading s, float transmission, float th
   t.position = vPosition;
   t.n = n;
   t.v = v;
-  t.roughness = s.brdf.roughness;
+  // The material's perceptual roughness, as the Sample Viewer's getIBLVolumeRefraction reads
+  // it: a smooth surface reads the frame's level 0 alone (kMinRoughness bounds the GGX
+  // lobes, not this blur), so a frame whose transmissive surfaces are all smooth needs no
+  // mip chain (renderer.cpp).
+  t.roughness = clamp(m.roughness, 0.0, 1.0);
 #if MATERIAL_DISPERSION
   t.iors = dispersion_iors(uIor, uDispersion);
 #else
