@@ -79,12 +79,19 @@ const int kFrameHitIterations = 4;
 bool frame_hit(vec3 origin, vec4 o, vec4 e, mat4 inverse_view_projection, sampler2D frame_depth,
                out vec2 uv, out float d) {
   d = 0.0;
+  // Per step, texel_at and the unprojection of (uv, depth) written out with what does not
+  // change hoisted: the target's size, and the inverse matrix applied to texture
+  // coordinates and depth in [0, 1] rather than to NDC (its columns scaled by 2, the -1
+  // offsets folded into the last column); and |p / w - origin| as |p - origin w| / |w|.
+  ivec2 size = textureSize(frame_depth, 0);
+  mat4 m = inverse_view_projection;
+  vec4 mu = 2.0 * m[0], mv = 2.0 * m[1], mz = 2.0 * m[2], m1 = m[3] - m[0] - m[1] - m[2];
   for (int k = 0; k < kFrameHitIterations; ++k) {
     if (!clip_to_screen(o + d * e, uv)) return false;
-    float scene = texel_at(frame_depth, uv).r;
+    float scene = texelFetch(frame_depth, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0).r;
     if (scene >= 1.0) return false;
-    vec4 b = inverse_view_projection * vec4(vec3(uv, scene) * 2.0 - 1.0, 1.0);
-    d = distance(b.xyz / b.w, origin);
+    vec4 b = mu * uv.x + mv * uv.y + mz * scene + m1;
+    d = length(b.xyz - origin * b.w) / abs(b.w);
   }
   return clip_to_screen(o + d * e, uv);
 }
