@@ -128,8 +128,6 @@ void set_debug_features(const RenderSettings& settings, SurfaceFeatures& f) {
   f.debug_channel = int(settings.debug_channel);
 }
 
-// Whether `m` on a mesh refracts through two interfaces (thick_refraction.glsl): a specular
-// transmission through a volume of thickness > 0; only these pay for the back-face pass.
 // Whether a transmissive surface of material `m` may read the captured frame above its level
 // 0: its refraction blurs with the perceptual roughness (transmission.glsl's
 // transmission_lod), which is the factor times the texture's G (glTF 2.0, 3.9.2), or the
@@ -139,6 +137,8 @@ bool blurs_frame(const Material& m, const RenderSettings& settings) {
   return m.roughness_factor > 0.0f;
 }
 
+// Whether `m` on a mesh refracts through two interfaces (thick_refraction.glsl): a specular
+// transmission through a volume of thickness > 0; only these pay for the back-face pass.
 bool refracts_thick(const Material& m, bool closed) {
   SurfaceFeatures f;
   set_transmission_features(m, closed, f);
