@@ -56,10 +56,11 @@ vec3 refract_twice(vec3 v, vec3 n, vec3 n_back, float ior, out bool tir) {
 
 // The texel of a single-level target at texture coordinates uv, unfiltered: a blend of two
 // texels would be a position or depth between two surfaces, on neither.
-vec4 texel_at(sampler2D target, vec2 uv) {
-  ivec2 size = textureSize(target, 0);
+vec4 texel_at(sampler2D target, ivec2 size, vec2 uv) {
   return texelFetch(target, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0);
 }
+
+vec4 texel_at(sampler2D target, vec2 uv) { return texel_at(target, textureSize(target, 0), uv); }
 
 // Where the ray from `origin` along `dir` meets the captured frame (Wyman 2005's
 // nearby-geometry lookup made iterative, as relief and parallax mapping search a height
@@ -79,8 +80,8 @@ const int kFrameHitIterations = 4;
 bool frame_hit(vec3 origin, vec4 o, vec4 e, mat4 inverse_view_projection, sampler2D frame_depth,
                out vec2 uv, out float d) {
   d = 0.0;
-  // Per step, texel_at and the unprojection of (uv, depth) written out with what does not
-  // change hoisted: the target's size, and the inverse matrix applied to texture
+  // Per step, the texel and the unprojection of (uv, depth), with what does not change
+  // hoisted: the target's size, and the inverse matrix applied to texture
   // coordinates and depth in [0, 1] rather than to NDC (its columns scaled by 2, the -1
   // offsets folded into the last column); and |p / w - origin| as |p - origin w| / |w|.
   ivec2 size = textureSize(frame_depth, 0);
@@ -88,7 +89,7 @@ bool frame_hit(vec3 origin, vec4 o, vec4 e, mat4 inverse_view_projection, sample
   vec4 mu = 2.0 * m[0], mv = 2.0 * m[1], mz = 2.0 * m[2], m1 = m[3] - m[0] - m[1] - m[2];
   for (int k = 0; k < kFrameHitIterations; ++k) {
     if (!clip_to_screen(o + d * e, uv)) return false;
-    float scene = texelFetch(frame_depth, clamp(ivec2(uv * vec2(size)), ivec2(0), size - 1), 0).r;
+    float scene = texel_at(frame_depth, size, uv).r;
     if (scene >= 1.0) return false;
     vec4 b = mu * uv.x + mv * uv.y + mz * scene + m1;
     d = length(b.xyz - origin * b.w) / abs(b.w);
