@@ -35,6 +35,7 @@ struct GlOptions {
   int bake_samples = gl::realtime_bake_options().samples;
   bool no_ibl = false;
   bool no_lights = false;
+  bool no_glass_shadows = false;
   std::string channel{gl::debug_channel_name(gl::DebugChannel::kNone)};
 };
 
@@ -77,6 +78,11 @@ RenderRunner add_gl_render_options(CLI::App& render) {
       ->group(group);
   render.add_flag("--no-lights", g->no_lights, "ignore the scene's punctual lights")->group(group);
   render
+      .add_flag("--no-glass-shadows", g->no_glass_shadows,
+                "transmissive objects do not shadow the environment's light on other surfaces "
+                "(the Khronos Sample Viewer's image)")
+      ->group(group);
+  render
       .add_option("--channel", g->channel,
                   "a debug channel instead of the shaded image, raw (no exposure, no tone map): "
                   "a material input (base-color, metallic, roughness, normal as n*0.5+0.5, "
@@ -100,6 +106,7 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     settings.env_intensity = o.env_intensity;
     settings.ibl = !g->no_ibl;
     settings.lights = !g->no_lights;
+    settings.transmissive_shadows = !g->no_glass_shadows;
     settings.debug_channel = gl::parse_debug_channel(g->channel);
     // A debug channel's values are shown as they are (the Sample Viewer's debug outputs).
     const bool raw = settings.debug_channel != gl::DebugChannel::kNone;

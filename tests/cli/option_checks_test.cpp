@@ -116,6 +116,7 @@ const std::map<std::string, std::string> kValidValues = {
     {"--bake-samples", "8"},
     {"--no-ibl", ""},
     {"--no-lights", ""},
+    {"--no-glass-shadows", ""},
     {"--channel", "normal"},
 };
 

@@ -159,6 +159,34 @@ TEST(RenderCli, CompensationDefaultsFollowTheModel) {
   EXPECT_NE(classic_default.data, classic_on.data);
 }
 
+// Transmissive objects shadow the environment light by default; --no-glass-shadows turns it
+// off, and only makes the image brighter (the shadows only take light away), and the
+// spheres scene (nothing transmits) is the same either way.
+TEST(RenderCli, GlassShadowsAreOnByDefaultAndNoGlassShadowsTurnsThemOff) {
+  const fs::path dir = test::scratch_dir();
+  auto render_gl = [&](const std::string& scene, const std::string& flags,
+                       const std::string& name) {
+    int code = 0;
+    const std::string log = render(scene + " --renderer gl --msaa 1 --width 96 --height 64 " +
+                                       flags + " -o " + (dir / (name + ".exr")).string(),
+                                   &code);
+    EXPECT_EQ(code, 0) << log;
+    return read_image(dir / (name + ".exr"));
+  };
+  const Image on = render_gl("glass", "", "glass_on");
+  const Image off = render_gl("glass", "--no-glass-shadows", "glass_off");
+  ASSERT_EQ(on.data.size(), off.data.size());
+  double sum_on = 0.0, sum_off = 0.0;
+  for (std::size_t i = 0; i < on.data.size(); ++i) {
+    sum_on += on.data[i];
+    sum_off += off.data[i];
+    EXPECT_LE(on.data[i], off.data[i] * (1.0f + 1e-5f) + 1e-6f) << i;
+  }
+  EXPECT_LT(sum_on, 0.99 * sum_off);
+  EXPECT_EQ(render_gl("spheres", "", "spheres_on").data,
+            render_gl("spheres", "--no-glass-shadows", "spheres_off").data);
+}
+
 // Without --width/--height the image takes the camera's authored aspect (512 along the
 // longer side); with one of them, the other follows the aspect.
 TEST(RenderAspect, SizeFollowsTheCamerasAspectRatio) {

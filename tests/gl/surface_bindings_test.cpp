@@ -80,14 +80,18 @@ TEST(GlSurfaceBindings, ThePreludeNamesEverySlotOnceWithItsIndex) {
 
 TEST(GlSurfaceBindings, NoTwoBindingsShareANameOrANumber) {
   std::set<std::string> names;
-  std::set<GLuint> units, buffers;
+  std::set<GLuint> units, buffers, blocks;
   const std::string& prelude = surface_prelude();
   for (const SurfaceBinding& b : surface_bindings()) {
     EXPECT_TRUE(names.insert(b.name).second) << b.name;
-    EXPECT_TRUE((b.buffer ? buffers : units).insert(b.point).second)
-        << b.name << " shares " << (b.buffer ? "buffer binding point " : "texture unit ")
-        << b.point;
-    if (!b.buffer) {
+    using Kind = SurfaceBinding::Kind;
+    std::set<GLuint>& taken = b.kind == Kind::kStorageBuffer   ? buffers
+                              : b.kind == Kind::kUniformBuffer ? blocks
+                                                               : units;
+    EXPECT_TRUE(taken.insert(b.point).second)
+        << b.name << " shares "
+        << (b.kind == Kind::kSampler ? "texture unit " : "buffer binding point ") << b.point;
+    if (b.kind == Kind::kSampler) {
       EXPECT_LE(b.point, kLastSurfaceUnit) << b.name;
     }
     EXPECT_EQ(defined_value(prelude, "BINDING_" + b.name), int(b.point)) << b.name;

@@ -39,6 +39,12 @@ struct RenderSettings {
   FresnelMode fresnel = FresnelMode::kSchlick;
   bool ibl = true;  ///< image-based lighting on (when maps are set)
   IrradianceMode irradiance = IrradianceMode::kSH;
+  /// The environment's light on a surface is shadowed by the transmissive objects around it
+  /// (each a proxy that hides part of the surface's hemisphere and lets its transmittance
+  /// through; MODEL.md "Shadows of transmissive objects"), so that a floor seen through
+  /// glass is lit only through it, as in the path tracer. Off: every surface sees the whole
+  /// environment, as the Khronos Sample Viewer's do.
+  bool transmissive_shadows = true;
   bool lights = true;               ///< punctual lights on
   std::vector<bool> light_enabled;  ///< per light; missing entries are on
   /// Clustered shading of the punctual lights (gl/light_clusters.h): each fragment shades

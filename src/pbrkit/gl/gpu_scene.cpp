@@ -149,6 +149,18 @@ void GpuScene::upload(const Scene& scene) {
     for (const glm::vec3& p : mesh.positions) b.extend(p);
     g.center = b.empty() ? glm::vec3(0.0f) : b.center();
     if (!b.empty()) g.bounds_min = b.min, g.bounds_max = b.max;
+    if (!b.empty() && mesh.normals.size() == mesh.positions.size()) {
+      // A sphere: every vertex at one distance from the centre, and its normal radial (a
+      // box's corners, too, lie on a sphere; their normals are its faces').
+      float lo = std::numeric_limits<float>::infinity(), hi = 0.0f, radial = 1.0f;
+      for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        const glm::vec3 d = mesh.positions[i] - g.center;
+        const float r = glm::length(d);
+        lo = std::min(lo, r), hi = std::max(hi, r);
+        if (r > 0.0f) radial = std::min(radial, glm::dot(d / r, glm::normalize(mesh.normals[i])));
+      }
+      if (hi > 0.0f && lo >= 0.97f * hi && radial >= 0.97f) g.sphere_radius = hi;
+    }
     meshes.push_back(g);
   }
   for (const Texture& t : scene.textures) {

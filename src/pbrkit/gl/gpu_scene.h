@@ -28,6 +28,9 @@ struct GpuMesh {
   int alpha_mode = 0;
   glm::vec3 center{0.0f};
   glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  ///< object-space bounding box
+  /// The radius of the sphere the mesh's vertices lie on about `center` (within 3%), or 0
+  /// when they do not (occluders.h: the proxy that stands in for it).
+  float sphere_radius = 0.0f;
 };
 
 /// Instances that one glDrawElementsInstanced can draw: one mesh, one winding (mirrored

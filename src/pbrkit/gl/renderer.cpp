@@ -17,6 +17,7 @@
 #include "pbrkit/gl/gpu_scene.h"
 #include "pbrkit/gl/gpu_timer.h"
 #include "pbrkit/gl/light_clusters.h"
+#include "pbrkit/gl/occluders.h"
 #include "pbrkit/gl/render_targets.h"
 #include "pbrkit/gl/shader_permutations.h"
 #include "pbrkit/gl/surface_bindings.h"
@@ -229,6 +230,13 @@ struct Renderer::State {
   RenderTargets targets;
   GpuTimer timer;
   GpuLightBuffers light_buffers;
+  // The transmissive objects' proxies (occluders.h), made when the scene or its materials
+  // change.
+  std::vector<Occluder> occluders;
+  bool occluders_changed = true;       // since they were last selected and uploaded
+  bool occluder_limit_warned = false;  // more than kMaxOccluders of a kind (warned once)
+  glm::ivec2 occluder_counts{0};       // the selection's spheres and parallelepipeds
+  GpuOccluderBuffer occluder_buffer;
   // Whether a frame has needed more than kMaxTransmissionCaptures captures (warned once per
   // renderer: the viewer draws the same scene every frame).
   bool capture_limit_warned = false;
@@ -294,6 +302,22 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
   // the cluster lookup.
   f.clustered = settings.clustered_lights && !f.lights.empty() && !f.clusters.indices.empty();
   light_buffers.upload(f.lights, f.clustered ? &f.clusters : nullptr);
+  if (settings.transmissive_shadows && !occluders.empty()) {
+    if (occluders_changed) {
+      const std::vector<Occluder> selected = select_occluders(occluders, occluder_counts);
+      if (selected.size() < occluders.size() && !std::exchange(occluder_limit_warned, true))
+        warn(
+            "OpenGL renderer: {} transmissive objects; the environment light is shadowed by "
+            "the {} largest spheres and {} largest boxes among them (at most {} of each)",
+            occluders.size(), occluder_counts.x, occluder_counts.y, kMaxOccluders);
+      occluder_buffer.upload(selected);
+      programs.set_occluder_geometry(occluder_geometry_define(selected));
+      occluders_changed = false;
+    }
+    occluder_buffer.bind();
+    f.features.sphere_occluders = occluder_counts.x;
+    f.features.box_occluders = occluder_counts.y;
+  }
   // Minus the view matrix's third row (view space looks down -Z).
   f.view_depth = -glm::vec4(f.view[0][2], f.view[1][2], f.view[2][2], f.view[3][2]);
   const GeometryModel direct = direct_geometry(settings.brdf.model);
@@ -585,6 +609,8 @@ Renderer::~Renderer() {
 
 void Renderer::set_scene(const Scene& scene) {
   state_->scene.upload(scene);
+  state_->occluders = ibl_occluders(state_->scene);
+  state_->occluders_changed = true;
 }
 
 void Renderer::set_materials(const std::vector<Material>& materials) {
@@ -593,6 +619,8 @@ void Renderer::set_materials(const std::vector<Material>& materials) {
     fail("OpenGL: set_materials with {} materials for a scene of {}", materials.size(),
          current.size());
   current = materials;
+  state_->occluders = ibl_occluders(state_->scene);
+  state_->occluders_changed = true;
 }
 
 void Renderer::set_environment(const Environment* env) {

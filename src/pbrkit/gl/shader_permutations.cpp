@@ -14,12 +14,23 @@ ShaderPermutations::ShaderPermutations() {
 
 const Program& ShaderPermutations::surface(const SurfaceFeatures& f) {
   auto it = surface_.find(f.key());
-  if (it == surface_.end())
+  if (it == surface_.end()) {
+    const bool occluders = f.sphere_occluders + f.box_occluders > 0;
     it = surface_
              .emplace(f.key(),
-                      Program::graphics("pbr_vertex.glsl", "pbr_fragment.glsl", f.defines()))
+                      Program::graphics("pbr_vertex.glsl", "pbr_fragment.glsl",
+                                        f.defines() + (occluders ? occluder_geometry_ : "")))
              .first;
+  }
   return it->second;
+}
+
+void ShaderPermutations::set_occluder_geometry(std::string define) {
+  if (define == occluder_geometry_) return;
+  occluder_geometry_ = std::move(define);
+  std::erase_if(surface_, [](const auto& entry) {
+    return (entry.first >> SurfaceFeatures::kOccluderKeyShift) != 0;
+  });
 }
 
 const Program& ShaderPermutations::display(ToneMapper mapper) {

@@ -52,7 +52,15 @@ struct SurfaceFeatures {
   bool diffuse_transmission = false;
   /// What the surfaces write (debug_channels.glsl's DEBUG_CHANNEL: DebugChannel's value).
   int debug_channel = 0;
+  /// The environment light is shadowed by the scene's transmissive objects
+  /// (occluders.glsl's IBL_OCCLUDERS): their proxies, spheres and parallelepipeds, up to
+  /// kMaxOccluders of each.
+  int sphere_occluders = 0;
+  int box_occluders = 0;
 
+  /// Where key() holds the occluder counts (the highest bits): a key shifted down by it is
+  /// not 0 for a program that compiles occluders in.
+  static constexpr int kOccluderKeyShift = 53;
   std::uint64_t key() const {
     // The texture bits take the key's low 19 bits; more slots need the fields below moved.
     static_assert(kTextureSlotCount <= 19, "SurfaceFeatures::key: widen the texture bits");
@@ -65,7 +73,9 @@ struct SurfaceFeatures {
            std::uint64_t(sheen) << 37 | std::uint64_t(unlit) << 38 |
            std::uint64_t(transmission) << 39 | std::uint64_t(volume) << 40 |
            std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42 |
-           std::uint64_t(light_count + 1) << 43 | std::uint64_t(debug_channel) << 48;
+           std::uint64_t(light_count + 1) << 43 | std::uint64_t(debug_channel) << 48 |
+           std::uint64_t(sphere_occluders) << kOccluderKeyShift |
+           std::uint64_t(box_occluders) << (kOccluderKeyShift + 5);
   }
   std::string defines() const {
     std::string d = surface_prelude();
@@ -84,9 +94,11 @@ struct SurfaceFeatures {
     d += fmt::format(
         "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
         "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
-        "#define LIGHTS {}\n#define LIGHT_COUNT {}\n#define DEBUG_CHANNEL {}\n",
+        "#define LIGHTS {}\n#define LIGHT_COUNT {}\n#define DEBUG_CHANNEL {}\n"
+        "#define IBL_OCCLUDERS {}\n#define OCCLUDER_SPHERES {}\n#define OCCLUDER_BOXES {}\n",
         alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel, lights,
-        light_count, debug_channel);
+        light_count, debug_channel, int(ibl && sphere_occluders + box_occluders > 0),
+        sphere_occluders, box_occluders);
     return d;
   }
 };
@@ -100,13 +112,18 @@ class ShaderPermutations {
   ShaderPermutations();
 
   const Program& surface(const SurfaceFeatures& f);
+  /// The occluders' geometry the surface programs with occluders compile in
+  /// (occluders.h's occluder_geometry_define); a change drops the programs compiled with
+  /// the previous one.
+  void set_occluder_geometry(std::string define);
   const Program& background(int mode) const { return background_[std::size_t(mode)]; }
   const Program& display(ToneMapper mapper);
 
  private:
   std::unordered_map<std::uint64_t, Program> surface_;  // by SurfaceFeatures::key
-  std::array<Program, 3> background_;                   // by background MODE
-  std::array<Program, 4> display_;                      // by ToneMapper, compiled on first use
+  std::string occluder_geometry_;
+  std::array<Program, 3> background_;  // by background MODE
+  std::array<Program, 4> display_;     // by ToneMapper, compiled on first use
 };
 
 }  // namespace pbrkit::gl

@@ -21,6 +21,7 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/ibl_maps.cpp
   ${_pbrkit_gl_dir}/gpu_scene.cpp
   ${_pbrkit_gl_dir}/light_clusters.cpp
+  ${_pbrkit_gl_dir}/occluders.cpp
   ${_pbrkit_gl_dir}/surface_bindings.cpp
   ${_pbrkit_gl_dir}/shader_permutations.cpp
   ${_pbrkit_gl_dir}/render_targets.cpp
@@ -50,6 +51,7 @@ add_library(pbrkit_gl_testing STATIC EXCLUDE_FROM_ALL
   ${_pbrkit_gl_dir}/testing/compute_eval.cpp
   ${_pbrkit_gl_dir}/testing/display_eval.cpp
   ${_pbrkit_gl_dir}/testing/iridescence_eval.cpp
+  ${_pbrkit_gl_dir}/testing/occluder_eval.cpp
   ${_pbrkit_gl_dir}/testing/sheen_eval.cpp
   ${_pbrkit_gl_dir}/testing/transmission_eval.cpp
   ${_pbrkit_gl_test_embedded})

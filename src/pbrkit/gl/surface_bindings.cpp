@@ -6,6 +6,7 @@
 
 #include "pbrkit/gl/gpu_scene.h"
 #include "pbrkit/gl/light_clusters.h"
+#include "pbrkit/gl/occluders.h"
 #include "pbrkit/scene/material_schema.h"
 
 namespace pbrkit::gl {
@@ -42,33 +43,36 @@ std::string factor_uniform(const MaterialFactor& factor) {
 std::vector<SurfaceBinding> surface_bindings() {
   std::vector<SurfaceBinding> b;
   for (int t = 0; t < kTextureSlotCount; ++t)
-    b.push_back({texture_slot_macro(TextureSlot(t)), texture_unit(TextureSlot(t)), false});
-  b.push_back({"ENERGY_DIRECT", kEnergyDirectUnit, false});
-  b.push_back({"ENERGY_IBL", kEnergyIblUnit, false});
-  b.push_back({"SPECULAR_CUBE", kSpecularCubeUnit, false});
-  b.push_back({"IRRADIANCE_CUBE", kIrradianceCubeUnit, false});
-  b.push_back({"ENERGY_COAT", kCoatEnergyUnit, false});
-  b.push_back({"SHEEN_CUBE", kSheenCubeUnit, false});
-  b.push_back({"SHEEN_LUT", kSheenLutUnit, false});
-  b.push_back({"TRANSMISSION_FRAME", kTransmissionFrameUnit, false});
-  b.push_back({"BACK_POSITION", kBackPositionUnit, false});
-  b.push_back({"BACK_NORMAL", kBackNormalUnit, false});
-  b.push_back({"FRAME_DEPTH", kFrameDepthUnit, false});
-  b.push_back({"ANISOTROPIC_ALBEDO", kAnisotropicAlbedoUnit, false});
-  b.push_back({"INSTANCE_TRANSFORMS", kInstanceBufferBinding, true});
-  b.push_back({"PUNCTUAL_LIGHTS", kLightBufferBinding, true});
-  b.push_back({"LIGHT_CLUSTER_RANGES", kClusterRangeBufferBinding, true});
-  b.push_back({"LISTED_LIGHTS", kListedLightBufferBinding, true});
+    b.push_back({texture_slot_macro(TextureSlot(t)), texture_unit(TextureSlot(t))});
+  b.push_back({"ENERGY_DIRECT", kEnergyDirectUnit});
+  b.push_back({"ENERGY_IBL", kEnergyIblUnit});
+  b.push_back({"SPECULAR_CUBE", kSpecularCubeUnit});
+  b.push_back({"IRRADIANCE_CUBE", kIrradianceCubeUnit});
+  b.push_back({"ENERGY_COAT", kCoatEnergyUnit});
+  b.push_back({"SHEEN_CUBE", kSheenCubeUnit});
+  b.push_back({"SHEEN_LUT", kSheenLutUnit});
+  b.push_back({"TRANSMISSION_FRAME", kTransmissionFrameUnit});
+  b.push_back({"BACK_POSITION", kBackPositionUnit});
+  b.push_back({"BACK_NORMAL", kBackNormalUnit});
+  b.push_back({"FRAME_DEPTH", kFrameDepthUnit});
+  b.push_back({"ANISOTROPIC_ALBEDO", kAnisotropicAlbedoUnit});
+  b.push_back(
+      {"INSTANCE_TRANSFORMS", kInstanceBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
+  b.push_back({"PUNCTUAL_LIGHTS", kLightBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
+  b.push_back(
+      {"LIGHT_CLUSTER_RANGES", kClusterRangeBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
+  b.push_back({"LISTED_LIGHTS", kListedLightBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
+  b.push_back({"OCCLUDERS", kOccluderBufferBinding, SurfaceBinding::Kind::kUniformBuffer});
   return b;
 }
 
 std::vector<SurfaceBinding> background_bindings() {
-  return {{"ENVIRONMENT", kBackgroundEnvironmentUnit, false},
-          {"SPECULAR_CUBE", kBackgroundSpecularCubeUnit, false}};
+  return {{"ENVIRONMENT", kBackgroundEnvironmentUnit},
+          {"SPECULAR_CUBE", kBackgroundSpecularCubeUnit}};
 }
 
 std::vector<SurfaceBinding> display_bindings() {
-  return {{"FRAME", kDisplayFrameUnit, false}};
+  return {{"FRAME", kDisplayFrameUnit}};
 }
 
 namespace {

@@ -43,9 +43,11 @@ inline constexpr GLuint kLastSurfaceUnit =
 /// One binding of a program (the surface's, the background's, the display's) as its
 /// prelude names it: BINDING_<name>.
 struct SurfaceBinding {
-  std::string name;     ///< e.g. "SHEEN_LUT", "SHEEN_COLOR_TEXTURE", "PUNCTUAL_LIGHTS"
-  GLuint point = 0;     ///< the texture unit or the shader storage buffer binding point
-  bool buffer = false;  ///< a shader storage buffer (its own numbering), else a sampler
+  /// What the point numbers: each kind has its own numbering in GL.
+  enum class Kind { kSampler, kStorageBuffer, kUniformBuffer };
+  std::string name;  ///< e.g. "SHEEN_LUT", "SHEEN_COLOR_TEXTURE", "PUNCTUAL_LIGHTS"
+  GLuint point = 0;  ///< the texture unit, or the buffer binding point
+  Kind kind = Kind::kSampler;
 };
 
 /// Every texture unit and buffer binding point of the surface program.

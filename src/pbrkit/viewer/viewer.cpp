@@ -472,6 +472,7 @@ bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
   while (msaa_choices < 4 && (1 << msaa_choices) <= s.max_samples) ++msaa_choices;
   if (ImGui::Combo("MSAA", &msaa, msaa_modes, msaa_choices)) s.settings.msaa = 1 << msaa;
   ImGui::Checkbox("image-based lighting", &s.settings.ibl);
+  ImGui::Checkbox("glass shadows", &s.settings.transmissive_shadows);
   int irradiance = int(s.settings.irradiance);
   const char* irradiance_modes[] = {"SH9", "cube"};
   if (ImGui::Combo("irradiance", &irradiance, irradiance_modes, 2))

@@ -75,6 +75,17 @@
 #if MATERIAL_TRANSMISSION && MATERIAL_VOLUME
 #include "thick_refraction.glsl"
 #endif
+#ifndef IBL_OCCLUDERS
+#define IBL_OCCLUDERS 0
+#endif
+#if IBL_OCCLUDERS
+#include "occluders.glsl"
+#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
+flat in int vSlot;  // pbr_vertex.glsl's: a transmissive surface is not shadowed by itself
+#else
+const int vSlot = -1;  // an opaque surface is no occluder
+#endif
+#endif
 
 
 layout(location = 0) out vec4 outColor;
@@ -465,7 +476,11 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
                (1.0 - cw * coat_fresnel(abs(ncv))) * indirect;
   }
 #endif
+#if IBL_OCCLUDERS
+  return ao * occluder_visibility(vPosition, n, vSlot) * uIblScale * indirect;
+#else
   return ao * uIblScale * indirect;
+#endif
 }
 
 #if MATERIAL_TRANSMISSION

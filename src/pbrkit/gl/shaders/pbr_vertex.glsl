@@ -25,6 +25,14 @@ out vec2 vTexcoord1;
 #if HAS_COLOR_0
 out vec4 vColor;
 #endif
+// The instance's slot, for a transmissive surface under occluders (occluders.glsl skips its
+// own proxy; an opaque surface has none).
+#if defined(IBL_OCCLUDERS) && defined(MATERIAL_TRANSMISSION)
+#if IBL_OCCLUDERS && (MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION)
+#define OWN_SLOT 1
+flat out int vSlot;
+#endif
+#endif
 
 void main() {
   int slot = uInstanceBase + gl_InstanceID;
@@ -38,6 +46,9 @@ void main() {
   vTexcoord1 = aTexcoord1;
 #if HAS_COLOR_0
   vColor = aColor;
+#endif
+#ifdef OWN_SLOT
+  vSlot = slot;
 #endif
   gl_Position = uViewProjection * world;
 }

@@ -1,0 +1,90 @@
+#pragma once
+// Private to the OpenGL renderer (renderer.cpp): the proxies of the scene's transmissive
+// objects that shadow the environment's light on other surfaces (occluders.glsl).
+#include <span>
+#include <string>
+#include <vector>
+
+#include <epoxy/gl.h>
+#include <glm/glm.hpp>
+
+#include "pbrkit/gl/gpu_scene.h"
+
+namespace pbrkit::gl {
+
+/// The most occluders of each kind (spheres, parallelepipeds) a frame compiles in: their
+/// numbers are part of the shader's permutation (5 bits each in SurfaceFeatures::key).
+inline constexpr int kMaxOccluders = 16;
+
+/// The binding point of the occluder buffer (occluders.glsl's Occluders).
+inline constexpr GLuint kOccluderBufferBinding = 7;
+
+/// A parallelepiped's three pairs of faces as box_form_factor takes them
+/// (occluder_form_factors.glsl).
+struct ParallelepipedFaces {
+  glm::vec4 normals[3]{};  ///< pair k: the unit normal (xyz) and the half-extent along it (w)
+  glm::vec3 areas{0.0f};   ///< pair k: the area of one of its faces
+};
+
+/// The pairs of faces of the parallelepiped of half-axes a_k: across a_k, spanned by
+/// a_{k+1} and a_{k+2}. A flat body (a half-axis 0) is given a thickness of 1e-4 of its
+/// largest half-axis, so that its extents still bound it.
+ParallelepipedFaces parallelepiped_faces(const glm::vec3 axes[3]);
+
+/// One proxy of a transmissive instance (occluders.glsl).
+struct Occluder {
+  bool sphere = false;
+  glm::vec3 center{0.0f};
+  float radius = 0.0f;        ///< a sphere's
+  ParallelepipedFaces faces;  ///< a parallelepiped's
+  glm::vec3 transmittance{1.0f};
+  int slot = 0;  ///< the instance's slot (gpu_scene.h): a surface is not shadowed by its own
+};
+
+/// The share of a uniform environment's light a transmissive material lets through an
+/// object, per channel: its transmitting share (transmission times the base colour, and
+/// diffuse transmission's colour where the rest transmits diffusely) times 1 - F_avg at
+/// each interface it crosses (F_avg the cosine-weighted hemispherical average of the
+/// dielectric Fresnel reflectance: one interface thin-walled, two through a `volume`), and
+/// through a volume Beer-Lambert's attenuation over `chord` (world units).
+glm::vec3 occluder_transmittance(const Material& m, bool volume, float chord);
+
+/// One proxy per instance of `scene` whose material transmits light (KHR_materials_
+/// transmission or _diffuse_transmission): a sphere where the mesh is one (GpuMesh::
+/// sphere_radius) and the instance scales it uniformly, else its bounding box as a
+/// parallelepiped. Its transmittance is occluder_transmittance's over the body's mean chord,
+/// 4 V / S (Cauchy's formula for a convex body).
+std::vector<Occluder> ibl_occluders(const GpuScene& scene);
+
+/// What a frame compiles in: at most kMaxOccluders of each kind, the largest (a sphere's
+/// radius, a parallelepiped's surface), spheres first; `counts` the spheres' and the
+/// parallelepipeds' numbers.
+std::vector<Occluder> select_occluders(std::span<const Occluder> all, glm::ivec2& counts);
+
+/// The selection's geometry as occluders.glsl's OCCLUDER_GEOMETRY define, five vec4 per
+/// occluder (centre and slot; the three pairs of faces; the faces' areas and the radius),
+/// compiled into the surface program: a software rasteriser (llvmpipe) reads a uniform
+/// buffer lane by lane, and the geometry changes only with the scene (BENCHMARKS.md,
+/// "Shadows of transmissive objects").
+std::string occluder_geometry_define(std::span<const Occluder> selected);
+
+/// The selected occluders' transmittances on the GPU (occluders.glsl's Occluders block, one
+/// vec4 each), which change with the materials without a new program. Needs the current GL
+/// context for its whole life.
+class GpuOccluderBuffer {
+ public:
+  GpuOccluderBuffer();
+  ~GpuOccluderBuffer();
+  GpuOccluderBuffer(const GpuOccluderBuffer&) = delete;
+  GpuOccluderBuffer& operator=(const GpuOccluderBuffer&) = delete;
+  /// Uploads the transmittances of `selected` (select_occluders's) and binds the buffer.
+  void upload(std::span<const Occluder> selected);
+  /// Binds the buffer (GL_UNIFORM_BUFFER at kOccluderBufferBinding).
+  void bind() const;
+  GLuint id() const { return buffer_; }
+
+ private:
+  GLuint buffer_ = 0;
+};
+
+}  // namespace pbrkit::gl
