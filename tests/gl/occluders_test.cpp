@@ -32,7 +32,7 @@ constexpr double kPi = 3.14159265358979323846;
 template <class Hits>
 double integrated_form_factor(glm::dvec3 x, glm::dvec3 n, Hits hits, int cells = 600) {
   const glm::dvec3 t = glm::normalize(std::abs(n.x) < 0.9 ? glm::cross(n, glm::dvec3(1, 0, 0))
-                                                         : glm::cross(n, glm::dvec3(0, 1, 0)));
+                                                          : glm::cross(n, glm::dvec3(0, 1, 0)));
   const glm::dvec3 b = glm::cross(n, t);
   long hit = 0;
   for (int i = 0; i < cells; ++i)
@@ -92,7 +92,8 @@ double lambert_parallelepiped(glm::dvec3 x, glm::dvec3 n, glm::dvec3 c, const gl
                          b = glm::normalize(corners[(i + 1) % 4] - x);
         const glm::dvec3 g = glm::cross(a, b);
         const double len = glm::length(g);
-        if (len > 0.0) sum += std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(n, g) / len;
+        if (len > 0.0)
+          sum += std::acos(std::clamp(glm::dot(a, b), -1.0, 1.0)) * glm::dot(n, g) / len;
       }
       total += std::abs(sum) / (2.0 * kPi);
     }
@@ -117,11 +118,10 @@ TEST(OccluderFormFactors, ASphereAboveTheHorizonIsTheDifferentialToSphereFactor)
       const double d = glm::length(glm::dvec3(c.center - c.x));
       if (std::asin(0.5 / d) > std::asin(double(height) / d)) continue;
       cases.push_back(c);
-      exact.push_back(integrated_form_factor(glm::dvec3(c.x), glm::dvec3(n),
-                                             [&](glm::dvec3 o, glm::dvec3 dir) {
-                                               return ray_meets_sphere(o, dir, glm::dvec3(c.center),
-                                                                       0.5);
-                                             }));
+      exact.push_back(
+          integrated_form_factor(glm::dvec3(c.x), glm::dvec3(n), [&](glm::dvec3 o, glm::dvec3 dir) {
+            return ray_meets_sphere(o, dir, glm::dvec3(c.center), 0.5);
+          }));
     }
   // Well inside: the sphere's contents, not shadowed by it (kContentsMargin).
   FormFactorCase inside;
@@ -161,11 +161,12 @@ TEST(OccluderFormFactors, AParallelepipedIsItsProjectedAreaFromAfarAndCloseNearb
     // The exact integral's body: a flat sheet (a zero axis) given a hair's thickness.
     glm::dmat3 A(glm::dvec3(body.axes[0]), glm::dvec3(body.axes[1]), glm::dvec3(body.axes[2]));
     if (glm::length(A[2]) == 0.0) A[2] = glm::dvec3(0.0, 0.0, 1e-6);
-    const double half_diagonal = glm::length(glm::dvec3(body.axes[0] + body.axes[1] + body.axes[2]));
+    const double half_diagonal =
+        glm::length(glm::dvec3(body.axes[0] + body.axes[1] + body.axes[2]));
     // Points on a wall z = 0 facing +z, the body's centre in front of it (its nearest face
     // 1 mm off the wall, or further), looked at from straight below it and sideways.
-    const float touching = std::abs(body.axes[0].z) + std::abs(body.axes[1].z) +
-                           std::abs(body.axes[2].z) + 0.001f;
+    const float touching =
+        std::abs(body.axes[0].z) + std::abs(body.axes[1].z) + std::abs(body.axes[2].z) + 0.001f;
     for (float z : {touching, 1.2f, 2.5f, 6.0f, 20.0f})
       for (float side : {0.0f, 0.5f, 1.5f}) {
         FormFactorCase c;
@@ -176,8 +177,8 @@ TEST(OccluderFormFactors, AParallelepipedIsItsProjectedAreaFromAfarAndCloseNearb
         for (int k = 0; k < 3; ++k) c.axes[k] = body.axes[k];
         cases.push_back(c);
         distance.push_back(glm::length(glm::dvec3(c.center - c.x)) / half_diagonal);
-        exact.push_back(lambert_parallelepiped(glm::dvec3(c.x), glm::dvec3(c.n),
-                                               glm::dvec3(c.center), A));
+        exact.push_back(
+            lambert_parallelepiped(glm::dvec3(c.x), glm::dvec3(c.n), glm::dvec3(c.center), A));
         // Lambert's formula against the ray-cast integral, where the body is large enough
         // on the hemisphere for the integral's cells (a check of the check).
         if (z < 2.0f && side == 0.0f) {
@@ -191,7 +192,8 @@ TEST(OccluderFormFactors, AParallelepipedIsItsProjectedAreaFromAfarAndCloseNearb
     // Well inside: the body's contents, not shadowed by it (kContentsMargin).
     FormFactorCase inside;
     inside.sphere = false;
-    inside.x = glm::vec3(0.1f, 0.0f, 0.0f) * glm::length(body.axes[0]) + glm::vec3(0.0f, 0.0f, 3.0f);
+    inside.x =
+        glm::vec3(0.1f, 0.0f, 0.0f) * glm::length(body.axes[0]) + glm::vec3(0.0f, 0.0f, 3.0f);
     inside.center = glm::vec3(0.0f, 0.0f, 3.0f);
     for (int k = 0; k < 3; ++k) inside.axes[k] = body.axes[k];
     if (glm::length(body.axes[2]) > 0.0f) {
@@ -203,7 +205,8 @@ TEST(OccluderFormFactors, AParallelepipedIsItsProjectedAreaFromAfarAndCloseNearb
   // Floor points (n = +y) beside a box standing 1 mm above the floor (0.7 wide, 1 tall): the
   // common case of an object on a floor, at 1 cm to 1 m from its side and off its corner.
   {
-    const glm::vec3 axes[3] = {glm::vec3(0.35f, 0, 0), glm::vec3(0, 0.5f, 0), glm::vec3(0, 0, 0.35f)};
+    const glm::vec3 axes[3] = {glm::vec3(0.35f, 0, 0), glm::vec3(0, 0.5f, 0),
+                               glm::vec3(0, 0, 0.35f)};
     const glm::dmat3 A{glm::dvec3(axes[0]), glm::dvec3(axes[1]), glm::dvec3(axes[2])};
     const glm::vec3 centre(0.0f, 0.501f, 0.0f);
     for (float gap : {0.01f, 0.1f, 0.3f, 1.0f})
@@ -215,8 +218,10 @@ TEST(OccluderFormFactors, AParallelepipedIsItsProjectedAreaFromAfarAndCloseNearb
         c.center = centre;
         for (int k = 0; k < 3; ++k) c.axes[k] = axes[k];
         cases.push_back(c);
-        distance.push_back(glm::length(glm::dvec3(c.center - c.x)) / glm::length(glm::dvec3(0.35, 0.5, 0.35)));
-        exact.push_back(lambert_parallelepiped(glm::dvec3(c.x), glm::dvec3(c.n), glm::dvec3(centre), A));
+        distance.push_back(glm::length(glm::dvec3(c.center - c.x)) /
+                           glm::length(glm::dvec3(0.35, 0.5, 0.35)));
+        exact.push_back(
+            lambert_parallelepiped(glm::dvec3(c.x), glm::dvec3(c.n), glm::dvec3(centre), A));
       }
   }
   const std::vector<float> got = form_factors_glsl(cases);
@@ -232,8 +237,8 @@ TEST(OccluderFormFactors, AParallelepipedIsItsProjectedAreaFromAfarAndCloseNearb
       worst_near = std::max(worst_near, std::abs(err));
       // Near: measured within 0.15 (0.13 above exact 0.29 on a floor point 10 cm beside a
       // standing box's corner, 0.14 below exact 0.57 under a tilted box's edge).
-      EXPECT_NEAR(got[i], exact[i], 0.2) << "case " << i << " at " << distance[i]
-                                         << " half-diagonals";
+      EXPECT_NEAR(got[i], exact[i], 0.2)
+          << "case " << i << " at " << distance[i] << " half-diagonals";
       if (distance[i] >= 8.0) {
         // Far: the disc of the projected area is the body's solid angle to first order in
         // size / distance (the nearer faces are nearer than the centre).
@@ -242,9 +247,10 @@ TEST(OccluderFormFactors, AParallelepipedIsItsProjectedAreaFromAfarAndCloseNearb
       }
     }
   }
-  std::printf("parallelepiped form factor: worst absolute error %.3f; at 8 half-diagonals or more "
-              "(F >= 1e-3) worst relative error %.3f\n",
-              worst_near, worst_far);
+  std::printf(
+      "parallelepiped form factor: worst absolute error %.3f; at 8 half-diagonals or more "
+      "(F >= 1e-3) worst relative error %.3f\n",
+      worst_near, worst_far);
 }
 
 // The closed form of a dielectric's diffuse (cosine-weighted hemispherical) reflectance from
@@ -307,8 +313,7 @@ TEST(TransmissiveShadows, AFloorUnderAGlassSphereKeepsOneMinusFTimesOneMinusT) {
   scene.materials = {floor, glass};
   add_mesh_instance(scene,
                     make_quad(glm::vec3(-6, 0, 6), glm::vec3(12, 0, 0), glm::vec3(0, 0, -12)), 0);
-  add_mesh_instance(scene, make_uv_sphere(radius), 1,
-                    glm::translate(glm::mat4(1.0f), centre));
+  add_mesh_instance(scene, make_uv_sphere(radius), 1, glm::translate(glm::mat4(1.0f), centre));
   Camera camera;
   camera.yfov = 0.9f;
   const glm::vec3 eye(0.0f, 0.5f, 3.5f);
@@ -325,8 +330,8 @@ TEST(TransmissiveShadows, AFloorUnderAGlassSphereKeepsOneMinusFTimesOneMinusT) {
   // The sphere's transmittance: two interfaces of ior 1.5 and Beer-Lambert over its mean
   // chord 4 r / 3.
   const double leave = 1.0 - diffuse_reflectance(1.5);
-  const glm::dvec3 T = leave * leave *
-                       glm::pow(glm::dvec3(0.3, 0.6, 0.9), glm::dvec3(4.0 * radius / 3.0 / 0.5));
+  const glm::dvec3 T =
+      leave * leave * glm::pow(glm::dvec3(0.3, 0.6, 0.9), glm::dvec3(4.0 * radius / 3.0 / 0.5));
   const glm::mat4 inv_vp =
       glm::inverse(projection_matrix(camera, float(kW) / kH) * view_matrix(camera));
   int counted = 0, shadowed = 0;
@@ -355,9 +360,10 @@ TEST(TransmissiveShadows, AFloorUnderAGlassSphereKeepsOneMinusFTimesOneMinusT) {
       ++counted;
       shadowed += F > 0.05 ? 1 : 0;
     }
-  std::printf("floor under a glass sphere: %d pixels (%d with F > 0.05), worst |ratio - "
-              "(1 - F (1 - T))| %.2e\n",
-              counted, shadowed, worst);
+  std::printf(
+      "floor under a glass sphere: %d pixels (%d with F > 0.05), worst |ratio - "
+      "(1 - F (1 - T))| %.2e\n",
+      counted, shadowed, worst);
   EXPECT_GE(counted, 1000);
   EXPECT_GE(shadowed, 100);
 }
@@ -450,15 +456,15 @@ TEST(TransmissiveShadows, AFrameKeepsTheLargestSixteenOfEachKind) {
   add_mesh_instance(scene,
                     make_quad(glm::vec3(-6, 0, 6), glm::vec3(12, 0, 0), glm::vec3(0, 0, -12)), 0);
   for (int i = 0; i < 17; ++i) {
-    const glm::mat4 at = glm::translate(glm::mat4(1.0f), glm::vec3(float(i % 6) - 2.5f, 0.5f,
-                                                                   float(i / 6) - 1.0f));
+    const glm::mat4 at =
+        glm::translate(glm::mat4(1.0f), glm::vec3(float(i % 6) - 2.5f, 0.5f, float(i / 6) - 1.0f));
     add_mesh_instance(scene, make_uv_sphere(0.2f, 16, 8), 1, at);
     add_mesh_instance(scene, make_box(glm::vec3(-0.1f), glm::vec3(0.1f)), 1,
                       glm::translate(at, glm::vec3(0.0f, 0.5f, 0.0f)));
   }
   Camera camera;
-  camera.camera_to_world = glm::inverse(
-      glm::lookAt(glm::vec3(0, 3, 6), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
+  camera.camera_to_world =
+      glm::inverse(glm::lookAt(glm::vec3(0, 3, 6), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
   const Environment env = Environment::constant(glm::vec3(1.0f));
   const IblMaps maps = testing::small_ibl_maps(env);
   RenderSettings settings;

@@ -44,8 +44,9 @@ ParallelepipedFaces parallelepiped_faces(const glm::vec3 axes[3]) {
     glm::vec3 across = glm::cross(a[(k + 1) % 3], a[(k + 2) % 3]);
     if (glm::length(across) == 0.0f) {  // a second axis is 0 too: any direction across
       const glm::vec3 other = glm::length(a[(k + 1) % 3]) > 0.0f ? a[(k + 1) % 3] : a[(k + 2) % 3];
-      across = glm::cross(other, std::abs(other.x) < 0.9f * glm::length(other) ? glm::vec3(1, 0, 0)
-                                                                              : glm::vec3(0, 1, 0));
+      across =
+          glm::cross(other, std::abs(other.x) < 0.9f * glm::length(other) ? glm::vec3(1, 0, 0)
+                                                                          : glm::vec3(0, 1, 0));
     }
     if (glm::length(across) > 0.0f) a[k] = thin * glm::normalize(across);
   }
@@ -134,9 +135,8 @@ std::vector<Occluder> select_occluders(std::span<const Occluder> all, glm::ivec2
     if (v.size() > std::size_t(kMaxOccluders)) v.resize(std::size_t(kMaxOccluders));
   };
   keep_largest(spheres, [](const Occluder& o) { return o.radius; });
-  keep_largest(boxes, [](const Occluder& o) {
-    return o.faces.areas.x + o.faces.areas.y + o.faces.areas.z;
-  });
+  keep_largest(
+      boxes, [](const Occluder& o) { return o.faces.areas.x + o.faces.areas.y + o.faces.areas.z; });
   counts = glm::ivec2(int(spheres.size()), int(boxes.size()));
   spheres.insert(spheres.end(), boxes.begin(), boxes.end());
   return spheres;
@@ -157,9 +157,13 @@ std::string occluder_geometry_define(std::span<const Occluder> selected) {
   return d + ")\n";
 }
 
-GpuOccluderBuffer::GpuOccluderBuffer() { glCreateBuffers(1, &buffer_); }
+GpuOccluderBuffer::GpuOccluderBuffer() {
+  glCreateBuffers(1, &buffer_);
+}
 
-GpuOccluderBuffer::~GpuOccluderBuffer() { glDeleteBuffers(1, &buffer_); }
+GpuOccluderBuffer::~GpuOccluderBuffer() {
+  glDeleteBuffers(1, &buffer_);
+}
 
 void GpuOccluderBuffer::upload(std::span<const Occluder> selected) {
   // The shader's block has room for kMaxOccluders of each kind.
