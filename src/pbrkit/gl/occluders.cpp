@@ -5,20 +5,11 @@
 
 #include <fmt/format.h>
 
+#include "pbrkit/core/transmission.h"
+
 namespace pbrkit::gl {
 
 namespace {
-
-// Fresnel reflectance of a dielectric interface (from index 1 into `ior`) at cos_i
-// (unpolarised, exact).
-float fresnel_dielectric(float cos_i, float ior) {
-  const float sin_t2 = (1.0f - cos_i * cos_i) / (ior * ior);
-  if (sin_t2 >= 1.0f) return 1.0f;
-  const float cos_t = std::sqrt(1.0f - sin_t2);
-  const float rs = (cos_i - ior * cos_t) / (cos_i + ior * cos_t);
-  const float rp = (ior * cos_i - cos_t) / (ior * cos_i + cos_t);
-  return 0.5f * (rs * rs + rp * rp);
-}
 
 // The cosine-weighted hemispherical average of the Fresnel reflectance, 2 int F(mu) mu dmu
 // (midpoint rule, 64 steps: well within 1e-3 of the integral for ior 1-3).
@@ -28,7 +19,7 @@ float average_fresnel(float ior) {
   float sum = 0.0f;
   for (int i = 0; i < kSteps; ++i) {
     const float mu = (float(i) + 0.5f) / kSteps;
-    sum += fresnel_dielectric(mu, ior) * mu;
+    sum += fresnel_dielectric(mu, ior) * mu;  // core/transmission.h's, exact
   }
   return 2.0f * sum / kSteps;
 }
