@@ -20,8 +20,8 @@ const float kContentsMargin = 0.02;
 // area at x's height h over it, R^2 / (R^2 + h^2), times the cosine of n with the face's
 // inward normal and, per edge, between 1/2 (a foot on the edge) and 1 (a foot as far inside
 // as x is high). tests/gl/occluders_test.cpp measures it against Lambert's exact polygon
-// formula (Arvo 1995), which over the silhouette is 10 times the arithmetic, too much for
-// every opaque fragment on a software rasteriser.
+// formula (Arvo 1995), an acos per edge of the silhouette, which this approximation spares
+// every opaque fragment.
 float box_form_factor(vec3 x, vec3 n, vec3 c, vec4 N0, vec4 N1, vec4 N2, vec3 area) {
   vec3 w = c - x;
   vec3 offset = vec3(dot(w, N0.xyz), dot(w, N1.xyz), dot(w, N2.xyz));
@@ -35,8 +35,7 @@ float box_form_factor(vec3 x, vec3 n, vec3 c, vec4 N0, vec4 N1, vec4 N2, vec3 ar
   float h = max(1.0 / inv_d - 0.5 * min(reach.x, min(reach.y, reach.z)), 0.0);
   float f = min(R2 / (R2 + h * h) * dot(n, w) * inv_d, 0.5);
   // All three pairs' faces side by side (component k: pair k's, its edges across pairs
-  // k + 1 and k + 2).
-  // (A foot on an edge, to rounding, is on the face.)
+  // k + 1 and k + 2; a foot on an edge, to rounding, is on the face).
   bvec3 beyond = greaterThan(outside, 1e-4 * half_extent);
   bvec3 over = bvec3(vec3(beyond) * (1.0 - vec3(beyond.yzx)) * (1.0 - vec3(beyond.zxy)));
   vec3 face_R2 = area * kInvPi;
@@ -53,8 +52,8 @@ float box_form_factor(vec3 x, vec3 n, vec3 c, vec4 N0, vec4 N1, vec4 N2, vec3 ar
 // The form factor from (x, n) to a sphere (centre c, radius r) wholly above x's horizon:
 // (r / d)^2 cos(theta), theta the angle between n and the direction to the centre (the
 // differential-element-to-sphere factor of Howell's "A Catalog of Radiation Heat Transfer
-// Configuration Factors"); 0 well inside it (kContentsMargin). Past x's horizon (cos(theta) < r / d) it is not
-// clipped, only clamped at 0.
+// Configuration Factors"); 0 well inside it (kContentsMargin). Past x's horizon
+// (cos(theta) < r / d) it is not clipped, only clamped at 0.
 float sphere_form_factor(vec3 x, vec3 n, vec3 c, float r) {
   vec3 w = c - x;
   float d2 = dot(w, w);
