@@ -228,6 +228,7 @@ TEST(OccluderFormFactors, AParallelepipedIsItsProjectedAreaFromAfarAndCloseNearb
   double worst_far = 0.0, worst_near = 0.0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const double err = double(got[i]) - exact[i];
+    // Each case's figures, for re-measuring the bounds below.
     if (std::getenv("PBRKIT_PRINT_CASES"))
       std::printf("case %2zu dist %6.2f exact %.4f got %.4f err %+.4f\n", i, distance[i], exact[i],
                   double(got[i]), err);
