@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "pbrkit/core/transmission.h"
+#include "pbrkit/gl/shader_permutations.h"
 
 namespace pbrkit::gl {
 
@@ -79,10 +80,10 @@ std::vector<Occluder> ibl_occluders(const GpuScene& scene) {
     if (inst.mesh < 0 || std::size_t(inst.mesh) >= scene.meshes.size()) continue;
     const GpuMesh& g = scene.meshes[std::size_t(inst.mesh)];
     const Material& m = scene.material_of(g);
-    const bool transmits = (m.transmission && m.transmission->factor > 0.0f) ||
-                           (m.diffuse_transmission && m.diffuse_transmission->factor > 0.0f);
-    if (!transmits || g.index_count == 0) continue;
-    const bool volume = m.volume && m.volume->thickness_factor > 0.0f && g.closed;
+    SurfaceFeatures f;  // the permutation it is drawn with says whether it transmits
+    set_transmission_features(m, g.closed, f);
+    if ((!f.transmission && !f.diffuse_transmission) || g.index_count == 0) continue;
+    const bool volume = f.volume;
     const glm::mat4& M = inst.transform;
     Occluder o;
     o.slot = int(scene.slot_of[i]);
@@ -109,9 +110,9 @@ std::vector<Occluder> ibl_occluders(const GpuScene& scene) {
     }
     o.transmittance = occluder_transmittance(m, volume, chord);
     // A proxy written into a shader must be finite (a degenerate transform is not).
-    const glm::vec3 extent(o.radius, o.faces.areas.x + o.faces.areas.y + o.faces.areas.z,
-                           glm::dot(o.center, o.center));
-    if (!std::isfinite(extent.x + extent.y + extent.z)) continue;
+    if (!std::isfinite(o.radius + glm::dot(o.center, o.center) + o.faces.areas.x + o.faces.areas.y +
+                       o.faces.areas.z))
+      continue;
     out.push_back(o);
   }
   return out;

@@ -109,20 +109,6 @@ TransmissiveDraw transmissive_draw(std::size_t index, const glm::mat4& model, co
   return d;
 }
 
-// Whether `m` on a mesh (closed or not) reads the opaque frame (KHR_materials_transmission),
-// and the transmission features it compiles in. A volume is only a volume on a closed mesh
-// with a thickness (KHR_materials_volume: thickness 0 is thin walled); dispersion changes
-// only the refraction through a volume (KHR_materials_dispersion).
-void set_transmission_features(const Material& m, bool closed, SurfaceFeatures& f) {
-  f.transmission = m.transmission.has_value() && m.transmission->factor > 0.0f;
-  f.diffuse_transmission =
-      m.diffuse_transmission.has_value() && m.diffuse_transmission->factor > 0.0f;
-  f.volume = (f.transmission || f.diffuse_transmission) && closed && m.volume.has_value() &&
-             m.volume->thickness_factor > 0.0f;
-  f.dispersion =
-      f.transmission && f.volume && m.dispersion.has_value() && m.dispersion->dispersion > 0.0f;
-}
-
 // What the surfaces write (debug_channels.h): a permutation of its own, so the shaded
 // frame compiles no debug code.
 void set_debug_features(const RenderSettings& settings, SurfaceFeatures& f) {

@@ -2,6 +2,20 @@
 
 namespace pbrkit::gl {
 
+// Whether `m` on a mesh (closed or not) reads the opaque frame (KHR_materials_transmission),
+// and the transmission features it compiles in. A volume is only a volume on a closed mesh
+// with a thickness (KHR_materials_volume: thickness 0 is thin walled); dispersion changes
+// only the refraction through a volume (KHR_materials_dispersion).
+void set_transmission_features(const Material& m, bool closed, SurfaceFeatures& f) {
+  f.transmission = m.transmission.has_value() && m.transmission->factor > 0.0f;
+  f.diffuse_transmission =
+      m.diffuse_transmission.has_value() && m.diffuse_transmission->factor > 0.0f;
+  f.volume = (f.transmission || f.diffuse_transmission) && closed && m.volume.has_value() &&
+             m.volume->thickness_factor > 0.0f;
+  f.dispersion =
+      f.transmission && f.volume && m.dispersion.has_value() && m.dispersion->dispersion > 0.0f;
+}
+
 ShaderPermutations::ShaderPermutations() {
   // The default surface program is compiled up front, so that a driver without GL 4.5
   // features fails here with the compile log rather than at the first frame.
