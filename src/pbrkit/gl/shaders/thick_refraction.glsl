@@ -234,6 +234,19 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
   vec2 uv;
   float t_hit;
   bool hit = frame_hit(r.origin, r.o, r.e, inverse_view_projection, frame_depth, uv, t_hit);
+  // Where the exit point lies behind the frame's surface, the light leaves into that
+  // surface: a body resting on a floor sends the rays it reflects totally down to the floor,
+  // and a segment carried past its back faces (exit_ray's kInsideSegments) can end under the
+  // floor, where the search from that point finds no crossing.
+  vec2 uv_exit;
+  if (!hit && clip_to_screen(r.o, uv_exit)) {
+    float scene = texel_at(frame_depth, uv_exit).r;
+    if (scene < 1.0 && r.o.z / r.o.w * 0.5 + 0.5 > scene) {
+      hit = true;
+      uv = uv_exit;
+      t_hit = 0.0;
+    }
+  }
   vec3 result = exit_radiance(t, r, ior, hit, uv, frame, frame_size, env_cube, env_rotation,
                               env_levels, env_scale);
   if (dispersion) {
