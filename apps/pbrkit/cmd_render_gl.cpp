@@ -36,6 +36,7 @@ struct GlOptions {
   bool no_ibl = false;
   bool no_lights = false;
   bool no_glass_shadows = false;
+  bool no_glass_reflections = false;
   std::string channel{gl::debug_channel_name(gl::DebugChannel::kNone)};
 };
 
@@ -83,6 +84,11 @@ RenderRunner add_gl_render_options(CLI::App& render) {
                 "(the Khronos Sample Viewer's image)")
       ->group(group);
   render
+      .add_flag("--no-glass-reflections", g->no_glass_reflections,
+                "thick glass reflects the environment alone, not the scene around it on the "
+                "screen (the Khronos Sample Viewer's image)")
+      ->group(group);
+  render
       .add_option("--channel", g->channel,
                   "a debug channel instead of the shaded image, raw (no exposure, no tone map): "
                   "a material input (base-color, metallic, roughness, normal as n*0.5+0.5, "
@@ -107,6 +113,7 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     settings.ibl = !g->no_ibl;
     settings.lights = !g->no_lights;
     settings.transmissive_shadows = !g->no_glass_shadows;
+    settings.transmissive_reflections = !g->no_glass_reflections;
     settings.debug_channel = gl::parse_debug_channel(g->channel);
     // A debug channel's values are shown as they are (the Sample Viewer's debug outputs).
     const bool raw = settings.debug_channel != gl::DebugChannel::kNone;

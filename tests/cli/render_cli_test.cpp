@@ -187,6 +187,39 @@ TEST(RenderCli, GlassShadowsAreOnByDefaultAndNoGlassShadowsTurnsThemOff) {
             render_gl("spheres", "--no-glass-shadows", "spheres_off").data);
 }
 
+// Thick glass reflects the frame on the screen by default; --no-glass-reflections makes it
+// reflect the environment alone. Only the thick glass objects' pixels change (the five
+// objects of `glass` cover under a tenth of its frame), and a scene without them renders the
+// same either way.
+TEST(RenderCli, GlassReflectionsAreOnByDefaultAndNoGlassReflectionsTurnsThemOff) {
+  const fs::path dir = test::scratch_dir();
+  auto render_gl = [&](const std::string& scene, const std::string& flags,
+                       const std::string& name) {
+    int code = 0;
+    const std::string log = render(scene + " --renderer gl --msaa 1 --width 96 --height 64 " +
+                                       flags + " -o " + (dir / (name + ".exr")).string(),
+                                   &code);
+    EXPECT_EQ(code, 0) << log;
+    return read_image(dir / (name + ".exr"));
+  };
+  const Image on = render_gl("glass", "", "glass_on");
+  const Image off = render_gl("glass", "--no-glass-reflections", "glass_off");
+  ASSERT_EQ(on.data.size(), off.data.size());
+  const std::size_t pixels = std::size_t(on.width) * std::size_t(on.height);
+  std::size_t changed = 0;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    bool differs = false;
+    for (std::size_t c = 0; c < std::size_t(on.channels); ++c)
+      differs |=
+          on.data[p * std::size_t(on.channels) + c] != off.data[p * std::size_t(on.channels) + c];
+    changed += differs;
+  }
+  EXPECT_GT(changed, 0u);
+  EXPECT_LT(changed, pixels / 10);
+  EXPECT_EQ(render_gl("spheres", "", "spheres_on").data,
+            render_gl("spheres", "--no-glass-reflections", "spheres_off").data);
+}
+
 // Without --width/--height the image takes the camera's authored aspect (512 along the
 // longer side); with one of them, the other follows the aspect.
 TEST(RenderAspect, SizeFollowsTheCamerasAspectRatio) {

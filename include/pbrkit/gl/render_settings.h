@@ -45,6 +45,11 @@ struct RenderSettings {
   /// glass is lit only through it, as in the path tracer. Off: every surface sees the whole
   /// environment, as the Khronos Sample Viewer's do.
   bool transmissive_shadows = true;
+  /// A thick transmissive surface (KHR_materials_volume) reflects the opaque frame where its
+  /// mirror direction meets it on the screen (a screen-space reflection: the wall or floor
+  /// the path tracer's reflected rays meet), and the environment elsewhere. Off: it
+  /// reflects the environment alone, as the Khronos Sample Viewer's glass does.
+  bool transmissive_reflections = true;
   bool lights = true;               ///< punctual lights on
   std::vector<bool> light_enabled;  ///< per light; missing entries are on
   /// Clustered shading of the punctual lights (gl/light_clusters.h): each fragment shades

@@ -309,6 +309,8 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
   const GeometryModel direct = direct_geometry(settings.brdf.model);
   const GeometryModel ibl = ibl_geometry(settings.brdf.model);
   f.features.ibl = settings.ibl && environment.has_ibl;
+  // Per draw, only thick transmissive surfaces compile it in (draw).
+  f.features.glass_reflections = f.features.ibl && settings.transmissive_reflections;
   f.features.irradiance_sh = settings.irradiance == IrradianceMode::kSH;
   f.features.multiscatter = settings.brdf.multiscatter;
   f.features.geometry = int(direct);
@@ -382,6 +384,8 @@ void Renderer::State::draw(Frame& f, std::size_t index, GLenum cull, std::size_t
   features.clearcoat = m.clearcoat.has_value() && m.clearcoat->factor > 0.0f;
   features.sheen = m.sheen.has_value() && max3(m.sheen->color_factor) > 0.0f;
   set_transmission_features(m, mesh.closed, features);
+  features.glass_reflections =
+      f.features.glass_reflections && features.transmission && features.volume;
   const Program& p = programs.surface(features);
   prepare(f, p);
   p.use();

@@ -42,9 +42,8 @@ const Program& ShaderPermutations::surface(const SurfaceFeatures& f) {
 void ShaderPermutations::set_occluder_geometry(std::string define) {
   if (define == occluder_geometry_) return;
   occluder_geometry_ = std::move(define);
-  std::erase_if(surface_, [](const auto& entry) {
-    return (entry.first >> SurfaceFeatures::kOccluderKeyShift) != 0;
-  });
+  std::erase_if(surface_,
+                [](const auto& entry) { return SurfaceFeatures::occluder_bits(entry.first) != 0; });
 }
 
 const Program& ShaderPermutations::display(ToneMapper mapper) {

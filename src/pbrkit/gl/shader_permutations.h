@@ -57,10 +57,17 @@ struct SurfaceFeatures {
   /// kMaxOccluders of each.
   int sphere_occluders = 0;
   int box_occluders = 0;
+  /// A thick transmissive surface's specular reflection reads the opaque frame where the
+  /// mirror direction meets it on the screen (pbr_fragment.glsl's GLASS_REFLECTIONS).
+  bool glass_reflections = false;
 
-  /// Where key() holds the occluder counts (the highest bits): a key shifted down by it is
-  /// not 0 for a program that compiles occluders in.
+  /// Where key() holds the occluder counts (kOccluderKeyBits): occluder_bits() is not 0
+  /// for a program that compiles occluders in.
   static constexpr int kOccluderKeyShift = 53;
+  static constexpr int kOccluderKeyBits = 10;
+  static std::uint64_t occluder_bits(std::uint64_t key) {
+    return (key >> kOccluderKeyShift) & ((std::uint64_t(1) << kOccluderKeyBits) - 1);
+  }
   std::uint64_t key() const {
     // The texture bits take the key's low 19 bits; more slots need the fields below moved.
     static_assert(kTextureSlotCount <= 19, "SurfaceFeatures::key: widen the texture bits");
@@ -75,7 +82,8 @@ struct SurfaceFeatures {
            std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42 |
            std::uint64_t(light_count + 1) << 43 | std::uint64_t(debug_channel) << 48 |
            std::uint64_t(sphere_occluders) << kOccluderKeyShift |
-           std::uint64_t(box_occluders) << (kOccluderKeyShift + 5);
+           std::uint64_t(box_occluders) << (kOccluderKeyShift + 5) |
+           std::uint64_t(glass_reflections) << (kOccluderKeyShift + kOccluderKeyBits);
   }
   std::string defines() const {
     std::string d = surface_prelude();
@@ -95,10 +103,11 @@ struct SurfaceFeatures {
         "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
         "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
         "#define LIGHTS {}\n#define LIGHT_COUNT {}\n#define DEBUG_CHANNEL {}\n"
-        "#define IBL_OCCLUDERS {}\n#define OCCLUDER_SPHERES {}\n#define OCCLUDER_BOXES {}\n",
+        "#define IBL_OCCLUDERS {}\n#define OCCLUDER_SPHERES {}\n#define OCCLUDER_BOXES {}\n"
+        "#define GLASS_REFLECTIONS {}\n",
         alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel, lights,
         light_count, debug_channel, int(ibl && sphere_occluders + box_occluders > 0),
-        sphere_occluders, box_occluders);
+        sphere_occluders, box_occluders, int(glass_reflections));
     return d;
   }
 };

@@ -28,7 +28,10 @@
 // refraction through the medium, Beer-Lambert), MATERIAL_DISPERSION (three iors),
 // MATERIAL_DIFFUSE_TRANSMISSION (the irradiance at -n through the diffuse lobe). With
 // MATERIAL_TRANSMISSION and MATERIAL_VOLUME the refraction goes through both interfaces
-// (thick_refraction.glsl) where renderer.cpp has drawn the object's back faces.
+// (thick_refraction.glsl) where renderer.cpp has drawn the object's back faces, and with
+// GLASS_REFLECTIONS its specular reflection reads the opaque frame where the mirror
+// direction meets it on the screen (thick_refraction.glsl's reflected_frame). IBL_OCCLUDERS:
+// the environment light is shadowed by the transmissive objects (occluders.glsl).
 //
 // main() reads as the shading's steps: the material's inputs (material_inputs.glsl, one
 // function per extension), the material bound to the viewer (shading_at) and the
@@ -77,6 +80,9 @@
 #endif
 #ifndef IBL_OCCLUDERS
 #define IBL_OCCLUDERS 0
+#endif
+#ifndef GLASS_REFLECTIONS
+#define GLASS_REFLECTIONS 0
 #endif
 #if IBL_OCCLUDERS
 #include "occluders.glsl"
@@ -400,6 +406,11 @@ vec3 punctual_lights(MaterialInputs m, Shading s, float transmission, float thic
 vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weight) {
   vec3 n = m.n, v = s.v, wo = s.wo;
   float ao = material_occlusion();
+#if IBL_OCCLUDERS
+  vec3 visibility = occluder_visibility(vPosition, n, vSlot);
+#else
+  const vec3 visibility = vec3(1.0);
+#endif
   vec3 prefiltered;
 #if MATERIAL_ANISOTROPY
   // The anisotropic lobe's own radiance (anisotropy_ibl.glsl: taps along the stretched
@@ -420,6 +431,20 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
 #endif
     prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, n), uIblRotation),
                              roughness_lod(s.brdf.roughness, uSpecularLevels)).rgb;
+#if MATERIAL_TRANSMISSION && MATERIAL_VOLUME && GLASS_REFLECTIONS
+  {
+    // Where the mirror direction meets the opaque frame on the screen, the surface reflects
+    // the frame (a wall, the floor) rather than the environment behind it; the frame's
+    // colour is final radiance, already shadowed and scaled, so the scale and visibility
+    // applied below are divided out of it.
+    vec3 seen;
+    if (uIblScale > 0.0 &&
+        reflected_frame(vPosition, reflect(-v, n), uViewProjection, uInverseViewProjection,
+                        uTransmissionDepth, uTransmissionFrame,
+                        log2(uTransmissionFrameSize.x) * clamp(m.roughness, 0.0, 1.0), seen))
+      prefiltered = seen / (uIblScale * max(visibility, vec3(1e-4)));
+  }
+#endif
   vec3 n_env = world_to_env(n, uIblRotation);
 #if IRRADIANCE_SH
   vec3 irradiance = max(eval_sh_irradiance(uSH, n_env), vec3(0.0));
@@ -476,11 +501,7 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
                (1.0 - cw * coat_fresnel(abs(ncv))) * indirect;
   }
 #endif
-#if IBL_OCCLUDERS
-  return ao * occluder_visibility(vPosition, n, vSlot) * uIblScale * indirect;
-#else
-  return ao * uIblScale * indirect;
-#endif
+  return ao * visibility * uIblScale * indirect;
 }
 
 #if MATERIAL_TRANSMISSION

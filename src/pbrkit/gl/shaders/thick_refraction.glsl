@@ -71,14 +71,14 @@ vec4 texel_at(sampler2D target, vec2 uv) { return texel_at(target, textureSize(t
 // contracts: on a plane of normal n, g'(d) = 1 - (n.e)(e.w) / (n.w) (e the ray, w the view
 // direction to its hit), near 0 for a ray close to the view direction; past |g'| = 1 (a ray
 // bent steeply onto a surface seen at a grazing angle) the steps oscillate about the hit
-// (tests/gl/thick_refraction_glsl_test.cpp). Returns the frame's texture
+// (tests/gl/thick_refraction_glsl_test.cpp), `iterations` steps. Returns the frame's texture
 // coordinates and the distance; false where the ray leaves the screen, goes behind the
 // camera or meets the background (the environment is what it sees then). `o` and `e` are
 // origin and dir in clip space (view_projection times (origin, 1) and (dir, 0)): the ray's
 // point at d projects from o + d e, one multiply-add per step instead of a projection.
 const int kFrameHitIterations = 4;
 bool frame_hit(vec3 origin, vec4 o, vec4 e, mat4 inverse_view_projection, sampler2D frame_depth,
-               out vec2 uv, out float d) {
+               int iterations, out vec2 uv, out float d) {
   d = 0.0;
   // Per step, the texel and the unprojection of (uv, depth), with what does not change
   // hoisted: the target's size, and the inverse matrix applied to texture
@@ -87,7 +87,7 @@ bool frame_hit(vec3 origin, vec4 o, vec4 e, mat4 inverse_view_projection, sample
   ivec2 size = textureSize(frame_depth, 0);
   mat4 m = inverse_view_projection;
   vec4 mu = 2.0 * m[0], mv = 2.0 * m[1], mz = 2.0 * m[2], m1 = m[3] - m[0] - m[1] - m[2];
-  for (int k = 0; k < kFrameHitIterations; ++k) {
+  for (int k = 0; k < iterations; ++k) {
     if (!clip_to_screen(o + d * e, uv)) return false;
     float scene = texel_at(frame_depth, size, uv).r;
     if (scene >= 1.0) return false;
@@ -95,6 +95,31 @@ bool frame_hit(vec3 origin, vec4 o, vec4 e, mat4 inverse_view_projection, sample
     d = length(b.xyz - origin * b.w) / abs(b.w);
   }
   return clip_to_screen(o + d * e, uv);
+}
+
+// The opaque frame where the mirror direction `dir` from a thick transmissive surface at
+// `origin` meets it (a screen-space reflection: frame_hit's search, as for the exit ray),
+// read at the blur `lod`; false where the ray leaves the screen, goes behind the camera,
+// meets the background, or where the search has not settled: the frame's surface where it
+// ends lies more than kReflectionTolerance of the distance from the ray's point (a ray
+// bent steeply onto a surface seen at a grazing angle, where the steps oscillate). There
+// the split sum's environment is what the surface reflects.
+const int kReflectionIterations = 8;
+const float kReflectionTolerance = 0.05;
+bool reflected_frame(vec3 origin, vec3 dir, mat4 view_projection, mat4 inverse_view_projection,
+                     sampler2D frame_depth, sampler2D frame, float lod, out vec3 seen) {
+  seen = vec3(0.0);
+  vec2 uv;
+  float d;
+  if (!frame_hit(origin, view_projection * vec4(origin, 1.0), view_projection * vec4(dir, 0.0),
+                 inverse_view_projection, frame_depth, kReflectionIterations, uv, d))
+    return false;
+  float scene = texel_at(frame_depth, uv).r;
+  vec4 q = inverse_view_projection * vec4(vec3(uv, scene) * 2.0 - 1.0, 1.0);
+  if (scene >= 1.0 || distance(q.xyz / q.w, origin + d * dir) > kReflectionTolerance * d)
+    return false;
+  seen = textureLod(frame, uv, lod).rgb;
+  return true;
 }
 
 // The back faces of the object being drawn (renderer.cpp's back-face pass): world position
@@ -233,7 +258,8 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
                        view_projection);
   vec2 uv;
   float t_hit;
-  bool hit = frame_hit(r.origin, r.o, r.e, inverse_view_projection, frame_depth, uv, t_hit);
+  bool hit = frame_hit(r.origin, r.o, r.e, inverse_view_projection, frame_depth,
+                       kFrameHitIterations, uv, t_hit);
   // Where the exit point lies behind the frame's surface, the light leaves into that
   // surface: a body resting on a floor sends the rays it reflects totally down to the floor,
   // and a segment carried past its back faces (exit_ray's kInsideSegments) can end under the

@@ -42,19 +42,52 @@ std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase
   return eval(cases, function, view_projection);
 }
 
+namespace {
+
+// A single-level float texture of `width` x `height` texels, bilinear (level 0 alone is
+// complete with these filters), bound to `unit`.
+GLuint bind_float_texture(int unit, GLenum internal, GLenum format, int width, int height,
+                          const float* data) {
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, 1, internal, width, height);
+  glTextureSubImage2D(texture, 0, 0, 0, width, height, format, GL_FLOAT, data);
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glBindTextureUnit(GLuint(unit), texture);
+  return texture;
+}
+
+void unbind_texture(int unit, GLuint texture) {
+  glBindTextureUnit(GLuint(unit), 0);
+  glDeleteTextures(1, &texture);
+}
+
+}  // namespace
+
 std::vector<glm::vec4> eval_frame_hit_glsl(const std::vector<TransmissionCase>& cases,
                                            const FrameDepth& depth,
                                            const glm::mat4& view_projection) {
   if (cases.empty()) return {};
-  GLuint texture = 0;
-  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
-  glTextureStorage2D(texture, 1, GL_R32F, depth.width, depth.height);
-  glTextureSubImage2D(texture, 0, 0, 0, depth.width, depth.height, GL_RED, GL_FLOAT,
-                      depth.depth.data());
-  glBindTextureUnit(1, texture);
+  const GLuint texture =
+      bind_float_texture(1, GL_R32F, GL_RED, depth.width, depth.height, depth.depth.data());
   std::vector<glm::vec4> out = eval(cases, TransmissionFunction::kFrameHit, view_projection);
-  glBindTextureUnit(1, 0);
-  glDeleteTextures(1, &texture);
+  unbind_texture(1, texture);
+  return out;
+}
+
+std::vector<glm::vec4> eval_reflected_frame_glsl(const std::vector<TransmissionCase>& cases,
+                                                 const FrameDepth& depth,
+                                                 const std::vector<glm::vec4>& colors,
+                                                 const glm::mat4& view_projection) {
+  if (cases.empty()) return {};
+  const GLuint depth_texture =
+      bind_float_texture(1, GL_R32F, GL_RED, depth.width, depth.height, depth.depth.data());
+  const GLuint color_texture =
+      bind_float_texture(2, GL_RGBA32F, GL_RGBA, depth.width, depth.height, &colors.front().x);
+  std::vector<glm::vec4> out = eval(cases, TransmissionFunction::kReflectedFrame, view_projection);
+  unbind_texture(2, color_texture);
+  unbind_texture(1, depth_texture);
   return out;
 }
 

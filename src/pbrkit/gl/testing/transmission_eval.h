@@ -45,6 +45,9 @@ enum class TransmissionFunction {
   /// frame_hit(origin = n, direction = v, eval_frame_hit_glsl's depth) -> (uv, d, 1 where
   /// it meets the frame)
   kFrameHit = 9,
+  /// reflected_frame(origin = n, direction = v, eval_reflected_frame_glsl's depth and
+  /// colours, level 0) -> (the colour read, 1 where it reads the frame)
+  kReflectedFrame = 10,
 };
 
 /// `function` of transmission.glsl for every case, read back as one vec4 each.
@@ -64,5 +67,13 @@ struct FrameDepth {
 std::vector<glm::vec4> eval_frame_hit_glsl(const std::vector<TransmissionCase>& cases,
                                            const FrameDepth& depth,
                                            const glm::mat4& view_projection);
+
+/// thick_refraction.glsl's reflected_frame for every case (origin `n`, unit direction `v`)
+/// in the frame of depths `depth` and RGBA colours `colors` (the same size and row order),
+/// seen through `view_projection`: (the colour read at level 0, 1 where it reads the frame).
+std::vector<glm::vec4> eval_reflected_frame_glsl(const std::vector<TransmissionCase>& cases,
+                                                 const FrameDepth& depth,
+                                                 const std::vector<glm::vec4>& colors,
+                                                 const glm::mat4& view_projection);
 
 }  // namespace pbrkit::gl

@@ -26,7 +26,8 @@ uniform int uFunction;  // transmission_eval.h's TransmissionFunction
 uniform mat4 uViewProjection;
 uniform mat4 uInverseViewProjection;
 layout(binding = 0) uniform sampler2D uEnergy;      // make_brdf's argument; not read
-layout(binding = 1) uniform sampler2D uFrameDepth;  // frame_hit's depth (function 9)
+layout(binding = 1) uniform sampler2D uFrameDepth;  // frame_hit's depth (functions 9, 10)
+layout(binding = 2) uniform sampler2D uFrame;       // reflected_frame's colours (function 10)
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -64,8 +65,13 @@ void main() {
     float d;
     bool hit = frame_hit(origin, uViewProjection * vec4(origin, 1.0),
                          uViewProjection * vec4(dir, 0.0), uInverseViewProjection, uFrameDepth,
-                         uv, d);
+                         kFrameHitIterations, uv, d);
     r = vec4(uv, d, hit ? 1.0 : 0.0);
+  } else if (uFunction == 10) {
+    vec3 seen;
+    bool found = reflected_frame(c.n_ior.xyz, c.v_thickness.xyz, uViewProjection,
+                                 uInverseViewProjection, uFrameDepth, uFrame, 0.0, seen);
+    r = vec4(seen, found ? 1.0 : 0.0);
   } else {
     vec2 uv;
     r.z = project_to_screen(uViewProjection, c.n_ior.xyz, uv) ? 1.0 : 0.0;
