@@ -293,21 +293,25 @@ TEST(ThickRefractionGlsl, FrameSearchMeetsAFloorWhereItsFixedPointContracts) {
 
 // reflected_frame against the closed form of a ray meeting the floor of FloorFrame, whose
 // colours are its world positions: rays in every direction from points above the floor.
-// Where it reads the frame, the search has settled within kReflectionTolerance = 5% of its
-// distance d onto the floor, so its ray point lies at most 0.05 d from the floor and the
-// point read at most 0.05 d (1 + 1 / |e_y|) from the exact hit (moved along the ray onto
-// the floor), plus the depth buffer's and the bilinear read's texel footprints. Where it
-// cannot be the floor (a rising ray, a hit off the screen or off the floor, one behind the
-// camera), it must read nothing: the environment is what the surface reflects then. Where
-// the floor is there, the search settles for most rays close to the view direction (the
-// fixed point of frame_hit contracts there) and for few across it, which then reflect the
-// environment as before: measured, of the rays within 40 degrees of the view direction
-// 77% read the floor, of those 40-80 degrees off 38%, and beyond, 3%.
+// Where it reads the frame, the search has settled within kSettledTolerance = 10% of its
+// distance d onto the floor, so its ray point lies at most 0.1 d from the floor and the
+// point read at most 0.1 d (1 + 1 / |e_y|) from the exact hit (moved along the ray onto
+// the floor), plus the depth buffer's and the bilinear read's texel footprints; that holds
+// too for a ray that meets the floor's plane just off the screen or off the floor, which may
+// read the floor's edge within that bound. A rising ray, one that meets the plane far off
+// the screen or the floor, or behind the camera must read nothing: the environment is what
+// the surface reflects then. Where
+// the floor is there, frame_hit's fixed point settles for most rays close to the view
+// direction and for few across it (alone, within 5%: 77% of the rays within 40 degrees of the
+// view direction, 38% of those 40-80 degrees off, 3% beyond); frame_march, where it has not
+// settled, reads the floor for most of the others (together, within 10%, measured: 92%, 78%,
+// 80%). The rest reflect the environment.
 TEST(ThickRefractionGlsl, ReflectionReadsTheFloorWhereTheMirrorRayMeetsIt) {
   testing::context();
   const FloorFrame frame;
   struct Expected {
     bool may_meet;  ///< the floor, on the screen
+    bool near;      ///< the floor's plane, off the screen or the floor by at most the bound
     glm::dvec3 hit;
     double t, ey, footprint, angle;  ///< angle: between the ray and the view direction
   };
@@ -324,7 +328,7 @@ TEST(ThickRefractionGlsl, ReflectionReadsTheFloorWhereTheMirrorRayMeetsIt) {
             TransmissionCase c;
             c.n = glm::vec3(origin);
             c.v = glm::vec3(e);
-            Expected want{false, glm::dvec3(0.0), 0.0, e.y, 0.0, 0.0};
+            Expected want{false, false, glm::dvec3(0.0), 0.0, e.y, 0.0, 0.0};
             if (e.y < 0.0) {
               want.t = -origin.y / e.y;
               want.hit = origin + want.t * e;
@@ -340,18 +344,28 @@ TEST(ThickRefractionGlsl, ReflectionReadsTheFloorWhereTheMirrorRayMeetsIt) {
                               glm::dot(glm::dvec3(frame.eye) - origin, w) < 0.0;
               want.footprint = frame.footprint(want.hit);
               want.angle = std::acos(std::clamp(glm::dot(w, e), -1.0, 1.0)) * 180.0 / kPi;
+              // The floor's plane in front of the camera, off the screen or the floor: a read
+              // of the floor's edge must lie within the bound of the hit.
+              want.near = !want.may_meet && glm::dot(glm::dvec3(frame.eye) - origin, w) < 0.0;
             }
             cases.push_back(c);
             expected.push_back(want);
           }
   const auto got = eval_reflected_frame_glsl(cases, frame.depth, frame.position, frame.vp);
-  int none = 0;
+  int none = 0, edge = 0;
   std::array<int, 3> meets{}, read{};  // within 40 degrees of the view direction, 40-80, beyond
   double worst = 0.0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     const Expected& want = expected[i];
     const bool found = got[i].w == 1.0f;
+    const double bound = 0.1 * want.t * (1.0 + 1.0 / std::abs(want.ey)) + 3.0 * want.footprint;
+    const double error = glm::length(glm::dvec3(got[i]) - want.hit);
     if (!want.may_meet) {
+      if (want.near && found) {
+        EXPECT_LE(error, bound) << "case " << i << ": the floor's edge, t " << want.t;
+        ++edge;
+        continue;
+      }
       EXPECT_FALSE(found) << "case " << i << ": no floor on the screen along the ray";
       none += !found;
       continue;
@@ -360,19 +374,18 @@ TEST(ThickRefractionGlsl, ReflectionReadsTheFloorWhereTheMirrorRayMeetsIt) {
     ++meets[band];
     if (!found) continue;
     ++read[band];
-    const double bound = 0.05 * want.t * (1.0 + 1.0 / std::abs(want.ey)) + 3.0 * want.footprint;
-    const double error = glm::length(glm::dvec3(got[i]) - want.hit);
     worst = std::max(worst, error / bound);
     EXPECT_LE(error, bound) << "case " << i << ", t " << want.t;
   }
   std::printf(
       "reflected_frame: %zu rays; of those that meet the floor on the screen, read it: %d of %d "
       "within 40 degrees of the view direction, %d of %d 40-80 degrees off, %d of %d beyond; "
-      "worst error %.2f of its bound; %d read nothing as they must\n",
-      cases.size(), read[0], meets[0], read[1], meets[1], read[2], meets[2], worst, none);
+      "worst error %.2f of its bound; %d read nothing as they must, %d the floor's edge\n",
+      cases.size(), read[0], meets[0], read[1], meets[1], read[2], meets[2], worst, none, edge);
   EXPECT_GE(none, 1500);
-  EXPECT_GE(read[0], 0.7 * meets[0]);
-  EXPECT_GE(read[1], 0.3 * meets[1]);
+  EXPECT_GE(read[0], 0.85 * meets[0]);
+  EXPECT_GE(read[1], 0.7 * meets[1]);
+  EXPECT_GE(read[2], 0.7 * meets[2]);
 }
 
 }  // namespace

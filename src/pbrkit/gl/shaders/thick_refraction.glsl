@@ -97,27 +97,95 @@ bool frame_hit(vec3 origin, vec4 o, vec4 e, mat4 inverse_view_projection, sample
   return clip_to_screen(o + d * e, uv);
 }
 
+// The length of the part of the ray o + d e (clip space) inside the view frustum's sides and
+// far plane, from d = 0: where it leaves the screen or goes beyond the far plane.
+float on_screen_length(vec4 o, vec4 e) {
+  float len = 1e30;
+  vec4 planes[5] = vec4[5](vec4(1, 0, 0, 1), vec4(-1, 0, 0, 1), vec4(0, 1, 0, 1),
+                           vec4(0, -1, 0, 1), vec4(0, 0, -1, 1));
+  for (int i = 0; i < 5; ++i) {
+    float po = dot(planes[i], o), pe = dot(planes[i], e);
+    if (pe < 0.0) len = min(len, max(po, 0.0) / -pe);
+  }
+  return len;
+}
+
+// Where the ray o + d e (clip space) first passes behind the frame's surface: a march over
+// the ray's on-screen length in kMarchSteps steps, denser near the origin (d_k ~ k^2), then
+// kMarchBisections halvings of the step that crossed. Unlike frame_hit's fixed point it does
+// not depend on the ray's angle to the view direction; it can stop at a depth
+// discontinuity (a ray passing behind a nearer object), which the caller's settling test
+// rejects. Runs only while `running` (a loop, not a branch: a software rasteriser skips a
+// loop whose lanes are all inactive but runs both sides of a branch).
+const int kMarchSteps = 12;
+const int kMarchBisections = 4;
+bool frame_march(vec4 o, vec4 e, sampler2D frame_depth, bool running, out vec2 uv, out float d) {
+  ivec2 size = textureSize(frame_depth, 0);
+  float len = on_screen_length(o, e);
+  float front = 0.0, back = -1.0;
+  uv = vec2(0.0);
+  d = 0.0;
+  for (int k = 1; k <= kMarchSteps && running; ++k) {
+    float dk = len * float(k * k) / float(kMarchSteps * kMarchSteps);
+    vec4 c = o + dk * e;
+    vec2 u;
+    if (!clip_to_screen(c, u)) break;
+    if (c.z / c.w * 0.5 + 0.5 >= texel_at(frame_depth, size, u).r) {
+      back = dk;
+      running = false;
+    } else {
+      front = dk;
+    }
+  }
+  for (int k = 0; k < kMarchBisections && back >= 0.0; ++k) {
+    float mid = 0.5 * (front + back);
+    vec4 c = o + mid * e;
+    vec2 u;
+    clip_to_screen(c, u);
+    if (c.z / c.w * 0.5 + 0.5 >= texel_at(frame_depth, size, u).r)
+      back = mid;
+    else
+      front = mid;
+  }
+  d = back;
+  return back >= 0.0 && clip_to_screen(o + d * e, uv);
+}
+
+// Whether a search along the ray from `origin` (world) along `dir` that ended at distance d
+// and texture coordinates uv found the frame's surface: the surface seen there lies within
+// kSettledTolerance d of the ray's point at d. Not so where frame_hit's steps oscillate (a
+// ray far from the view direction) or frame_march stopped at a depth discontinuity.
+const float kSettledTolerance = 0.1;
+bool settled_on_frame(vec3 origin, vec3 dir, vec2 uv, float d, mat4 inverse_view_projection,
+                      sampler2D frame_depth) {
+  float scene = texel_at(frame_depth, uv).r;
+  vec4 q = inverse_view_projection * vec4(vec3(uv, scene) * 2.0 - 1.0, 1.0);
+  return scene < 1.0 && distance(q.xyz / q.w, origin + d * dir) <= kSettledTolerance * d;
+}
+
 // The opaque frame where the mirror direction `dir` from a thick transmissive surface at
-// `origin` meets it (a screen-space reflection: frame_hit's search, as for the exit ray),
-// read at the blur `lod`; false where the ray leaves the screen, goes behind the camera,
-// meets the background, or where the search has not settled: the frame's surface where it
-// ends lies more than kReflectionTolerance of the distance from the ray's point (a ray
-// bent steeply onto a surface seen at a grazing angle, where the steps oscillate). There
-// the split sum's environment is what the surface reflects.
+// `origin` meets it (a screen-space reflection: frame_hit's search, as for the exit ray, and
+// frame_march where it has not settled), read at the blur `lod`; false where the ray leaves
+// the screen, goes behind the camera, meets the background, or neither search settles
+// (settled_on_frame). There the split sum's environment is what the surface reflects.
 const int kReflectionIterations = 8;
-const float kReflectionTolerance = 0.05;
 bool reflected_frame(vec3 origin, vec3 dir, mat4 view_projection, mat4 inverse_view_projection,
                      sampler2D frame_depth, sampler2D frame, float lod, out vec3 seen) {
   seen = vec3(0.0);
+  vec4 o = view_projection * vec4(origin, 1.0), e = view_projection * vec4(dir, 0.0);
   vec2 uv;
   float d;
-  if (!frame_hit(origin, view_projection * vec4(origin, 1.0), view_projection * vec4(dir, 0.0),
-                 inverse_view_projection, frame_depth, kReflectionIterations, uv, d))
-    return false;
-  float scene = texel_at(frame_depth, uv).r;
-  vec4 q = inverse_view_projection * vec4(vec3(uv, scene) * 2.0 - 1.0, 1.0);
-  if (scene >= 1.0 || distance(q.xyz / q.w, origin + d * dir) > kReflectionTolerance * d)
-    return false;
+  bool settled = frame_hit(origin, o, e, inverse_view_projection, frame_depth,
+                           kReflectionIterations, uv, d) &&
+                 settled_on_frame(origin, dir, uv, d, inverse_view_projection, frame_depth);
+  vec2 uv_march;
+  float d_march;
+  if (frame_march(o, e, frame_depth, !settled, uv_march, d_march) &&
+      settled_on_frame(origin, dir, uv_march, d_march, inverse_view_projection, frame_depth)) {
+    settled = true;
+    uv = uv_march;
+  }
+  if (!settled) return false;
   seen = textureLod(frame, uv, lod).rgb;
   return true;
 }
@@ -271,6 +339,22 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
       hit = true;
       uv = uv_exit;
       t_hit = 0.0;
+    }
+  }
+  // Where frame_hit's steps have not settled (an exit ray bent far from the view direction:
+  // the block's rays reflected down to the floor inside it) or found nothing, the march; where
+  // it finds nothing either, frame_hit's estimate or the environment as before.
+  {
+    bool settled = hit && (t_hit == 0.0 || settled_on_frame(r.origin, r.dir, uv, t_hit,
+                                                            inverse_view_projection, frame_depth));
+    vec2 uv_march;
+    float d_march;
+    if (frame_march(r.o, r.e, frame_depth, !settled, uv_march, d_march) &&
+        settled_on_frame(r.origin, r.dir, uv_march, d_march, inverse_view_projection,
+                         frame_depth)) {
+      hit = true;
+      uv = uv_march;
+      t_hit = d_march;
     }
   }
   vec3 result = exit_radiance(t, r, ior, hit, uv, frame, frame_size, env_cube, env_rotation,

@@ -45,7 +45,8 @@ std::vector<glm::vec4> eval_transmission_glsl(const std::vector<TransmissionCase
 namespace {
 
 // A single-level float texture of `width` x `height` texels, bilinear (level 0 alone is
-// complete with these filters), bound to `unit`.
+// complete with these filters) and clamped to its edges as the renderer's captures are,
+// bound to `unit`.
 GLuint bind_float_texture(int unit, GLenum internal, GLenum format, int width, int height,
                           const float* data) {
   GLuint texture = 0;
@@ -54,6 +55,8 @@ GLuint bind_float_texture(int unit, GLenum internal, GLenum format, int width, i
   glTextureSubImage2D(texture, 0, 0, 0, width, height, format, GL_FLOAT, data);
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glBindTextureUnit(GLuint(unit), texture);
   return texture;
 }
