@@ -115,8 +115,9 @@ float on_screen_length(vec4 o, vec4 e) {
 // kMarchBisections halvings of the step that crossed. Unlike frame_hit's fixed point it does
 // not depend on the ray's angle to the view direction; it can stop at a depth
 // discontinuity (a ray passing behind a nearer object), which the caller's settling test
-// rejects. Runs only while `running` (a loop, not a branch: a software rasteriser skips a
-// loop whose lanes are all inactive but runs both sides of a branch).
+// rejects. Runs while `running`, as the loop's condition rather than a branch around it: a
+// software rasteriser runs both sides of a branch, but leaves a loop once all its lanes have
+// (on llvmpipe 6, 8 and 12 steps cost the same frame time within 3%).
 const int kMarchSteps = 12;
 const int kMarchBisections = 4;
 bool frame_march(vec4 o, vec4 e, sampler2D frame_depth, bool running, out vec2 uv, out float d) {
