@@ -291,6 +291,93 @@ TEST(ThickRefractionGlsl, FrameSearchMeetsAFloorWhereItsFixedPointContracts) {
   EXPECT_GE(missed, 20);
 }
 
+// frame_march against the closed form of a ray meeting the floor of FloorFrame: rays in
+// every direction from points above it. Unlike frame_hit's fixed point, the march finds the
+// floor whatever the ray's angle to the view direction: every ray whose hit lies on the
+// floor and on the screen is found, at a distance within the last step's bisected bracket
+// (the march's longest step, (2 x 12 - 1) / 12^2 of the ray's on-screen length, halved four
+// times) plus the depth buffer's texel along the ray; and no rising ray, nor one whose hit
+// is off the screen or off the floor, finds anything. The on-screen length is found here by
+// stepping the ray's projection, not by the shader's frustum planes.
+TEST(ThickRefractionGlsl, MarchMeetsTheFloorAtAnyAngle) {
+  testing::context();
+  const FloorFrame frame;
+  struct Expected {
+    int meets;  ///< 1: the floor on the screen; 0: nothing; -1: at an edge, either
+    double t, bound;
+  };
+  std::vector<TransmissionCase> cases;
+  std::vector<Expected> expected;
+  for (double x : {-1.0, 0.0, 1.0})
+    for (double z : {-1.0, 0.0, 1.0})
+      for (double height : {0.1, 0.5})
+        for (int el = -85; el <= 30; el += 5)
+          for (int az = 0; az < 360; az += 30) {
+            const glm::dvec3 origin(x, height, z);
+            const double a = el * kPi / 180.0, b = az * kPi / 180.0;
+            const glm::dvec3 e(std::cos(a) * std::sin(b), std::sin(a), std::cos(a) * std::cos(b));
+            auto on_screen = [&](double d) {
+              const glm::dvec3 p = origin + d * e;
+              const glm::vec4 clip = frame.vp * glm::vec4(glm::vec3(p), 1.0f);
+              const glm::dvec2 uv = frame.uv(p);
+              return clip.w > 0.0f && uv.x >= 0.0 && uv.x <= 1.0 && uv.y >= 0.0 && uv.y <= 1.0;
+            };
+            double length = 0.0;  // where the ray leaves the screen, to 1e-3 (or 200)
+            while (length < 200.0 && on_screen(length + 1e-3)) length += 1e-3;
+            Expected want{0, 0.0, 0.0};
+            // A nearly level ray passes the floor's far part within its depth texels'
+            // resolution (one texel there spans half a unit of floor at a grazing angle):
+            // either answer.
+            if (e.y >= 0.0 && e.y < 0.05) want.meets = -1;
+            if (e.y < 0.0) {
+              want.t = -origin.y / e.y;
+              const glm::dvec3 hit = origin + want.t * e;
+              const glm::dvec2 uv = frame.uv(hit);
+              const double margin = 2.0 / kSize;
+              const bool inside =
+                  std::min(uv.x, uv.y) > margin && std::max(uv.x, uv.y) < 1.0 - margin;
+              const bool far_inside = std::abs(hit.x) < 9.9 && std::abs(hit.z) < 9.9;
+              want.bound =
+                  length * 23.0 / (144.0 * 16.0) + 2.0 * frame.footprint(hit) / std::abs(e.y);
+              // Met where the ray goes on under the floor, by more than the bound, before it
+              // leaves the screen; a ray that leaves it just past the hit is below the floor
+              // by less than a depth texel's resolution there: either answer.
+              if (inside && far_inside && want.t + want.bound < length)
+                want.meets = 1;
+              else if (inside || std::abs(want.t - length) < 0.05 * want.t + want.bound)
+                want.meets = -1;  // at the screen's or the floor's edge
+            }
+            TransmissionCase c;
+            c.n = glm::vec3(origin);
+            c.v = glm::vec3(e);
+            cases.push_back(c);
+            expected.push_back(want);
+          }
+  const auto got = eval_frame_march_glsl(cases, frame.depth, frame.vp);
+  int found = 0, none = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Expected& want = expected[i];
+    if (want.meets < 0) continue;
+    if (want.meets == 0) {
+      EXPECT_EQ(got[i].w, 0.0f) << "case " << i << ": nothing to meet on the screen";
+      none += got[i].w == 0.0f;
+      continue;
+    }
+    EXPECT_EQ(got[i].w, 1.0f) << "case " << i << ", t " << want.t;
+    if (got[i].w != 1.0f) continue;
+    ++found;
+    worst = std::max(worst, std::abs(got[i].z - want.t) / want.bound);
+    EXPECT_NEAR(got[i].z, want.t, want.bound) << "case " << i;
+  }
+  std::printf(
+      "frame_march: %zu rays, %d meet the floor on the screen and found it (worst error "
+      "%.2f of its bound), %d meet nothing and found nothing\n",
+      cases.size(), found, worst, none);
+  EXPECT_GE(found, 1500);
+  EXPECT_GE(none, 1400);
+}
+
 // reflected_frame against the closed form of a ray meeting the floor of FloorFrame, whose
 // colours are its world positions: rays in every direction from points above the floor.
 // Where it reads the frame, the search has settled within kSettledTolerance = 10% of its

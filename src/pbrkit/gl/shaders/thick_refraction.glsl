@@ -122,7 +122,8 @@ const int kMarchSteps = 12;
 const int kMarchBisections = 4;
 bool frame_march(vec4 o, vec4 e, sampler2D frame_depth, bool running, out vec2 uv, out float d) {
   ivec2 size = textureSize(frame_depth, 0);
-  float len = on_screen_length(o, e);
+  // A hair short of the screen's edge, so that the last step's point projects onto it.
+  float len = 0.999 * on_screen_length(o, e);
   float front = 0.0, back = -1.0;
   uv = vec2(0.0);
   d = 0.0;

@@ -68,15 +68,31 @@ void unbind_texture(int unit, GLuint texture) {
 
 }  // namespace
 
-std::vector<glm::vec4> eval_frame_hit_glsl(const std::vector<TransmissionCase>& cases,
-                                           const FrameDepth& depth,
-                                           const glm::mat4& view_projection) {
+namespace {
+
+std::vector<glm::vec4> eval_with_depth(const std::vector<TransmissionCase>& cases,
+                                       TransmissionFunction function, const FrameDepth& depth,
+                                       const glm::mat4& view_projection) {
   if (cases.empty()) return {};
   const GLuint texture =
       bind_float_texture(1, GL_R32F, GL_RED, depth.width, depth.height, depth.depth.data());
-  std::vector<glm::vec4> out = eval(cases, TransmissionFunction::kFrameHit, view_projection);
+  std::vector<glm::vec4> out = eval(cases, function, view_projection);
   unbind_texture(1, texture);
   return out;
+}
+
+}  // namespace
+
+std::vector<glm::vec4> eval_frame_hit_glsl(const std::vector<TransmissionCase>& cases,
+                                           const FrameDepth& depth,
+                                           const glm::mat4& view_projection) {
+  return eval_with_depth(cases, TransmissionFunction::kFrameHit, depth, view_projection);
+}
+
+std::vector<glm::vec4> eval_frame_march_glsl(const std::vector<TransmissionCase>& cases,
+                                             const FrameDepth& depth,
+                                             const glm::mat4& view_projection) {
+  return eval_with_depth(cases, TransmissionFunction::kFrameMarch, depth, view_projection);
 }
 
 std::vector<glm::vec4> eval_reflected_frame_glsl(const std::vector<TransmissionCase>& cases,

@@ -48,6 +48,9 @@ enum class TransmissionFunction {
   /// reflected_frame(origin = n, direction = v, eval_reflected_frame_glsl's depth and
   /// colours, level 0) -> (the colour read, 1 where it reads the frame)
   kReflectedFrame = 10,
+  /// frame_march(origin = n, direction = v, eval_frame_hit_glsl's depth) -> (uv, d, 1 where
+  /// it passes behind the frame's surface)
+  kFrameMarch = 11,
 };
 
 /// `function` of transmission.glsl for every case, read back as one vec4 each.
@@ -67,6 +70,12 @@ struct FrameDepth {
 std::vector<glm::vec4> eval_frame_hit_glsl(const std::vector<TransmissionCase>& cases,
                                            const FrameDepth& depth,
                                            const glm::mat4& view_projection);
+
+/// thick_refraction.glsl's frame_march for every case (origin `n`, unit direction `v`)
+/// against `depth`, seen through `view_projection`: (uv, d, 1 where it found a crossing).
+std::vector<glm::vec4> eval_frame_march_glsl(const std::vector<TransmissionCase>& cases,
+                                             const FrameDepth& depth,
+                                             const glm::mat4& view_projection);
 
 /// thick_refraction.glsl's reflected_frame for every case (origin `n`, unit direction `v`)
 /// in the frame of depths `depth` and RGBA colours `colors` (the same size and row order),

@@ -26,7 +26,7 @@ uniform int uFunction;  // transmission_eval.h's TransmissionFunction
 uniform mat4 uViewProjection;
 uniform mat4 uInverseViewProjection;
 layout(binding = 0) uniform sampler2D uEnergy;      // make_brdf's argument; not read
-layout(binding = 1) uniform sampler2D uFrameDepth;  // frame_hit's depth (functions 9, 10)
+layout(binding = 1) uniform sampler2D uFrameDepth;  // the frame's depth (functions 9-11)
 layout(binding = 2) uniform sampler2D uFrame;       // reflected_frame's colours (function 10)
 
 void main() {
@@ -66,6 +66,12 @@ void main() {
     bool hit = frame_hit(origin, uViewProjection * vec4(origin, 1.0),
                          uViewProjection * vec4(dir, 0.0), uInverseViewProjection, uFrameDepth,
                          kFrameHitIterations, uv, d);
+    r = vec4(uv, d, hit ? 1.0 : 0.0);
+  } else if (uFunction == 11) {
+    vec2 uv;
+    float d;
+    bool hit = frame_march(uViewProjection * vec4(c.n_ior.xyz, 1.0),
+                           uViewProjection * vec4(c.v_thickness.xyz, 0.0), uFrameDepth, true, uv, d);
     r = vec4(uv, d, hit ? 1.0 : 0.0);
   } else if (uFunction == 10) {
     vec3 seen;
