@@ -112,13 +112,13 @@ struct SurfaceFeatures {
   }
 };
 
-/// The renderer's programs: the surface program per SurfaceFeatures, the background's per
-/// MODE (0 environment, 1 blurred, 2 colour; background_fragment.glsl) and the display
-/// transform's per ToneMapper. Needs the current GL context for its whole life.
 /// Sets `f`'s transmission features (transmission, volume, dispersion, diffuse
 /// transmission) for material `m` on a mesh that is closed or not.
 void set_transmission_features(const Material& m, bool closed, SurfaceFeatures& f);
 
+/// The renderer's programs: the surface program per SurfaceFeatures, the background's per
+/// MODE (0 environment, 1 blurred, 2 colour; background_fragment.glsl) and the display
+/// transform's per ToneMapper. Needs the current GL context for its whole life.
 class ShaderPermutations {
  public:
   /// Compiles the default surface program and the three background programs.
