@@ -330,6 +330,8 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
   float t_hit;
   bool hit = frame_hit(r.origin, r.o, r.e, inverse_view_projection, frame_depth,
                        kFrameHitIterations, uv, t_hit);
+  bool settled =
+      hit && settled_on_frame(r.origin, r.dir, uv, t_hit, inverse_view_projection, frame_depth);
   // Where the exit point lies behind the frame's surface, the light leaves into that
   // surface: a body resting on a floor sends the rays it reflects totally down to the floor,
   // and a segment carried past its back faces (exit_ray's kInsideSegments) can end under the
@@ -338,7 +340,7 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
   if (!hit && clip_to_screen(r.o, uv_exit)) {
     float scene = texel_at(frame_depth, uv_exit).r;
     if (scene < 1.0 && r.o.z / r.o.w * 0.5 + 0.5 > scene) {
-      hit = true;
+      hit = settled = true;
       uv = uv_exit;
       t_hit = 0.0;
     }
@@ -346,18 +348,14 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
   // Where frame_hit's steps have not settled (an exit ray bent far from the view direction:
   // the block's rays reflected down to the floor inside it) or found nothing, the march; where
   // it finds nothing either, frame_hit's estimate or the environment as before.
-  {
-    bool settled = hit && (t_hit == 0.0 || settled_on_frame(r.origin, r.dir, uv, t_hit,
-                                                            inverse_view_projection, frame_depth));
-    vec2 uv_march;
-    float d_march;
-    if (frame_march(r.o, r.e, frame_depth, !settled, uv_march, d_march) &&
-        settled_on_frame(r.origin, r.dir, uv_march, d_march, inverse_view_projection,
-                         frame_depth)) {
-      hit = true;
-      uv = uv_march;
-      t_hit = d_march;
-    }
+  vec2 uv_march;
+  float d_march;
+  if (frame_march(r.o, r.e, frame_depth, !settled, uv_march, d_march) &&
+      settled_on_frame(r.origin, r.dir, uv_march, d_march, inverse_view_projection,
+                       frame_depth)) {
+    hit = true;
+    uv = uv_march;
+    t_hit = d_march;
   }
   vec3 result = exit_radiance(t, r, ior, hit, uv, frame, frame_size, env_cube, env_rotation,
                               env_levels, env_scale);
