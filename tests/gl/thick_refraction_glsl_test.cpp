@@ -211,6 +211,22 @@ struct FloorFrame {
   }
 };
 
+// The rays of the march and reflection tests, in every direction from points above the
+// floor: origins at x, z in {-1, 0, 1} and heights 0.1 and 0.5, elevations -85 to 30
+// degrees in steps of 5, azimuths every 30 degrees; f(origin, unit direction) for each.
+template <class F>
+void for_each_ray_above_floor(F&& f) {
+  for (double x : {-1.0, 0.0, 1.0})
+    for (double z : {-1.0, 0.0, 1.0})
+      for (double height : {0.1, 0.5})
+        for (int el = -85; el <= 30; el += 5)
+          for (int az = 0; az < 360; az += 30) {
+            const double a = el * kPi / 180.0, b = az * kPi / 180.0;
+            f(glm::dvec3(x, height, z),
+              glm::dvec3(std::cos(a) * std::sin(b), std::sin(a), std::cos(a) * std::cos(b)));
+          }
+}
+
 // frame_hit against the closed form of a ray meeting a plane: a floor (y = 0, 20 x 20) seen
 // from above in a depth buffer written here, rays from points above it. The search iterates
 // d <- g(d), the distance to the frame's surface point seen where the ray's point at d
@@ -308,51 +324,42 @@ TEST(ThickRefractionGlsl, MarchMeetsTheFloorAtAnyAngle) {
   };
   std::vector<TransmissionCase> cases;
   std::vector<Expected> expected;
-  for (double x : {-1.0, 0.0, 1.0})
-    for (double z : {-1.0, 0.0, 1.0})
-      for (double height : {0.1, 0.5})
-        for (int el = -85; el <= 30; el += 5)
-          for (int az = 0; az < 360; az += 30) {
-            const glm::dvec3 origin(x, height, z);
-            const double a = el * kPi / 180.0, b = az * kPi / 180.0;
-            const glm::dvec3 e(std::cos(a) * std::sin(b), std::sin(a), std::cos(a) * std::cos(b));
-            auto on_screen = [&](double d) {
-              const glm::dvec3 p = origin + d * e;
-              const glm::vec4 clip = frame.vp * glm::vec4(glm::vec3(p), 1.0f);
-              const glm::dvec2 uv = frame.uv(p);
-              return clip.w > 0.0f && uv.x >= 0.0 && uv.x <= 1.0 && uv.y >= 0.0 && uv.y <= 1.0;
-            };
-            double length = 0.0;  // where the ray leaves the screen, to 1e-3 (or 200)
-            while (length < 200.0 && on_screen(length + 1e-3)) length += 1e-3;
-            Expected want{0, 0.0, 0.0};
-            // A nearly level ray passes the floor's far part within its depth texels'
-            // resolution (one texel there spans half a unit of floor at a grazing angle):
-            // either answer.
-            if (e.y >= 0.0 && e.y < 0.05) want.meets = -1;
-            if (e.y < 0.0) {
-              want.t = -origin.y / e.y;
-              const glm::dvec3 hit = origin + want.t * e;
-              const glm::dvec2 uv = frame.uv(hit);
-              const double margin = 2.0 / kSize;
-              const bool inside =
-                  std::min(uv.x, uv.y) > margin && std::max(uv.x, uv.y) < 1.0 - margin;
-              const bool far_inside = std::abs(hit.x) < 9.9 && std::abs(hit.z) < 9.9;
-              want.bound =
-                  length * 23.0 / (144.0 * 16.0) + 2.0 * frame.footprint(hit) / std::abs(e.y);
-              // Met where the ray goes on under the floor, by more than the bound, before it
-              // leaves the screen; a ray that leaves it just past the hit is below the floor
-              // by less than a depth texel's resolution there: either answer.
-              if (inside && far_inside && want.t + want.bound < length)
-                want.meets = 1;
-              else if (inside || std::abs(want.t - length) < 0.05 * want.t + want.bound)
-                want.meets = -1;  // at the screen's or the floor's edge
-            }
-            TransmissionCase c;
-            c.n = glm::vec3(origin);
-            c.v = glm::vec3(e);
-            cases.push_back(c);
-            expected.push_back(want);
-          }
+  for_each_ray_above_floor([&](glm::dvec3 origin, glm::dvec3 e) {
+    auto on_screen = [&](double d) {
+      const glm::dvec3 p = origin + d * e;
+      const glm::vec4 clip = frame.vp * glm::vec4(glm::vec3(p), 1.0f);
+      const glm::dvec2 uv = frame.uv(p);
+      return clip.w > 0.0f && uv.x >= 0.0 && uv.x <= 1.0 && uv.y >= 0.0 && uv.y <= 1.0;
+    };
+    double length = 0.0;  // where the ray leaves the screen, to 1e-3 (or 200)
+    while (length < 200.0 && on_screen(length + 1e-3)) length += 1e-3;
+    Expected want{0, 0.0, 0.0};
+    // A nearly level ray passes the floor's far part within its depth texels'
+    // resolution (one texel there spans half a unit of floor at a grazing angle):
+    // either answer.
+    if (e.y >= 0.0 && e.y < 0.05) want.meets = -1;
+    if (e.y < 0.0) {
+      want.t = -origin.y / e.y;
+      const glm::dvec3 hit = origin + want.t * e;
+      const glm::dvec2 uv = frame.uv(hit);
+      const double margin = 2.0 / kSize;
+      const bool inside = std::min(uv.x, uv.y) > margin && std::max(uv.x, uv.y) < 1.0 - margin;
+      const bool far_inside = std::abs(hit.x) < 9.9 && std::abs(hit.z) < 9.9;
+      want.bound = length * 23.0 / (144.0 * 16.0) + 2.0 * frame.footprint(hit) / std::abs(e.y);
+      // Met where the ray goes on under the floor, by more than the bound, before it
+      // leaves the screen; a ray that leaves it just past the hit is below the floor
+      // by less than a depth texel's resolution there: either answer.
+      if (inside && far_inside && want.t + want.bound < length)
+        want.meets = 1;
+      else if (inside || std::abs(want.t - length) < 0.05 * want.t + want.bound)
+        want.meets = -1;  // at the screen's or the floor's edge
+    }
+    TransmissionCase c;
+    c.n = glm::vec3(origin);
+    c.v = glm::vec3(e);
+    cases.push_back(c);
+    expected.push_back(want);
+  });
   const auto got = eval_frame_march_glsl(cases, frame.depth, frame.vp);
   int found = 0, none = 0;
   double worst = 0.0;
@@ -404,40 +411,31 @@ TEST(ThickRefractionGlsl, ReflectionReadsTheFloorWhereTheMirrorRayMeetsIt) {
   };
   std::vector<TransmissionCase> cases;
   std::vector<Expected> expected;
-  for (double x : {-1.0, 0.0, 1.0})
-    for (double z : {-1.0, 0.0, 1.0})
-      for (double height : {0.1, 0.5})
-        for (int el = -85; el <= 30; el += 5)
-          for (int az = 0; az < 360; az += 30) {
-            const glm::dvec3 origin(x, height, z);
-            const double a = el * kPi / 180.0, b = az * kPi / 180.0;
-            const glm::dvec3 e(std::cos(a) * std::sin(b), std::sin(a), std::cos(a) * std::cos(b));
-            TransmissionCase c;
-            c.n = glm::vec3(origin);
-            c.v = glm::vec3(e);
-            Expected want{false, false, glm::dvec3(0.0), 0.0, e.y, 0.0, 0.0};
-            if (e.y < 0.0) {
-              want.t = -origin.y / e.y;
-              want.hit = origin + want.t * e;
-              const glm::dvec2 uv = frame.uv(want.hit);
-              const double margin = 2.0 / kSize;
-              const bool inside =
-                  std::min(uv.x, uv.y) > margin && std::max(uv.x, uv.y) < 1.0 - margin;
-              const bool outside =
-                  std::min(uv.x, uv.y) < -margin || std::max(uv.x, uv.y) > 1.0 + margin;
-              if (!inside && !outside) continue;  // at the screen's edge either way
-              const glm::dvec3 w = glm::normalize(want.hit - glm::dvec3(frame.eye));
-              want.may_meet = inside && FloorFrame::on_floor(want.hit) &&
-                              glm::dot(glm::dvec3(frame.eye) - origin, w) < 0.0;
-              want.footprint = frame.footprint(want.hit);
-              want.angle = std::acos(std::clamp(glm::dot(w, e), -1.0, 1.0)) * 180.0 / kPi;
-              // The floor's plane in front of the camera, off the screen or the floor: a read
-              // of the floor's edge must lie within the bound of the hit.
-              want.near = !want.may_meet && glm::dot(glm::dvec3(frame.eye) - origin, w) < 0.0;
-            }
-            cases.push_back(c);
-            expected.push_back(want);
-          }
+  for_each_ray_above_floor([&](glm::dvec3 origin, glm::dvec3 e) {
+    TransmissionCase c;
+    c.n = glm::vec3(origin);
+    c.v = glm::vec3(e);
+    Expected want{false, false, glm::dvec3(0.0), 0.0, e.y, 0.0, 0.0};
+    if (e.y < 0.0) {
+      want.t = -origin.y / e.y;
+      want.hit = origin + want.t * e;
+      const glm::dvec2 uv = frame.uv(want.hit);
+      const double margin = 2.0 / kSize;
+      const bool inside = std::min(uv.x, uv.y) > margin && std::max(uv.x, uv.y) < 1.0 - margin;
+      const bool outside = std::min(uv.x, uv.y) < -margin || std::max(uv.x, uv.y) > 1.0 + margin;
+      if (!inside && !outside) return;  // at the screen's edge either way
+      const glm::dvec3 w = glm::normalize(want.hit - glm::dvec3(frame.eye));
+      want.may_meet = inside && FloorFrame::on_floor(want.hit) &&
+                      glm::dot(glm::dvec3(frame.eye) - origin, w) < 0.0;
+      want.footprint = frame.footprint(want.hit);
+      want.angle = std::acos(std::clamp(glm::dot(w, e), -1.0, 1.0)) * 180.0 / kPi;
+      // The floor's plane in front of the camera, off the screen or the floor: a read
+      // of the floor's edge must lie within the bound of the hit.
+      want.near = !want.may_meet && glm::dot(glm::dvec3(frame.eye) - origin, w) < 0.0;
+    }
+    cases.push_back(c);
+    expected.push_back(want);
+  });
   const auto got = eval_reflected_frame_glsl(cases, frame.depth, frame.position, frame.vp);
   int none = 0, edge = 0;
   std::array<int, 3> meets{}, read{};  // within 40 degrees of the view direction, 40-80, beyond
