@@ -282,11 +282,7 @@ TEST(ThickRefractionGlsl, FrameSearchMeetsAFloorWhereItsFixedPointContracts) {
           }
           const glm::dvec3 w = glm::normalize(hit - glm::dvec3(eye));
           const double slope = 1.0 - glm::dot(n, e) * glm::dot(e, w) / glm::dot(n, w);
-          // One texel's width on the floor at the hit: its angle times the distance, over
-          // the cosine of the view ray with the floor's normal.
-          const double footprint = 2.0 * std::tan(kFov / 2.0) / kSize *
-                                   glm::length(hit - glm::dvec3(eye)) / std::abs(glm::dot(n, w));
-          expected.push_back({inside && on_floor(hit), t, slope, footprint});
+          expected.push_back({inside && on_floor(hit), t, slope, frame.footprint(hit)});
         }
   const auto got = eval_frame_hit_glsl(cases, depth, vp);
   int contracting = 0, missed = 0;
