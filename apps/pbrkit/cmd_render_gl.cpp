@@ -37,6 +37,7 @@ struct GlOptions {
   bool no_lights = false;
   bool no_glass_shadows = false;
   bool no_glass_reflections = false;
+  bool opaque_shadows = false;
   std::string channel{gl::debug_channel_name(gl::DebugChannel::kNone)};
 };
 
@@ -84,6 +85,12 @@ RenderRunner add_gl_render_options(CLI::App& render) {
                 "(the Khronos Sample Viewer's image)")
       ->group(group);
   render
+      .add_flag("--opaque-shadows", g->opaque_shadows,
+                "opaque objects shadow the environment's light on other surfaces too, and light "
+                "them with their own (a proxy per object, the 16 largest spheres and boxes; "
+                "closer to the path tracer, further from the Khronos Sample Viewer)")
+      ->group(group);
+  render
       .add_flag("--no-glass-reflections", g->no_glass_reflections,
                 "thick glass reflects the environment alone, not the scene around it on the "
                 "screen (the Khronos Sample Viewer's image)")
@@ -114,6 +121,7 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     settings.lights = !g->no_lights;
     settings.transmissive_shadows = !g->no_glass_shadows;
     settings.transmissive_reflections = !g->no_glass_reflections;
+    settings.opaque_shadows = g->opaque_shadows;
     settings.debug_channel = gl::parse_debug_channel(g->channel);
     // A debug channel's values are shown as they are (the Sample Viewer's debug outputs).
     const bool raw = settings.debug_channel != gl::DebugChannel::kNone;

@@ -117,6 +117,7 @@ const std::map<std::string, std::string> kValidValues = {
     {"--no-ibl", ""},
     {"--no-lights", ""},
     {"--no-glass-shadows", ""},
+    {"--opaque-shadows", ""},
     {"--no-glass-reflections", ""},
     {"--channel", "normal"},
 };

@@ -14,6 +14,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_test_context.h"
+#include "pbrkit/core/equirect.h"
 #include "pbrkit/gl/occluders.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/gl/testing/occluder_eval.h"
@@ -291,52 +292,38 @@ TEST(OccluderTransmittance, GlassLetsThroughWhatItsInterfacesDoNotReflect) {
   EXPECT_FLOAT_EQ(occluder_transmittance(clear, false, 1.0f).y, 0.0f);
 }
 
-// A white rough floor under a tinted glass sphere (radius 0.5, centre 1.2 above the floor:
-// wholly above every floor point's horizon), in a white environment, seen from low at the
-// side. The image-based light is linear in the visibility, so with the shadows on and off
-// the ratio at a floor pixel is 1 - F (1 - T): F the closed-form sphere factor at the floor
-// point the pixel's ray meets, T the sphere's transmittance. Pixels that see the sphere (or
-// the floor through it) are left out.
-TEST(TransmissiveShadows, AFloorUnderAGlassSphereKeepsOneMinusFTimesOneMinusT) {
+// A white rough floor (12 x 12 at y = 0) with `object` (its mesh and transform; material
+// `material`, `textures` the scene's) in environment `env`, seen from `eye` towards the
+// origin, rendered with the settings `on` and `off`. For each floor pixel whose ray does not
+// pass near the object (`near(eye, direction)`: the object and its silhouette's pixels, and
+// the floor seen through it, are left out), check(pixel, floor point, ratio) with `ratio`
+// the on / off ratio per channel. Returns the pixels checked.
+template <class Near, class Check>
+int floor_ratios(Mesh object, const glm::mat4& transform, const Material& material,
+                 std::vector<Texture> textures, const Environment& env, glm::vec3 eye,
+                 const RenderSettings& on_settings, const RenderSettings& off_settings, Near near,
+                 Check check) {
   testing::context();
   constexpr int kW = 96, kH = 64;
-  const float radius = 0.5f;
-  const glm::vec3 centre(0.0f, 1.2f, 0.0f);
   Scene scene;
   Material floor;
   floor.metallic_factor = 0.0f;
   floor.roughness_factor = 1.0f;
-  Material glass;
-  glass.metallic_factor = 0.0f;
-  glass.roughness_factor = 0.0f;
-  glass.transmission = TransmissionExtension{1.0f, {}};
-  glass.volume = VolumeExtension{1.0f, {}, 0.5f, glm::vec3(0.3f, 0.6f, 0.9f)};
-  scene.materials = {floor, glass};
+  scene.materials = {floor, material};
+  scene.textures = std::move(textures);
   add_mesh_instance(scene,
                     make_quad(glm::vec3(-6, 0, 6), glm::vec3(12, 0, 0), glm::vec3(0, 0, -12)), 0);
-  add_mesh_instance(scene, make_uv_sphere(radius), 1, glm::translate(glm::mat4(1.0f), centre));
+  add_mesh_instance(scene, std::move(object), 1, transform);
   Camera camera;
   camera.yfov = 0.9f;
-  const glm::vec3 eye(0.0f, 0.5f, 3.5f);
   camera.camera_to_world =
       glm::inverse(glm::lookAt(eye, glm::vec3(0.0f, 0.0f, 0.0f), glm::vec3(0.0f, 1.0f, 0.0f)));
-  const Environment env = Environment::constant(glm::vec3(1.0f));
   const IblMaps maps = testing::small_ibl_maps(env);
-  RenderSettings settings;
-  settings.msaa = 1;
-  const Image on = render_headless(scene, camera, kW, kH, &env, &maps, settings);
-  settings.transmissive_shadows = false;
-  const Image off = render_headless(scene, camera, kW, kH, &env, &maps, settings);
-
-  // The sphere's transmittance: two interfaces of ior 1.5 and Beer-Lambert over its mean
-  // chord 4 r / 3.
-  const double leave = 1.0 - diffuse_reflectance(1.5);
-  const glm::dvec3 T =
-      leave * leave * glm::pow(glm::dvec3(0.3, 0.6, 0.9), glm::dvec3(4.0 * radius / 3.0 / 0.5));
+  const Image on = render_headless(scene, camera, kW, kH, &env, &maps, on_settings);
+  const Image off = render_headless(scene, camera, kW, kH, &env, &maps, off_settings);
   const glm::mat4 inv_vp =
       glm::inverse(projection_matrix(camera, float(kW) / kH) * view_matrix(camera));
-  int counted = 0, shadowed = 0;
-  double worst = 0.0;
+  int counted = 0;
   for (int y = 0; y < kH; ++y)
     for (int x = 0; x < kW; ++x) {
       // The pixel's ray (image row 0 is the top).
@@ -344,28 +331,187 @@ TEST(TransmissiveShadows, AFloorUnderAGlassSphereKeepsOneMinusFTimesOneMinusT) {
       // A point on the pixel's ray (the projection's far plane is at infinity).
       const glm::vec4 far = inv_vp * glm::vec4(ndc, 0.5f, 1.0f);
       const glm::dvec3 d = glm::normalize(glm::dvec3(far) / double(far.w) - glm::dvec3(eye));
-      if (d.y >= 0.0) continue;
-      // Leave out rays that pass near the sphere (and its silhouette's pixels).
-      if (ray_meets_sphere(glm::dvec3(eye), d, glm::dvec3(centre), radius * 1.15)) continue;
+      if (d.y >= 0.0 || near(glm::dvec3(eye), d)) continue;
       const glm::dvec3 p = glm::dvec3(eye) - double(eye.y) / d.y * d;
       if (std::abs(p.x) > 5.5 || std::abs(p.z) > 5.5) continue;
-      const glm::dvec3 w = glm::dvec3(centre) - p;
-      const double dist = glm::length(w);
-      const double F = double(radius) * radius / (dist * dist) * (w.y / dist);
-      for (int k = 0; k < 3; ++k) {
-        const double ratio = double(on.rgb(x, y)[k]) / double(off.rgb(x, y)[k]);
-        const double want = 1.0 - F * (1.0 - T[k]);
-        worst = std::max(worst, std::abs(ratio - want));
-        EXPECT_NEAR(ratio, want, 4e-3) << "pixel " << x << "," << y << " channel " << k;
-      }
+      check(glm::ivec2(x, y), p, glm::dvec3(on.rgb(x, y)) / glm::dvec3(off.rgb(x, y)));
       ++counted;
-      shadowed += F > 0.05 ? 1 : 0;
     }
+  return counted;
+}
+
+// floor_ratios for a sphere of `material` (radius 0.5, centre 1.2 above the floor: wholly
+// above every floor point's horizon) in a white environment, seen from low at the side:
+// check(pixel, F, ratio) with F the closed-form sphere factor at the floor point.
+template <class Check>
+int floor_under_sphere(const Material& material, std::vector<Texture> textures,
+                       const RenderSettings& on_settings, const RenderSettings& off_settings,
+                       Check check) {
+  const float radius = 0.5f;
+  const glm::dvec3 centre(0.0, 1.2, 0.0);
+  return floor_ratios(
+      make_uv_sphere(radius), glm::translate(glm::mat4(1.0f), glm::vec3(centre)), material,
+      std::move(textures), Environment::constant(glm::vec3(1.0f)), glm::vec3(0.0f, 0.5f, 3.5f),
+      on_settings, off_settings,
+      [&](glm::dvec3 eye, glm::dvec3 d) { return ray_meets_sphere(eye, d, centre, radius * 1.15); },
+      [&](glm::ivec2 px, glm::dvec3 p, glm::dvec3 ratio) {
+        const glm::dvec3 w = centre - p;
+        const double dist = glm::length(w);
+        check(px, double(radius) * radius / (dist * dist) * (w.y / dist), ratio);
+      });
+}
+
+// Under a tinted glass sphere the image-based light is linear in the visibility, so with
+// the shadows on and off the ratio at a floor pixel is 1 - F (1 - T), T the sphere's
+// transmittance.
+TEST(TransmissiveShadows, AFloorUnderAGlassSphereKeepsOneMinusFTimesOneMinusT) {
+  const float radius = 0.5f;
+  Material glass;
+  glass.metallic_factor = 0.0f;
+  glass.roughness_factor = 0.0f;
+  glass.transmission = TransmissionExtension{1.0f, {}};
+  glass.volume = VolumeExtension{1.0f, {}, 0.5f, glm::vec3(0.3f, 0.6f, 0.9f)};
+  // The sphere's transmittance: two interfaces of ior 1.5 and Beer-Lambert over its mean
+  // chord 4 r / 3.
+  const double leave = 1.0 - diffuse_reflectance(1.5);
+  const glm::dvec3 T =
+      leave * leave * glm::pow(glm::dvec3(0.3, 0.6, 0.9), glm::dvec3(4.0 * radius / 3.0 / 0.5));
+  RenderSettings on;
+  on.msaa = 1;
+  RenderSettings off = on;
+  off.transmissive_shadows = false;
+  int shadowed = 0;
+  double worst = 0.0;
+  const int counted =
+      floor_under_sphere(glass, {}, on, off, [&](glm::ivec2 px, double F, glm::dvec3 ratio) {
+        for (int k = 0; k < 3; ++k) {
+          const double want = 1.0 - F * (1.0 - T[k]);
+          worst = std::max(worst, std::abs(ratio[k] - want));
+          EXPECT_NEAR(ratio[k], want, 4e-3) << "pixel " << px.x << "," << px.y << " channel " << k;
+        }
+        shadowed += F > 0.05 ? 1 : 0;
+      });
   std::printf(
       "floor under a glass sphere: %d pixels (%d with F > 0.05), worst |ratio - "
       "(1 - F (1 - T))| %.2e\n",
       counted, shadowed, worst);
   EXPECT_GE(counted, 1000);
+  EXPECT_GE(shadowed, 100);
+}
+
+// Under an opaque sphere (opaque shadows), the floor keeps 1 - F of the white environment
+// and gets F times the sphere's own light back: its albedo (the base colour factor times its
+// texture's mean) times the irradiance pi of every one of its sides, over pi. So the ratio
+// is 1 - F + F albedo; in the red channel, whose albedo is 1, a white furnace: the floor
+// keeps all its light.
+TEST(OpaqueShadows, AFloorUnderAnOpaqueSphereKeepsOneMinusFPlusFTimesItsAlbedo) {
+  Material rock;
+  rock.metallic_factor = 0.0f;
+  rock.roughness_factor = 1.0f;
+  rock.base_color_factor = glm::vec4(1.0f, 0.5f, 0.5f, 1.0f);
+  rock.base_color_texture.texture = 0;
+  // Two texels, linear (1, 0.4, 0.2) and (1, 0.8, 0.6): mean (1, 0.6, 0.4).
+  Image texels(2, 1, 3);
+  texels.data = {1.0f, 0.4f, 0.2f, 1.0f, 0.8f, 0.6f};
+  const glm::dvec3 albedo(1.0, 0.5 * 0.6, 0.5 * 0.4);
+  RenderSettings on;
+  on.msaa = 1;
+  on.opaque_shadows = true;
+  RenderSettings off = on;
+  off.opaque_shadows = false;
+  int shadowed = 0;
+  double worst = 0.0;
+  const int counted = floor_under_sphere(
+      rock, {Texture::from_linear(texels, false)}, on, off,
+      [&](glm::ivec2 px, double F, glm::dvec3 ratio) {
+        for (int k = 0; k < 3; ++k) {
+          const double want = 1.0 - F + F * albedo[k];
+          worst = std::max(worst, std::abs(ratio[k] - want));
+          EXPECT_NEAR(ratio[k], want, 4e-3) << "pixel " << px.x << "," << px.y << " channel " << k;
+        }
+        shadowed += F > 0.05 ? 1 : 0;
+      });
+  std::printf(
+      "floor under an opaque sphere: %d pixels (%d with F > 0.05), worst |ratio - "
+      "(1 - F + F albedo)| %.2e\n",
+      counted, shadowed, worst);
+  EXPECT_GE(counted, 1000);
+  EXPECT_GE(shadowed, 100);
+}
+
+// Each side of an opaque proxy sends back albedo E(N) / pi, E the environment's irradiance
+// at the side's outward normal N. A floor beside a wall (a box resting on it, turned about
+// +Y) under a sky (radiance 1 over the upper half of the environment, 0 below) keeps 1 - F
+// of its irradiance pi (the sky is uniform over what the wall hides) and sees the wall's
+// vertical sides, of irradiance pi / 2 (a uniform hemisphere's, in closed form), not its
+// base or its top: the ratio is 1 - F + F albedo / 2, F the box's form factor
+// (occluder_form_factors.glsl's, measured against the exact one above).
+TEST(OpaqueShadows, AFloorBesideAWallSeesItsLitSides) {
+  Environment sky = Environment::constant(glm::vec3(1.0f), 128);
+  for (int y = sky.map.height / 2; y < sky.map.height; ++y)
+    for (int x = 0; x < sky.map.width; ++x) {
+      float* p = sky.map.pixel(x, y);  // row 0 is the zenith
+      p[0] = p[1] = p[2] = 0.0f;
+    }
+  Material wall;
+  wall.metallic_factor = 0.0f;
+  wall.roughness_factor = 1.0f;
+  wall.base_color_factor = glm::vec4(0.9f, 0.5f, 0.1f, 1.0f);
+  const glm::vec3 centre(0.3f, 1.0f, -1.2f), half(2.0f, 1.0f, 0.15f);
+  const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(0, 1, 0));
+  const glm::mat4 transform = glm::translate(glm::mat4(1.0f), centre) * turn;
+  FormFactorCase wall_case;
+  wall_case.sphere = false;
+  wall_case.center = centre;
+  for (int k = 0; k < 3; ++k) wall_case.axes[k] = glm::vec3(turn[k]) * half[k];
+  RenderSettings on;
+  on.msaa = 1;
+  on.opaque_shadows = true;
+  RenderSettings off = on;
+  off.opaque_shadows = false;
+  std::vector<FormFactorCase> cases;
+  std::vector<glm::dvec3> ratios;
+  const glm::mat4 to_wall = glm::inverse(transform);
+  floor_ratios(
+      make_box(-half, half), transform, wall, {}, sky, glm::vec3(0.0f, 1.6f, 4.0f), on, off,
+      [&](glm::dvec3 eye, glm::dvec3 d) {
+        // The ray in the wall's frame against the box grown by 10%: the slab test.
+        const glm::dvec3 o = glm::dvec3(to_wall * glm::vec4(eye, 1.0f));
+        const glm::dvec3 v = glm::dvec3(glm::mat3(to_wall) * glm::vec3(d));
+        double t0 = 0.0, t1 = 1e30;
+        for (int k = 0; k < 3; ++k) {
+          const double h = 1.1 * half[k] + 0.05;
+          const double a = (-h - o[k]) / v[k], b = (h - o[k]) / v[k];
+          t0 = std::max(t0, std::min(a, b));
+          t1 = std::min(t1, std::max(a, b));
+        }
+        return t0 <= t1;
+      },
+      [&](glm::ivec2, glm::dvec3 p, glm::dvec3 ratio) {
+        FormFactorCase c = wall_case;
+        c.x = glm::vec3(p);
+        c.n = glm::vec3(0, 1, 0);
+        cases.push_back(c);
+        ratios.push_back(ratio);
+      });
+  testing::context();
+  const std::vector<float> F = form_factors_glsl(cases);
+  int shadowed = 0;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const double want = 1.0 - F[i] + F[i] * wall.base_color_factor[k] / 2.0;
+      worst = std::max(worst, std::abs(ratios[i][k] - want));
+      EXPECT_NEAR(ratios[i][k], want, 5e-3)
+          << "floor point " << cases[i].x.x << "," << cases[i].x.z << " channel " << k;
+    }
+    shadowed += F[i] > 0.05f ? 1 : 0;
+  }
+  std::printf(
+      "floor beside a wall under a sky: %zu pixels (%d with F > 0.05), worst |ratio - "
+      "(1 - F + F albedo / 2)| %.2e\n",
+      cases.size(), shadowed, worst);
+  EXPECT_GE(cases.size(), std::size_t(1000));
   EXPECT_GE(shadowed, 100);
 }
 

@@ -45,6 +45,13 @@ struct RenderSettings {
   /// glass is lit only through it, as in the path tracer. Off: every surface sees the whole
   /// environment, as the Khronos Sample Viewer's do.
   bool transmissive_shadows = true;
+  /// The environment's light on a surface is also shadowed by the opaque objects around it,
+  /// each a proxy like a transmissive object's that hides part of the surface's hemisphere
+  /// and sends back its own diffusely reflected environment light (MODEL.md "Shadows of
+  /// opaque objects"): a floor beside a wall is lit by less of the sky and by the wall, as
+  /// in the path tracer. Off by default: the Khronos Sample Viewer has no such shadows, and
+  /// every opaque fragment pays a form factor per proxy.
+  bool opaque_shadows = false;
   /// A thick transmissive surface (KHR_materials_volume) reflects the opaque frame where its
   /// mirror direction meets it on the screen (a screen-space reflection: the wall or floor
   /// the path tracer's reflected rays meet), and the environment elsewhere. Off: it

@@ -57,6 +57,20 @@ void upload_level(GLuint tex, const Texture& t, int level, const T* src, GLenum 
   glTextureSubImage2D(tex, level, 0, 0, l.width, l.height, GL_RGBA, type, rgba.data());
 }
 
+// The mean linear RGB of `t`, from its smallest level (1x1 for a whole chain), over at
+// most 64 x 64 of its texels evenly spread.
+glm::vec3 texture_mean(const Texture& t) {
+  if (t.empty()) return glm::vec3(1.0f);
+  const int level = int(t.levels.size()) - 1;
+  const int w = t.levels.back().width, h = t.levels.back().height;
+  const int nx = std::min(w, 64), ny = std::min(h, 64);
+  glm::dvec3 sum(0.0);
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x)
+      sum += glm::dvec3(glm::vec3(t.texel(level, x * w / nx, y * h / ny)));
+  return glm::vec3(sum / double(nx * ny));
+}
+
 // A texture's own mip chain at its precision: 8-bit as GL_SRGB8_ALPHA8 (colour) or
 // GL_RGBA8, which GL decodes to linear before filtering as Texture::sample does (OpenGL 4.6
 // section 8.24); 16-bit data as GL_RGBA16; 16-bit colour (GL has no 16-bit sRGB format)
@@ -183,6 +197,7 @@ void GpuScene::upload(const Scene& scene) {
     glTextureParameteri(tex, GL_TEXTURE_WRAP_S, wrap_mode(t.sampler.wrap_s));
     glTextureParameteri(tex, GL_TEXTURE_WRAP_T, wrap_mode(t.sampler.wrap_t));
     textures.push_back(tex);
+    texture_means.push_back(texture_mean(t));
   }
   materials = scene.materials;
   instances = scene.instances;
@@ -238,6 +253,7 @@ void GpuScene::release() {
   instance_buffer = 0;
   if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
   textures.clear();
+  texture_means.clear();
 }
 
 const Material& GpuScene::material_of(const GpuMesh& mesh) const {

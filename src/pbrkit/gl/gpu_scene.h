@@ -48,6 +48,9 @@ inline constexpr GLuint kInstanceBufferBinding = 3;
 struct GpuScene {
   std::vector<GpuMesh> meshes;
   std::vector<GLuint> textures;
+  /// Each texture's mean linear RGB (white for an empty one): the albedo of an opaque
+  /// object's proxy (occluders.h's opaque_albedo).
+  std::vector<glm::vec3> texture_means;
   std::vector<Material> materials;
   std::vector<Instance> instances;
   std::vector<Light> lights;

@@ -73,7 +73,14 @@ glm::vec3 occluder_transmittance(const Material& m, bool volume, float chord) {
   return glm::clamp(through, 0.0f, 1.0f);
 }
 
-std::vector<Occluder> ibl_occluders(const GpuScene& scene) {
+glm::vec3 opaque_albedo(const Material& m, std::span<const glm::vec3> texture_means) {
+  glm::vec3 albedo = glm::vec3(m.base_color_factor);
+  const int t = m.base_color_texture.texture;
+  if (t >= 0 && std::size_t(t) < texture_means.size()) albedo *= texture_means[std::size_t(t)];
+  return glm::clamp(albedo, 0.0f, 1.0f);
+}
+
+std::vector<Occluder> ibl_occluders(const GpuScene& scene, OccluderKinds kinds) {
   std::vector<Occluder> out;
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& inst = scene.instances[i];
@@ -82,11 +89,17 @@ std::vector<Occluder> ibl_occluders(const GpuScene& scene) {
     const Material& m = scene.material_of(g);
     SurfaceFeatures f;  // the permutation it is drawn with says whether it transmits
     set_transmission_features(m, g.closed, f);
-    if ((!f.transmission && !f.diffuse_transmission) || g.index_count == 0) continue;
+    const bool opaque = !f.transmission && !f.diffuse_transmission;
+    // A blended or masked surface lets some light through where its alpha says so: not a
+    // solid proxy.
+    if ((opaque ? !kinds.opaque || m.alpha_mode != AlphaMode::kOpaque : !kinds.transmissive) ||
+        g.index_count == 0)
+      continue;
     const bool volume = f.volume;
     const glm::mat4& M = inst.transform;
     Occluder o;
     o.slot = int(scene.slot_of[i]);
+    o.opaque = opaque;
     const glm::vec3 half = 0.5f * (g.bounds_max - g.bounds_min);
     glm::vec3 axes[3];
     for (int k = 0; k < 3; ++k) axes[k] = glm::vec3(M[k]) * half[k];
@@ -108,7 +121,12 @@ std::vector<Occluder> ibl_occluders(const GpuScene& scene) {
       const float surface = a * b + b * c + c * a;
       chord = surface > 0.0f ? 4.0f * a * b * c / surface : 0.0f;
     }
-    o.transmittance = occluder_transmittance(m, volume, chord);
+    if (opaque) {
+      o.transmittance = glm::vec3(0.0f);
+      o.albedo = opaque_albedo(m, scene.texture_means);
+    } else {
+      o.transmittance = occluder_transmittance(m, volume, chord);
+    }
     // A proxy written into a shader must be finite (a degenerate transform is not).
     if (!std::isfinite(o.radius + glm::dot(o.center, o.center) + o.faces.areas.x + o.faces.areas.y +
                        o.faces.areas.z))
@@ -129,6 +147,9 @@ std::vector<Occluder> select_occluders(std::span<const Occluder> all, glm::ivec2
   keep_largest(spheres, [](const Occluder& o) { return o.radius; });
   keep_largest(
       boxes, [](const Occluder& o) { return o.faces.areas.x + o.faces.areas.y + o.faces.areas.z; });
+  // The opaque ones last of each kind: only they send light back (occluders.glsl).
+  for (auto* v : {&spheres, &boxes})
+    std::stable_partition(v->begin(), v->end(), [](const Occluder& o) { return !o.opaque; });
   counts = glm::ivec2(int(spheres.size()), int(boxes.size()));
   spheres.insert(spheres.end(), boxes.begin(), boxes.end());
   return spheres;
@@ -140,13 +161,23 @@ std::string occluder_geometry_define(std::span<const Occluder> selected) {
     d += fmt::format("{}vec4({:.9g}, {:.9g}, {:.9g}, {:.9g})", first ? "" : ", ", v.x, v.y, v.z,
                      v.w);
   };
+  int first_opaque[2] = {0, 0};  // of the spheres, of the parallelepipeds
   for (std::size_t i = 0; i < selected.size(); ++i) {
     const Occluder& o = selected[i];
     add(glm::vec4(o.center, float(o.slot)), i == 0);
     for (const glm::vec4& n : o.faces.normals) add(n, false);
     add(glm::vec4(o.faces.areas, o.radius), false);
+    if (!o.opaque) first_opaque[o.sphere ? 0 : 1] = int(i) + 1;
   }
-  return d + ")\n";
+  // select_occluders puts each kind's opaque ones last; a kind without transmissive ones
+  // starts its opaque ones at its first index.
+  const int spheres = int(
+      std::count_if(selected.begin(), selected.end(), [](const Occluder& o) { return o.sphere; }));
+  if (first_opaque[1] == 0) first_opaque[1] = spheres;
+  return d + fmt::format(
+                 ")\n#define OCCLUDER_FIRST_OPAQUE_SPHERE {}\n"
+                 "#define OCCLUDER_FIRST_OPAQUE_BOX {}\n",
+                 first_opaque[0], first_opaque[1]);
 }
 
 GpuOccluderBuffer::GpuOccluderBuffer() {
@@ -158,10 +189,15 @@ GpuOccluderBuffer::~GpuOccluderBuffer() {
 }
 
 void GpuOccluderBuffer::upload(std::span<const Occluder> selected) {
-  // The shader's block has room for kMaxOccluders of each kind.
-  std::vector<glm::vec4> data(2 * std::size_t(kMaxOccluders), glm::vec4(1.0f));
-  for (std::size_t i = 0; i < selected.size() && i < data.size(); ++i)
+  // The shader's block (occluders.glsl's Occluders) has room for kMaxOccluders of each kind:
+  // their transmittances, then their albedos (an opaque one's; 0 sends nothing back).
+  const std::size_t n = 2 * std::size_t(kMaxOccluders);
+  std::vector<glm::vec4> data(2 * n, glm::vec4(0.0f));
+  std::fill(data.begin(), data.begin() + std::ptrdiff_t(n), glm::vec4(1.0f));
+  for (std::size_t i = 0; i < selected.size() && i < n; ++i) {
     data[i] = glm::vec4(selected[i].transmittance, 0.0f);
+    data[n + i] = glm::vec4(selected[i].opaque ? selected[i].albedo : glm::vec3(0.0f), 0.0f);
+  }
   glNamedBufferData(buffer_, GLsizeiptr(data.size() * sizeof(glm::vec4)), data.data(),
                     GL_STREAM_DRAW);
   bind();

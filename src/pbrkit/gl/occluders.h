@@ -31,7 +31,7 @@ struct ParallelepipedFaces {
 /// largest half-axis, so that its extents still bound it.
 ParallelepipedFaces parallelepiped_faces(const glm::vec3 axes[3]);
 
-/// One proxy of a transmissive instance (occluders.glsl).
+/// One proxy of a transmissive or opaque instance (occluders.glsl).
 struct Occluder {
   bool sphere = false;
   glm::vec3 center{0.0f};
@@ -39,6 +39,20 @@ struct Occluder {
   ParallelepipedFaces faces;  ///< a parallelepiped's
   glm::vec3 transmittance{1.0f};
   int slot = 0;  ///< the instance's slot (gpu_scene.h): a surface is not shadowed by its own
+  /// An opaque object's proxy (RenderSettings::opaque_shadows): it lets nothing through and
+  /// reflects `albedo` of the environment light that reaches its sides, diffusely: a side
+  /// of outward normal N sends albedo E(N) / pi, E the environment's irradiance there
+  /// (occluders.glsl's side_radiance; the light other objects hide from it is not taken
+  /// off).
+  bool opaque = false;
+  glm::vec3 albedo{0.0f};
+};
+
+/// Which instances stand in as proxies.
+struct OccluderKinds {
+  bool transmissive = true;  ///< RenderSettings::transmissive_shadows
+  bool opaque = false;       ///< RenderSettings::opaque_shadows
+  bool operator==(const OccluderKinds&) const = default;
 };
 
 /// The share of a uniform environment's light a transmissive material lets through an
@@ -50,19 +64,28 @@ struct Occluder {
 glm::vec3 occluder_transmittance(const Material& m, bool volume, float chord);
 
 /// One proxy per instance of `scene` whose material transmits light (KHR_materials_
-/// transmission or _diffuse_transmission): a sphere where the mesh is one (GpuMesh::
-/// sphere_radius) and the instance scales it uniformly, else its bounding box as a
-/// parallelepiped. Its transmittance is occluder_transmittance's over the body's mean chord,
-/// 4 V / S (Cauchy's formula for a convex body).
-std::vector<Occluder> ibl_occluders(const GpuScene& scene);
+/// transmission or _diffuse_transmission) where `kinds.transmissive`, and per other instance
+/// where `kinds.opaque`: a sphere where the mesh is one (GpuMesh::sphere_radius) and the
+/// instance scales it uniformly, else its bounding box as a parallelepiped. A transmissive
+/// one's transmittance is occluder_transmittance's over the body's mean chord, 4 V / S
+/// (Cauchy's formula for a convex body); an opaque one's is 0, and its albedo
+/// opaque_albedo's.
+std::vector<Occluder> ibl_occluders(const GpuScene& scene, OccluderKinds kinds = {});
+
+/// The share of the light reaching an opaque surface of material `m` that it sends back,
+/// for its proxy: the base colour (its factor times its texture's mean, `texture_means`:
+/// GpuScene's), which a rough dielectric's diffuse lobe and specular lobe reflect together
+/// to within its F_avg, and a metal's specular lobe reflects.
+glm::vec3 opaque_albedo(const Material& m, std::span<const glm::vec3> texture_means);
 
 /// What a frame compiles in: at most kMaxOccluders of each kind, the largest (a sphere's
-/// radius, a parallelepiped's surface), spheres first; `counts` the spheres' and the
-/// parallelepipeds' numbers.
+/// radius, a parallelepiped's surface), spheres first, and of each kind the transmissive
+/// ones before the opaque ones; `counts` the spheres' and the parallelepipeds' numbers.
 std::vector<Occluder> select_occluders(std::span<const Occluder> all, glm::ivec2& counts);
 
 /// The selection's geometry as occluders.glsl's OCCLUDER_GEOMETRY define, five vec4 per
 /// occluder (centre and slot; the three pairs of faces; the faces' areas and the radius),
+/// and the index of each kind's first opaque one (OCCLUDER_FIRST_OPAQUE_SPHERE, _BOX),
 /// compiled into the surface program: a software rasteriser (llvmpipe) reads a uniform
 /// buffer lane by lane, and the geometry changes only with the scene (BENCHMARKS.md,
 /// "Shadows of transmissive objects").
@@ -77,7 +100,8 @@ class GpuOccluderBuffer {
   ~GpuOccluderBuffer();
   GpuOccluderBuffer(const GpuOccluderBuffer&) = delete;
   GpuOccluderBuffer& operator=(const GpuOccluderBuffer&) = delete;
-  /// Uploads the transmittances of `selected` (select_occluders's) and binds the buffer.
+  /// Uploads the transmittances and the opaque ones' albedos of `selected`
+  /// (select_occluders's) and binds the buffer.
   void upload(std::span<const Occluder> selected);
   /// Binds the buffer (GL_UNIFORM_BUFFER at kOccluderBufferBinding).
   void bind() const;

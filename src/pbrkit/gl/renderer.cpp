@@ -216,12 +216,14 @@ struct Renderer::State {
   RenderTargets targets;
   GpuTimer timer;
   GpuLightBuffers light_buffers;
-  // The transmissive objects' proxies (occluders.h), made when the scene or its materials
-  // change.
+  // The proxies (occluders.h) of the kinds of objects the settings ask for, made when the
+  // scene, its materials or those kinds change.
   std::vector<Occluder> occluders;
-  bool occluders_changed = true;       // since they were last selected and uploaded
-  bool occluder_limit_warned = false;  // more than kMaxOccluders of a kind (warned once)
-  glm::ivec2 occluder_counts{0};       // the selection's spheres and parallelepipeds
+  OccluderKinds occluder_kinds;
+  std::vector<Occluder> selected_occluders;  // select_occluders' of them
+  bool occluders_changed = true;             // since they were last selected and uploaded
+  bool occluder_limit_warned = false;        // more than kMaxOccluders of a kind (warned once)
+  glm::ivec2 occluder_counts{0};             // the selection's spheres and parallelepipeds
   GpuOccluderBuffer occluder_buffer;
   // Whether a frame has needed more than kMaxTransmissionCaptures captures (warned once per
   // renderer: the viewer draws the same scene every frame).
@@ -288,21 +290,30 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
   // the cluster lookup.
   f.clustered = settings.clustered_lights && !f.lights.empty() && !f.clusters.indices.empty();
   light_buffers.upload(f.lights, f.clustered ? &f.clusters : nullptr);
-  if (settings.transmissive_shadows && !occluders.empty()) {
+  const OccluderKinds kinds{settings.transmissive_shadows, settings.opaque_shadows};
+  if (kinds != occluder_kinds) {
+    occluder_kinds = kinds;
+    occluders = ibl_occluders(scene, kinds);
+    occluders_changed = true;
+  }
+  if (!occluders.empty()) {
     if (occluders_changed) {
-      const std::vector<Occluder> selected = select_occluders(occluders, occluder_counts);
-      if (selected.size() < occluders.size() && !std::exchange(occluder_limit_warned, true))
+      selected_occluders = select_occluders(occluders, occluder_counts);
+      if (selected_occluders.size() < occluders.size() &&
+          !std::exchange(occluder_limit_warned, true))
         warn(
-            "OpenGL renderer: {} transmissive objects; the environment light is shadowed by "
-            "the {} largest spheres and {} largest boxes among them (at most {} of each)",
+            "OpenGL renderer: {} objects shadow the environment light; the {} largest spheres "
+            "and {} largest boxes among them do (at most {} of each)",
             occluders.size(), occluder_counts.x, occluder_counts.y, kMaxOccluders);
-      occluder_buffer.upload(selected);
-      programs.set_occluder_geometry(occluder_geometry_define(selected));
+      occluder_buffer.upload(selected_occluders);
+      programs.set_occluder_geometry(occluder_geometry_define(selected_occluders));
       occluders_changed = false;
     }
     occluder_buffer.bind();
     f.features.sphere_occluders = occluder_counts.x;
     f.features.box_occluders = occluder_counts.y;
+    f.features.occluder_bounce = std::any_of(selected_occluders.begin(), selected_occluders.end(),
+                                             [](const Occluder& o) { return o.opaque; });
   }
   // Minus the view matrix's third row (view space looks down -Z).
   f.view_depth = -glm::vec4(f.view[0][2], f.view[1][2], f.view[2][2], f.view[3][2]);
@@ -599,7 +610,7 @@ Renderer::~Renderer() {
 
 void Renderer::set_scene(const Scene& scene) {
   state_->scene.upload(scene);
-  state_->occluders = ibl_occluders(state_->scene);
+  state_->occluders = ibl_occluders(state_->scene, state_->occluder_kinds);
   state_->occluders_changed = true;
 }
 
@@ -609,7 +620,7 @@ void Renderer::set_materials(const std::vector<Material>& materials) {
     fail("OpenGL: set_materials with {} materials for a scene of {}", materials.size(),
          current.size());
   current = materials;
-  state_->occluders = ibl_occluders(state_->scene);
+  state_->occluders = ibl_occluders(state_->scene, state_->occluder_kinds);
   state_->occluders_changed = true;
 }
 

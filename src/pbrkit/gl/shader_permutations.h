@@ -57,6 +57,9 @@ struct SurfaceFeatures {
   /// kMaxOccluders of each.
   int sphere_occluders = 0;
   int box_occluders = 0;
+  /// Some of the occluders are opaque objects' proxies, which send back their own light
+  /// (occluders.glsl's OCCLUDER_BOUNCE; RenderSettings::opaque_shadows).
+  bool occluder_bounce = false;
   /// A thick transmissive surface's specular reflection reads the opaque frame where the
   /// mirror direction meets it on the screen (pbr_fragment.glsl's GLASS_REFLECTIONS).
   bool glass_reflections = false;
@@ -74,13 +77,14 @@ struct SurfaceFeatures {
     return std::uint64_t(textures) | std::uint64_t(alpha_mode) << 19 | std::uint64_t(ibl) << 21 |
            std::uint64_t(irradiance_sh) << 22 | std::uint64_t(multiscatter) << 23 |
            std::uint64_t(geometry) << 24 | std::uint64_t(fresnel) << 26 |
-           std::uint64_t(lights) << 27 | std::uint64_t(colors) << 32 |
-           std::uint64_t(specular) << 33 | std::uint64_t(anisotropy) << 34 |
-           std::uint64_t(iridescence) << 35 | std::uint64_t(clearcoat) << 36 |
-           std::uint64_t(sheen) << 37 | std::uint64_t(unlit) << 38 |
-           std::uint64_t(transmission) << 39 | std::uint64_t(volume) << 40 |
-           std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42 |
-           std::uint64_t(light_count + 1) << 43 | std::uint64_t(debug_channel) << 48 |
+           std::uint64_t(lights) << 27 | std::uint64_t(occluder_bounce) << 29 |
+           std::uint64_t(colors) << 32 | std::uint64_t(specular) << 33 |
+           std::uint64_t(anisotropy) << 34 | std::uint64_t(iridescence) << 35 |
+           std::uint64_t(clearcoat) << 36 | std::uint64_t(sheen) << 37 |
+           std::uint64_t(unlit) << 38 | std::uint64_t(transmission) << 39 |
+           std::uint64_t(volume) << 40 | std::uint64_t(dispersion) << 41 |
+           std::uint64_t(diffuse_transmission) << 42 | std::uint64_t(light_count + 1) << 43 |
+           std::uint64_t(debug_channel) << 48 |
            std::uint64_t(sphere_occluders) << kOccluderKeyShift |
            std::uint64_t(box_occluders) << (kOccluderKeyShift + 5) |
            std::uint64_t(glass_reflections) << (kOccluderKeyShift + kOccluderKeyBits);
@@ -104,10 +108,10 @@ struct SurfaceFeatures {
         "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
         "#define LIGHTS {}\n#define LIGHT_COUNT {}\n#define DEBUG_CHANNEL {}\n"
         "#define IBL_OCCLUDERS {}\n#define OCCLUDER_SPHERES {}\n#define OCCLUDER_BOXES {}\n"
-        "#define GLASS_REFLECTIONS {}\n",
+        "#define OCCLUDER_BOUNCE {}\n#define GLASS_REFLECTIONS {}\n",
         alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel, lights,
         light_count, debug_channel, int(ibl && sphere_occluders + box_occluders > 0),
-        sphere_occluders, box_occluders, int(glass_reflections));
+        sphere_occluders, box_occluders, int(ibl && occluder_bounce), int(glass_reflections));
     return d;
   }
 };

@@ -473,6 +473,7 @@ bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
   if (ImGui::Combo("MSAA", &msaa, msaa_modes, msaa_choices)) s.settings.msaa = 1 << msaa;
   ImGui::Checkbox("image-based lighting", &s.settings.ibl);
   ImGui::Checkbox("glass shadows", &s.settings.transmissive_shadows);
+  ImGui::Checkbox("opaque shadows", &s.settings.opaque_shadows);
   ImGui::Checkbox("glass reflections", &s.settings.transmissive_reflections);
   int irradiance = int(s.settings.irradiance);
   const char* irradiance_modes[] = {"SH9", "cube"};

@@ -86,13 +86,8 @@
 #endif
 #if IBL_OCCLUDERS
 #include "occluders.glsl"
-#if MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION
-flat in int vSlot;  // pbr_vertex.glsl's: a transmissive surface is not shadowed by itself
-#else
-const int vSlot = -1;  // an opaque surface is no occluder
+flat in int vSlot;  // pbr_vertex.glsl's: a surface is not shadowed by itself
 #endif
-#endif
-
 
 layout(location = 0) out vec4 outColor;
 
@@ -169,6 +164,16 @@ uniform vec2 uIblRotation;  // world_to_env (equirect.glsl) for the baked cubes
 uniform float uIblScale;
 layout(binding = BINDING_SPECULAR_CUBE) uniform samplerCube uSpecularCube;
 layout(binding = BINDING_IRRADIANCE_CUBE) uniform samplerCube uIrradianceCube;
+
+#if IBL_OCCLUDERS
+vec3 environment_irradiance(vec3 n) {
+#if IRRADIANCE_SH
+  return max(eval_sh_irradiance(uSH, world_to_env(n, uIblRotation)), vec3(0.0));
+#else
+  return textureLod(uIrradianceCube, world_to_env(n, uIblRotation), 0.0).rgb;
+#endif
+}
+#endif
 
 // The sheen's image-based lighting: sheenColor times the sheen's directional albedo E(n.v)
 // (the split sum's DG term for the README's Charlie visibility, ibl/sheen_lut.h) times the
@@ -407,7 +412,8 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
   vec3 n = m.n, v = s.v, wo = s.wo;
   float ao = material_occlusion();
 #if IBL_OCCLUDERS
-  vec3 visibility = occluder_visibility(vPosition, n, vSlot);
+  vec3 bounce;
+  vec3 visibility = occluder_visibility(vPosition, n, vSlot, bounce);
 #else
   const vec3 visibility = vec3(1.0);
 #endif
@@ -431,6 +437,14 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
 #endif
     prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, n), uIblRotation),
                              roughness_lod(s.brdf.roughness, uSpecularLevels)).rgb;
+#if OCCLUDER_BOUNCE
+  // The opaque proxies' light where they hide the environment: visibility L + bounce in
+  // all, written as L + bounce / visibility under the visibility applied below (the lobes
+  // from the prefiltered and the irradiance terms are linear in them). The reflected part
+  // takes the proxies' cosine-weighted mean as its radiance, as a rough lobe would.
+  vec3 unshadowed_bounce = bounce / max(visibility, vec3(1e-4));
+  prefiltered += unshadowed_bounce;
+#endif
 #if MATERIAL_TRANSMISSION && MATERIAL_VOLUME && GLASS_REFLECTIONS
   {
     // Where the mirror direction meets the opaque frame on the screen, the surface reflects
@@ -450,6 +464,9 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
   vec3 irradiance = max(eval_sh_irradiance(uSH, n_env), vec3(0.0));
 #else
   vec3 irradiance = textureLod(uIrradianceCube, n_env, 0.0).rgb;
+#endif
+#if OCCLUDER_BOUNCE
+  irradiance += kPi * unshadowed_bounce;
 #endif
 #if GEOMETRY == 0 && MULTISCATTER
   // reference: the IBL's energy table is the punctual lights' (both height-correlated

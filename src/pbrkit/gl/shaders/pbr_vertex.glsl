@@ -25,10 +25,9 @@ out vec2 vTexcoord1;
 #if HAS_COLOR_0
 out vec4 vColor;
 #endif
-// The instance's slot, for a transmissive surface under occluders (occluders.glsl skips its
-// own proxy; an opaque surface has none).
-#if defined(IBL_OCCLUDERS) && defined(MATERIAL_TRANSMISSION)
-#if IBL_OCCLUDERS && (MATERIAL_TRANSMISSION || MATERIAL_DIFFUSE_TRANSMISSION)
+// The instance's slot, for a surface under occluders (occluders.glsl skips its own proxy).
+#if defined(IBL_OCCLUDERS)
+#if IBL_OCCLUDERS
 #define OWN_SLOT 1
 flat out int vSlot;
 #endif
