@@ -212,14 +212,16 @@ BENCHMARK(BM_GlFrameSheen)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTim
 // pass plus the mip chain over 0. 3 and 4: the built-in `glass` and `liquid` scenes (their
 // own cameras; `liquid` captures the frame twice: its amber behind its glass); 5 and 6: the
 // same without the transmissive objects' shadows in the environment light (what they cost);
-// 7 and 8: without thick glass's reflections of the frame (what they cost).
+// 7 and 8: without thick glass's reflections of the frame (what they cost); 9 and 10: with the
+// opaque objects' shadows too (RenderSettings::opaque_shadows, off by default).
 void BM_GlFrameTransmission(benchmark::State& state) {
   constexpr int kWidth = 1280, kHeight = 720;
   gl::HeadlessContext context;
   const int variant = int(state.range(0));
-  Scene scene = variant == 3 || variant == 5 || variant == 7   ? builtin_scene("glass")
-                : variant == 4 || variant == 6 || variant == 8 ? builtin_scene("liquid")
-                                                               : spheres_with_two_lights();
+  Scene scene =
+      variant == 3 || variant == 5 || variant == 7 || variant == 9    ? builtin_scene("glass")
+      : variant == 4 || variant == 6 || variant == 8 || variant == 10 ? builtin_scene("liquid")
+                                                                      : spheres_with_two_lights();
   if (variant == 1 || variant == 2) {
     const std::size_t count = scene.materials.size();
     for (std::size_t i = 0; i < count; i += 2) {
@@ -235,6 +237,7 @@ void BM_GlFrameTransmission(benchmark::State& state) {
   settings.msaa = 1;
   settings.transmissive_shadows = variant != 5 && variant != 6;
   settings.transmissive_reflections = variant != 7 && variant != 8;
+  settings.opaque_shadows = variant == 9 || variant == 10;
   time_frames(state, scene, kWidth, kHeight, settings);
   static const char* const kNames[] = {"opaque",
                                        "half thin glass",
@@ -244,11 +247,13 @@ void BM_GlFrameTransmission(benchmark::State& state) {
                                        "builtin glass, no glass shadows",
                                        "builtin liquid, no glass shadows",
                                        "builtin glass, no glass reflections",
-                                       "builtin liquid, no glass reflections"};
+                                       "builtin liquid, no glass reflections",
+                                       "builtin glass, opaque shadows",
+                                       "builtin liquid, opaque shadows"};
   state.SetLabel(kNames[variant]);
 }
 BENCHMARK(BM_GlFrameTransmission)
-    ->DenseRange(0, 8)
+    ->DenseRange(0, 10)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(3.0);
