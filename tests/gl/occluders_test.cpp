@@ -441,11 +441,12 @@ TEST(OpaqueShadows, AFloorUnderAnOpaqueSphereKeepsOneMinusFPlusFTimesItsAlbedo) 
 
 // Each side of an opaque proxy sends back albedo E(N) / pi, E the environment's irradiance
 // at the side's outward normal N. A floor beside a wall (a box resting on it, turned about
-// +Y) under a sky (radiance 1 over the upper half of the environment, 0 below) keeps 1 - F
-// of its irradiance pi (the sky is uniform over what the wall hides) and sees the wall's
-// vertical sides, of irradiance pi / 2 (a uniform hemisphere's, in closed form), not its
-// base or its top: the ratio is 1 - F + F albedo / 2, F the box's form factor
-// (occluder_form_factors.glsl's, measured against the exact one above).
+// +Y) under a sky (radiance 1 over the upper half of the environment, 0 below): the floor's
+// irradiance is pi, and the wall's vertical sides that it sees have pi / 2 (a uniform
+// hemisphere's, in closed form), its base none, its top pi. So a wall of albedo a and one
+// of albedo 0, which hide the same light, differ on the floor by F a / 2 of its light, F
+// the box's form factor (occluder_form_factors.glsl's, measured against the exact one
+// above).
 TEST(OpaqueShadows, AFloorBesideAWallSeesItsLitSides) {
   Environment sky = Environment::constant(glm::vec3(1.0f), 128);
   for (int y = sky.map.height / 2; y < sky.map.height; ++y)
@@ -464,52 +465,57 @@ TEST(OpaqueShadows, AFloorBesideAWallSeesItsLitSides) {
   wall_case.sphere = false;
   wall_case.center = centre;
   for (int k = 0; k < 3; ++k) wall_case.axes[k] = glm::vec3(turn[k]) * half[k];
+  Material black = wall;
+  black.base_color_factor = glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   RenderSettings on;
   on.msaa = 1;
   on.opaque_shadows = true;
   RenderSettings off = on;
   off.opaque_shadows = false;
-  std::vector<FormFactorCase> cases;
-  std::vector<glm::dvec3> ratios;
   const glm::mat4 to_wall = glm::inverse(transform);
-  floor_ratios(
-      make_box(-half, half), transform, wall, {}, sky, glm::vec3(0.0f, 1.6f, 4.0f), on, off,
-      [&](glm::dvec3 eye, glm::dvec3 d) {
-        // The ray in the wall's frame against the box grown by 10%: the slab test.
-        const glm::dvec3 o = glm::dvec3(to_wall * glm::vec4(eye, 1.0f));
-        const glm::dvec3 v = glm::dvec3(glm::mat3(to_wall) * glm::vec3(d));
-        double t0 = 0.0, t1 = 1e30;
-        for (int k = 0; k < 3; ++k) {
-          const double h = 1.1 * half[k] + 0.05;
-          const double a = (-h - o[k]) / v[k], b = (h - o[k]) / v[k];
-          t0 = std::max(t0, std::min(a, b));
-          t1 = std::min(t1, std::max(a, b));
-        }
-        return t0 <= t1;
-      },
-      [&](glm::ivec2, glm::dvec3 p, glm::dvec3 ratio) {
-        FormFactorCase c = wall_case;
-        c.x = glm::vec3(p);
-        c.n = glm::vec3(0, 1, 0);
-        cases.push_back(c);
-        ratios.push_back(ratio);
-      });
+  const auto near_wall = [&](glm::dvec3 eye, glm::dvec3 d) {
+    // The ray in the wall's frame against the box grown by 10%: the slab test.
+    const glm::dvec3 o = glm::dvec3(to_wall * glm::vec4(eye, 1.0f));
+    const glm::dvec3 v = glm::dvec3(glm::mat3(to_wall) * glm::vec3(d));
+    double t0 = 0.0, t1 = 1e30;
+    for (int k = 0; k < 3; ++k) {
+      const double h = 1.1 * half[k] + 0.05;
+      const double a = (-h - o[k]) / v[k], b = (h - o[k]) / v[k];
+      t0 = std::max(t0, std::min(a, b));
+      t1 = std::min(t1, std::max(a, b));
+    }
+    return t0 <= t1;
+  };
+  std::vector<FormFactorCase> cases;
+  std::vector<glm::dvec3> lit, dark;  // on / off with the wall's albedo and with 0
+  floor_ratios(make_box(-half, half), transform, wall, {}, sky, glm::vec3(0.0f, 1.6f, 4.0f), on,
+               off, near_wall, [&](glm::ivec2, glm::dvec3 p, glm::dvec3 ratio) {
+                 FormFactorCase c = wall_case;
+                 c.x = glm::vec3(p);
+                 c.n = glm::vec3(0, 1, 0);
+                 cases.push_back(c);
+                 lit.push_back(ratio);
+               });
+  floor_ratios(make_box(-half, half), transform, black, {}, sky, glm::vec3(0.0f, 1.6f, 4.0f), on,
+               off, near_wall,
+               [&](glm::ivec2, glm::dvec3, glm::dvec3 ratio) { dark.push_back(ratio); });
+  ASSERT_EQ(dark.size(), lit.size());
   testing::context();
   const std::vector<float> F = form_factors_glsl(cases);
   int shadowed = 0;
   double worst = 0.0;
   for (std::size_t i = 0; i < cases.size(); ++i) {
     for (int k = 0; k < 3; ++k) {
-      const double want = 1.0 - F[i] + F[i] * wall.base_color_factor[k] / 2.0;
-      worst = std::max(worst, std::abs(ratios[i][k] - want));
-      EXPECT_NEAR(ratios[i][k], want, 5e-3)
+      const double want = F[i] * wall.base_color_factor[k] / 2.0;
+      worst = std::max(worst, std::abs(lit[i][k] - dark[i][k] - want));
+      EXPECT_NEAR(lit[i][k] - dark[i][k], want, 4e-3)
           << "floor point " << cases[i].x.x << "," << cases[i].x.z << " channel " << k;
     }
     shadowed += F[i] > 0.05f ? 1 : 0;
   }
   std::printf(
-      "floor beside a wall under a sky: %zu pixels (%d with F > 0.05), worst |ratio - "
-      "(1 - F + F albedo / 2)| %.2e\n",
+      "floor beside a wall under a sky: %zu pixels (%d with F > 0.05), worst |ratio - ratio "
+      "with a black wall - F albedo / 2| %.2e\n",
       cases.size(), shadowed, worst);
   EXPECT_GE(cases.size(), std::size_t(1000));
   EXPECT_GE(shadowed, 100);

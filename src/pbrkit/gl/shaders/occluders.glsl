@@ -1,12 +1,12 @@
 // The environment light that transmissive objects (and, with opaque shadows, opaque ones)
 // hide from a surface point: each one's proxy (its bounding box as a parallelepiped, or a
-// sphere) covers a part of the point's cosine-weighted hemisphere, its form factor F, and
-// lets through its transmittance T (occluders.h; 0 for an opaque one), so the point keeps
+// sphere) covers a part of the point's cosine-weighted hemisphere, its form factor F. A
+// transmissive one lets through its transmittance T (occluders.h), so the point keeps
 // 1 - F (1 - T) of a uniform environment's light, and the product of that over the proxies
 // where several cover it. Without it a floor seen through a glass block is lit as though
 // the block were not there, where the path tracer's floor under it is lit only through it
-// (MODEL.md, "Shadows of transmissive objects"). An opaque proxy sends back the light of
-// its own sides in the place of what it hides (OCCLUDER_BOUNCE: MODEL.md, "Shadows of
+// (MODEL.md, "Shadows of transmissive objects"). An opaque one sends the light of its own
+// sides in the place of the environment's it hides (OCCLUDER_BOUNCE: MODEL.md, "Shadows of
 // opaque objects").
 #include "occluder_form_factors.glsl"
 
@@ -34,17 +34,14 @@ layout(std140, binding = BINDING_OCCLUDERS) uniform Occluders {
   vec4 uOccluderAlbedo[2 * kMaxOccluders];         // rgb: an opaque proxy's, else 0
 };
 
-// The environment's irradiance at world normal n (pbr_fragment.glsl's, from the SH or the
-// irradiance cube it lights surfaces with).
+// The environment's irradiance at world normal n (pbr_fragment.glsl's: from the irradiance
+// cube, one fetch, where nine SH terms cost llvmpipe more).
 vec3 environment_irradiance(vec3 n);
 
 // The radiance an opaque proxy (albedo `albedo`) sends towards a point from its side of
 // outward normal n, lit by the whole environment: albedo E(n) / pi (occluders.h).
 vec3 side_radiance(vec3 albedo, vec3 n) { return albedo * environment_irradiance(n) * kInvPi; }
 
-// The share of a uniform environment's light that reaches (x, n) past every occluder but
-// the surface's own (`slot`); and in `bounce` the light the opaque ones send back there,
-// sum F L (L the radiance of the side x sees, side_radiance's), 0 without OCCLUDER_BOUNCE.
 // Occluder i's form factor from (x, n), 0 where it is the surface's own (`slot`).
 float sphere_factor(int i, vec3 x, vec3 n, int slot) {
   vec4 centre = kOccluderGeometry[5 * i];
@@ -59,28 +56,31 @@ float box_factor(int i, vec3 x, vec3 n, int slot) {
   return int(centre.w) == slot ? 0.0 : f;
 }
 
+// The share of a uniform environment's light that reaches (x, n) past every transmissive
+// occluder but the surface's own (`slot`); and in `bounce` what the opaque ones change (0
+// without OCCLUDER_BOUNCE): each replaces the environment light it hides, F L_hidden, by its
+// own, F L (L the radiance of the side x sees, side_radiance's), sum F (L - L_hidden).
+// L_hidden is the environment's cosine-weighted mean radiance about the direction to the
+// proxy, E(d) / pi, not its mean over x's hemisphere: a wall hides the horizon behind it,
+// not the zenith.
 vec3 occluder_visibility(vec3 x, vec3 n, int slot, out vec3 bounce) {
   vec3 vis = vec3(1.0);
   bounce = vec3(0.0);
   // Each kind's transmissive proxies, then its opaque ones (select_occluders' order), in
-  // loops of their own: only the opaque ones send light back, and a software rasteriser
-  // would run a branch on the kind for all of them.
+  // loops of their own: a software rasteriser would run a branch on the kind for all of
+  // them.
   for (int i = 0; i < OCCLUDER_FIRST_OPAQUE_SPHERE; ++i)
     vis *= 1.0 - sphere_factor(i, x, n, slot) * (1.0 - uOccluderTransmittance[i].rgb);
-  for (int i = OCCLUDER_FIRST_OPAQUE_SPHERE; i < OCCLUDER_SPHERES; ++i) {
-    float f = sphere_factor(i, x, n, slot);
-    vis *= 1.0 - f;
-#if OCCLUDER_BOUNCE
-    // Seen from x, a sphere shows the side facing it: its normal the direction to x.
-    bounce += f * side_radiance(uOccluderAlbedo[i].rgb, normalize(x - kOccluderGeometry[5 * i].xyz));
-#endif
-  }
   for (int i = OCCLUDER_SPHERES; i < OCCLUDER_FIRST_OPAQUE_BOX; ++i)
     vis *= 1.0 - box_factor(i, x, n, slot) * (1.0 - uOccluderTransmittance[i].rgb);
-  for (int i = OCCLUDER_FIRST_OPAQUE_BOX; i < OCCLUDER_SPHERES + OCCLUDER_BOXES; ++i) {
-    float f = box_factor(i, x, n, slot);
-    vis *= 1.0 - f;
 #if OCCLUDER_BOUNCE
+  for (int i = OCCLUDER_FIRST_OPAQUE_SPHERE; i < OCCLUDER_SPHERES; ++i) {
+    // Seen from x, a sphere shows the side facing it: its normal the direction to x.
+    vec3 to_x = normalize(x - kOccluderGeometry[5 * i].xyz);
+    bounce += sphere_factor(i, x, n, slot) * (side_radiance(uOccluderAlbedo[i].rgb, to_x) -
+                                              environment_irradiance(-to_x) * kInvPi);
+  }
+  for (int i = OCCLUDER_FIRST_OPAQUE_BOX; i < OCCLUDER_SPHERES + OCCLUDER_BOXES; ++i) {
     // Seen from x, a parallelepiped shows the sides whose planes x lies beyond (a point on
     // the floor beside a box resting on it sees the box's side, not its base: a point in a
     // side's plane, to 1e-3 of the extent, is not beyond it); their normals weighted by
@@ -92,8 +92,11 @@ vec3 occluder_visibility(vec3 x, vec3 n, int slot, out vec3 bounce) {
     vec3 w = step(1.001 * vec3(N0.w, N1.w, N2.w), abs(u)) * kOccluderGeometry[5 * i + 4].xyz * u;
     vec3 side = w.x * N0.xyz + w.y * N1.xyz + w.z * N2.xyz;
     float len = length(side);
-    bounce += f * side_radiance(uOccluderAlbedo[i].rgb, len > 0.0 ? side / len : d);
-#endif
+    vec3 to_x = normalize(d);
+    bounce += box_factor(i, x, n, slot) *
+              (side_radiance(uOccluderAlbedo[i].rgb, len > 0.0 ? side / len : to_x) -
+               environment_irradiance(-to_x) * kInvPi);
   }
+#endif
   return vis;
 }

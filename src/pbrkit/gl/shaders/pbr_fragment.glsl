@@ -167,11 +167,7 @@ layout(binding = BINDING_IRRADIANCE_CUBE) uniform samplerCube uIrradianceCube;
 
 #if IBL_OCCLUDERS
 vec3 environment_irradiance(vec3 n) {
-#if IRRADIANCE_SH
-  return max(eval_sh_irradiance(uSH, world_to_env(n, uIblRotation)), vec3(0.0));
-#else
   return textureLod(uIrradianceCube, world_to_env(n, uIblRotation), 0.0).rgb;
-#endif
 }
 #endif
 
@@ -438,12 +434,12 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
     prefiltered = textureLod(uSpecularCube, world_to_env(reflect(-v, n), uIblRotation),
                              roughness_lod(s.brdf.roughness, uSpecularLevels)).rgb;
 #if OCCLUDER_BOUNCE
-  // The opaque proxies' light where they hide the environment: visibility L + bounce in
-  // all, written as L + bounce / visibility under the visibility applied below (the lobes
-  // from the prefiltered and the irradiance terms are linear in them). The reflected part
-  // takes the proxies' cosine-weighted mean as its radiance, as a rough lobe would.
+  // The opaque proxies' light in the place of the environment's they hide: visibility L +
+  // bounce in all, written as L + bounce / visibility under the visibility applied below
+  // (the lobes from the prefiltered and the irradiance terms are linear in them). The
+  // reflected part takes the change's cosine-weighted mean, as a rough lobe would see it.
   vec3 unshadowed_bounce = bounce / max(visibility, vec3(1e-4));
-  prefiltered += unshadowed_bounce;
+  prefiltered = max(prefiltered + unshadowed_bounce, vec3(0.0));
 #endif
 #if MATERIAL_TRANSMISSION && MATERIAL_VOLUME && GLASS_REFLECTIONS
   {
@@ -466,7 +462,7 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
   vec3 irradiance = textureLod(uIrradianceCube, n_env, 0.0).rgb;
 #endif
 #if OCCLUDER_BOUNCE
-  irradiance += kPi * unshadowed_bounce;
+  irradiance = max(irradiance + kPi * unshadowed_bounce, vec3(0.0));
 #endif
 #if GEOMETRY == 0 && MULTISCATTER
   // reference: the IBL's energy table is the punctual lights' (both height-correlated
