@@ -342,14 +342,17 @@ int floor_ratios(Mesh object, const glm::mat4& transform, const Material& materi
 
 // floor_ratios for a sphere of `material` (radius 0.5, centre 1.2 above the floor: wholly
 // above every floor point's horizon) in a white environment, seen from low at the side:
-// check(pixel, F, ratio) with F the closed-form sphere factor at the floor point.
-template <class Check>
-int floor_under_sphere(const Material& material, std::vector<Texture> textures,
-                       const RenderSettings& on_settings, const RenderSettings& off_settings,
-                       Check check) {
+// each floor pixel's ratio held to want(F) in every channel within 4e-3, F the closed-form
+// sphere factor at the floor point; at least 1000 pixels, 100 of them with F > 0.05.
+template <class Want>
+void expect_floor_under_sphere(const char* what, const Material& material,
+                               std::vector<Texture> textures, const RenderSettings& on_settings,
+                               const RenderSettings& off_settings, Want want) {
   const float radius = 0.5f;
   const glm::dvec3 centre(0.0, 1.2, 0.0);
-  return floor_ratios(
+  int shadowed = 0;
+  double worst = 0.0;
+  const int counted = floor_ratios(
       make_uv_sphere(radius), glm::translate(glm::mat4(1.0f), glm::vec3(centre)), material,
       std::move(textures), Environment::constant(glm::vec3(1.0f)), glm::vec3(0.0f, 0.5f, 3.5f),
       on_settings, off_settings,
@@ -357,8 +360,19 @@ int floor_under_sphere(const Material& material, std::vector<Texture> textures,
       [&](glm::ivec2 px, glm::dvec3 p, glm::dvec3 ratio) {
         const glm::dvec3 w = centre - p;
         const double dist = glm::length(w);
-        check(px, double(radius) * radius / (dist * dist) * (w.y / dist), ratio);
+        const double F = double(radius) * radius / (dist * dist) * (w.y / dist);
+        const glm::dvec3 expected = want(F);
+        for (int k = 0; k < 3; ++k) {
+          worst = std::max(worst, std::abs(ratio[k] - expected[k]));
+          EXPECT_NEAR(ratio[k], expected[k], 4e-3)
+              << what << ": pixel " << px.x << "," << px.y << " channel " << k;
+        }
+        shadowed += F > 0.05 ? 1 : 0;
       });
+  std::printf("%s: %d pixels (%d with F > 0.05), worst |ratio - expected| %.2e\n", what, counted,
+              shadowed, worst);
+  EXPECT_GE(counted, 1000);
+  EXPECT_GE(shadowed, 100);
 }
 
 // Under a tinted glass sphere the image-based light is linear in the visibility, so with
@@ -380,23 +394,8 @@ TEST(TransmissiveShadows, AFloorUnderAGlassSphereKeepsOneMinusFTimesOneMinusT) {
   on.msaa = 1;
   RenderSettings off = on;
   off.transmissive_shadows = false;
-  int shadowed = 0;
-  double worst = 0.0;
-  const int counted =
-      floor_under_sphere(glass, {}, on, off, [&](glm::ivec2 px, double F, glm::dvec3 ratio) {
-        for (int k = 0; k < 3; ++k) {
-          const double want = 1.0 - F * (1.0 - T[k]);
-          worst = std::max(worst, std::abs(ratio[k] - want));
-          EXPECT_NEAR(ratio[k], want, 4e-3) << "pixel " << px.x << "," << px.y << " channel " << k;
-        }
-        shadowed += F > 0.05 ? 1 : 0;
-      });
-  std::printf(
-      "floor under a glass sphere: %d pixels (%d with F > 0.05), worst |ratio - "
-      "(1 - F (1 - T))| %.2e\n",
-      counted, shadowed, worst);
-  EXPECT_GE(counted, 1000);
-  EXPECT_GE(shadowed, 100);
+  expect_floor_under_sphere("floor under a glass sphere", glass, {}, on, off,
+                            [&](double F) { return 1.0 - F * (1.0 - T); });
 }
 
 // Under an opaque sphere (opaque shadows), the floor keeps 1 - F of the white environment
@@ -419,24 +418,9 @@ TEST(OpaqueShadows, AFloorUnderAnOpaqueSphereKeepsOneMinusFPlusFTimesItsAlbedo) 
   on.opaque_shadows = true;
   RenderSettings off = on;
   off.opaque_shadows = false;
-  int shadowed = 0;
-  double worst = 0.0;
-  const int counted = floor_under_sphere(
-      rock, {Texture::from_linear(texels, false)}, on, off,
-      [&](glm::ivec2 px, double F, glm::dvec3 ratio) {
-        for (int k = 0; k < 3; ++k) {
-          const double want = 1.0 - F + F * albedo[k];
-          worst = std::max(worst, std::abs(ratio[k] - want));
-          EXPECT_NEAR(ratio[k], want, 4e-3) << "pixel " << px.x << "," << px.y << " channel " << k;
-        }
-        shadowed += F > 0.05 ? 1 : 0;
-      });
-  std::printf(
-      "floor under an opaque sphere: %d pixels (%d with F > 0.05), worst |ratio - "
-      "(1 - F + F albedo)| %.2e\n",
-      counted, shadowed, worst);
-  EXPECT_GE(counted, 1000);
-  EXPECT_GE(shadowed, 100);
+  expect_floor_under_sphere("floor under an opaque sphere", rock,
+                            {Texture::from_linear(texels, false)}, on, off,
+                            [&](double F) { return 1.0 - F + F * albedo; });
 }
 
 // Each side of an opaque proxy sends back albedo E(N) / pi, E the environment's irradiance
