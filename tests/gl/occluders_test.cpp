@@ -555,6 +555,39 @@ TEST(TransmissiveShadows, ANewSceneOrNewMaterialsMoveTheShadow) {
   EXPECT_EQ(tinted.data, render_headless(b_tinted, camera, kW, kH, &env, &maps, settings).data);
 }
 
+// An opaque mesh stands in as its bounding box only where it could be convex: a convex body
+// inside a box has at most the box's surface area. A floor (a quad: half its flat box's
+// area) and a box (all of it) stand in; a comb of eleven unit fins across a unit cube
+// (11 against the cube's 6), as an engine's cooling fins, does not.
+TEST(OpaqueShadows, OnlyMeshesThatCouldBeConvexStandInAsBoxes) {
+  testing::context();
+  Scene scene;
+  scene.materials = {Material{}};
+  add_mesh_instance(scene,
+                    make_quad(glm::vec3(-6, 0, 6), glm::vec3(12, 0, 0), glm::vec3(0, 0, -12)), 0);
+  add_mesh_instance(scene, make_box(glm::vec3(-1.0f), glm::vec3(1.0f)), 0,
+                    glm::translate(glm::mat4(1.0f), glm::vec3(3, 1, 0)));
+  Mesh comb;
+  for (int k = 0; k <= 10; ++k) {
+    Mesh fin = make_quad(glm::vec3(0.1f * float(k), 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1));
+    const auto base = std::uint32_t(comb.positions.size());
+    comb.positions.insert(comb.positions.end(), fin.positions.begin(), fin.positions.end());
+    comb.normals.insert(comb.normals.end(), fin.normals.begin(), fin.normals.end());
+    for (std::uint32_t i : fin.indices) comb.indices.push_back(base + i);
+  }
+  add_mesh_instance(scene, std::move(comb), 0,
+                    glm::translate(glm::mat4(1.0f), glm::vec3(-3, 0, 0)));
+  GpuScene gpu;
+  gpu.upload(scene);
+  EXPECT_NEAR(gpu.meshes[2].surface_area, 11.0f, 1e-4f);
+  const std::vector<Occluder> proxies = ibl_occluders(gpu, {false, true});
+  ASSERT_EQ(proxies.size(), 2u);
+  for (const Occluder& o : proxies) {
+    EXPECT_TRUE(o.opaque);
+    EXPECT_NE(o.slot, int(gpu.slot_of[2]));  // not the comb
+  }
+}
+
 // More transmissive objects than a frame compiles in: the largest 16 of each kind are kept
 // (and said once on stderr), and a frame with the most of both renders finite.
 TEST(TransmissiveShadows, AFrameKeepsTheLargestSixteenOfEachKind) {

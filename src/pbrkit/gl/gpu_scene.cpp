@@ -175,6 +175,14 @@ void GpuScene::upload(const Scene& scene) {
       }
       if (hi > 0.0f && lo >= 0.97f * hi && radial >= 0.97f) g.sphere_radius = hi;
     }
+    double area = 0.0;
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const std::uint32_t a = mesh.indices[t], b1 = mesh.indices[t + 1], c = mesh.indices[t + 2];
+      if (std::max({a, b1, c}) >= mesh.positions.size()) continue;
+      area += 0.5 * double(glm::length(glm::cross(mesh.positions[b1] - mesh.positions[a],
+                                                  mesh.positions[c] - mesh.positions[a])));
+    }
+    g.surface_area = float(area);
     meshes.push_back(g);
   }
   for (const Texture& t : scene.textures) {

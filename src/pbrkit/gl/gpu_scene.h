@@ -31,6 +31,9 @@ struct GpuMesh {
   /// The radius of the sphere the mesh's vertices lie on about `center` (within 3%), or 0
   /// when they do not (occluders.h: the proxy that stands in for it).
   float sphere_radius = 0.0f;
+  /// The triangles' total area, object space (occluders.h: whether the bounding box can
+  /// stand in for the mesh).
+  float surface_area = 0.0f;
 };
 
 /// Instances that one glDrawElementsInstanced can draw: one mesh, one winding (mirrored

@@ -114,6 +114,13 @@ std::vector<Occluder> ibl_occluders(const GpuScene& scene, OccluderKinds kinds) 
       o.center = glm::vec3(M * glm::vec4(g.center, 1.0f));
       chord = 4.0f / 3.0f * o.radius;  // a convex body's mean chord, 4 V / S (Cauchy)
     } else {
+      // A convex body inside a box has at most the box's area (Cauchy's surface area
+      // formula is monotone): a mesh with more (an engine part's fins, interlocking pieces)
+      // is too far from its bounding box for the box to stand in for it as a solid, and
+      // surfaces beside or within the box would be shadowed by what is not there.
+      if (opaque &&
+          g.surface_area > 1.05f * 8.0f * (half.x * half.y + half.y * half.z + half.z * half.x))
+        continue;
       o.center = glm::vec3(M * glm::vec4(0.5f * (g.bounds_min + g.bounds_max), 1.0f));
       o.faces = parallelepiped_faces(axes);
       // 4 V / S with V = 8 abc, S = 8 (ab + bc + ca) (a box; a parallelepiped's is less).
