@@ -57,18 +57,10 @@ void upload_level(GLuint tex, const Texture& t, int level, const T* src, GLenum 
   glTextureSubImage2D(tex, level, 0, 0, l.width, l.height, GL_RGBA, type, rgba.data());
 }
 
-// The mean linear RGB of `t`, from its smallest level (1x1 for a whole chain), over at
-// most 64 x 64 of its texels evenly spread.
+// The mean linear RGB of `t`: its mip chain's last level, 1x1 (scene.h: a Texture always
+// has the whole chain, box-filtered in linear space).
 glm::vec3 texture_mean(const Texture& t) {
-  if (t.empty()) return glm::vec3(1.0f);
-  const int level = int(t.levels.size()) - 1;
-  const int w = t.levels.back().width, h = t.levels.back().height;
-  const int nx = std::min(w, 64), ny = std::min(h, 64);
-  glm::dvec3 sum(0.0);
-  for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x)
-      sum += glm::dvec3(glm::vec3(t.texel(level, x * w / nx, y * h / ny)));
-  return glm::vec3(sum / double(nx * ny));
+  return t.empty() ? glm::vec3(1.0f) : glm::vec3(t.texel(int(t.levels.size()) - 1, 0, 0));
 }
 
 // A texture's own mip chain at its precision: 8-bit as GL_SRGB8_ALPHA8 (colour) or

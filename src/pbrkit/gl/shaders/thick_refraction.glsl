@@ -165,6 +165,21 @@ bool settled_on_frame(vec3 origin, vec3 dir, vec2 uv, float d, mat4 inverse_view
   return scene < 1.0 && distance(q.xyz / q.w, origin + d * dir) <= kSettledTolerance * d;
 }
 
+// Where a search along the ray from `origin` (world) along `dir` (o, e: clip space) has not
+// settled, frame_march's crossing if it settles (settled_on_frame), in uv and d: whether it
+// did. Both frame searches end with it.
+bool march_where_unsettled(vec3 origin, vec3 dir, vec4 o, vec4 e, mat4 inverse_view_projection,
+                           sampler2D frame_depth, bool settled, inout vec2 uv, inout float d) {
+  vec2 uv_march;
+  float d_march;
+  if (!frame_march(o, e, frame_depth, !settled, uv_march, d_march) ||
+      !settled_on_frame(origin, dir, uv_march, d_march, inverse_view_projection, frame_depth))
+    return false;
+  uv = uv_march;
+  d = d_march;
+  return true;
+}
+
 // The opaque frame where the mirror direction `dir` from a thick transmissive surface at
 // `origin` meets it (a screen-space reflection: frame_hit's search, as for the exit ray, and
 // frame_march where it has not settled), read at the blur `lod`; false where the ray leaves
@@ -180,13 +195,9 @@ bool reflected_frame(vec3 origin, vec3 dir, mat4 view_projection, mat4 inverse_v
   bool settled = frame_hit(origin, o, e, inverse_view_projection, frame_depth,
                            kReflectionIterations, uv, d) &&
                  settled_on_frame(origin, dir, uv, d, inverse_view_projection, frame_depth);
-  vec2 uv_march;
-  float d_march;
-  if (frame_march(o, e, frame_depth, !settled, uv_march, d_march) &&
-      settled_on_frame(origin, dir, uv_march, d_march, inverse_view_projection, frame_depth)) {
+  if (march_where_unsettled(origin, dir, o, e, inverse_view_projection, frame_depth, settled, uv,
+                            d))
     settled = true;
-    uv = uv_march;
-  }
   if (!settled) return false;
   seen = textureLod(frame, uv, lod).rgb;
   return true;
@@ -348,15 +359,9 @@ vec3 thick_refracted_radiance(TransmissionInputs t, bool back_faces, sampler2D f
   // Where frame_hit's steps have not settled (an exit ray bent far from the view direction:
   // the block's rays reflected down to the floor inside it) or found nothing, the march; where
   // it finds nothing either, frame_hit's estimate or the environment as before.
-  vec2 uv_march;
-  float d_march;
-  if (frame_march(r.o, r.e, frame_depth, !settled, uv_march, d_march) &&
-      settled_on_frame(r.origin, r.dir, uv_march, d_march, inverse_view_projection,
-                       frame_depth)) {
+  if (march_where_unsettled(r.origin, r.dir, r.o, r.e, inverse_view_projection, frame_depth,
+                            settled, uv, t_hit))
     hit = true;
-    uv = uv_march;
-    t_hit = d_march;
-  }
   vec3 result = exit_radiance(t, r, ior, hit, uv, frame, frame_size, env_cube, env_rotation,
                               env_levels, env_scale);
   if (dispersion) {
