@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -586,6 +587,38 @@ TEST(OpaqueShadows, OnlyMeshesThatCouldBeConvexStandInAsBoxes) {
     EXPECT_TRUE(o.opaque);
     EXPECT_NE(o.slot, int(gpu.slot_of[2]));  // not the comb
   }
+}
+
+// The surface program writes each selected proxy's term out from four lists of indices, by
+// kind and role (occluders.glsl's OCCLUDER_TERM lists): every proxy in the one of its kind
+// and role, in the selection's order, and a list without proxies empty.
+TEST(TransmissiveShadows, EachProxyIsWrittenOutOnceInTheListOfItsKindAndRole) {
+  const auto proxy = [](bool sphere, bool opaque) {
+    Occluder o;
+    o.sphere = sphere;
+    o.opaque = opaque;
+    return o;
+  };
+  // select_occluders' order: spheres, then boxes; of each, the transmissive ones first.
+  const std::vector<Occluder> mixed = {proxy(true, false),  proxy(true, false),
+                                       proxy(true, true),   proxy(false, false),
+                                       proxy(false, true),  proxy(false, true)};
+  const std::string d = occluder_geometry_define(mixed);
+  EXPECT_NE(d.find("#define OCCLUDER_TRANSMISSIVE_SPHERES OCCLUDER_TERM(0) OCCLUDER_TERM(1)\n"),
+            std::string::npos)
+      << d;
+  EXPECT_NE(d.find("#define OCCLUDER_OPAQUE_SPHERES OCCLUDER_TERM(2)\n"), std::string::npos) << d;
+  EXPECT_NE(d.find("#define OCCLUDER_TRANSMISSIVE_BOXES OCCLUDER_TERM(3)\n"), std::string::npos)
+      << d;
+  EXPECT_NE(d.find("#define OCCLUDER_OPAQUE_BOXES OCCLUDER_TERM(4) OCCLUDER_TERM(5)\n"),
+            std::string::npos)
+      << d;
+  const std::string boxes = occluder_geometry_define(std::vector<Occluder>{proxy(false, false)});
+  EXPECT_NE(boxes.find("#define OCCLUDER_TRANSMISSIVE_SPHERES\n"), std::string::npos) << boxes;
+  EXPECT_NE(boxes.find("#define OCCLUDER_OPAQUE_BOXES\n"), std::string::npos) << boxes;
+  EXPECT_NE(boxes.find("#define OCCLUDER_TRANSMISSIVE_BOXES OCCLUDER_TERM(0)\n"),
+            std::string::npos)
+      << boxes;
 }
 
 // More transmissive objects than a frame compiles in: the largest 16 of each kind are kept

@@ -168,23 +168,20 @@ std::string occluder_geometry_define(std::span<const Occluder> selected) {
     d += fmt::format("{}vec4({:.9g}, {:.9g}, {:.9g}, {:.9g})", first ? "" : ", ", v.x, v.y, v.z,
                      v.w);
   };
-  int first_opaque[2] = {0, 0};  // of the spheres, of the parallelepipeds
+  // Each proxy's index in the list of its kind (sphere or parallelepiped) and role
+  // (transmissive or opaque), in select_occluders' order.
+  std::string lists[2][2];  // [sphere][opaque]
   for (std::size_t i = 0; i < selected.size(); ++i) {
     const Occluder& o = selected[i];
     add(glm::vec4(o.center, float(o.slot)), i == 0);
     for (const glm::vec4& n : o.faces.normals) add(n, false);
     add(glm::vec4(o.faces.areas, o.radius), false);
-    if (!o.opaque) first_opaque[o.sphere ? 0 : 1] = int(i) + 1;
+    lists[o.sphere ? 1 : 0][o.opaque ? 1 : 0] += fmt::format(" OCCLUDER_TERM({})", i);
   }
-  // select_occluders puts each kind's opaque ones last; a kind without transmissive ones
-  // starts its opaque ones at its first index.
-  const int spheres = int(
-      std::count_if(selected.begin(), selected.end(), [](const Occluder& o) { return o.sphere; }));
-  if (first_opaque[1] == 0) first_opaque[1] = spheres;
   return d + fmt::format(
-                 ")\n#define OCCLUDER_FIRST_OPAQUE_SPHERE {}\n"
-                 "#define OCCLUDER_FIRST_OPAQUE_BOX {}\n",
-                 first_opaque[0], first_opaque[1]);
+                 ")\n#define OCCLUDER_TRANSMISSIVE_SPHERES{}\n#define OCCLUDER_OPAQUE_SPHERES{}\n"
+                 "#define OCCLUDER_TRANSMISSIVE_BOXES{}\n#define OCCLUDER_OPAQUE_BOXES{}\n",
+                 lists[1][0], lists[1][1], lists[0][0], lists[0][1]);
 }
 
 GpuOccluderBuffer::GpuOccluderBuffer() {

@@ -85,10 +85,12 @@ std::vector<Occluder> select_occluders(std::span<const Occluder> all, glm::ivec2
 
 /// The selection's geometry as occluders.glsl's OCCLUDER_GEOMETRY define, five vec4 per
 /// occluder (centre and slot; the three pairs of faces; the faces' areas and the radius),
-/// and the index of each kind's first opaque one (OCCLUDER_FIRST_OPAQUE_SPHERE, _BOX),
-/// compiled into the surface program: a software rasteriser (llvmpipe) reads a uniform
-/// buffer lane by lane, and the geometry changes only with the scene (BENCHMARKS.md,
-/// "Shadows of transmissive objects").
+/// and the indices of each kind's transmissive and opaque ones as lists of
+/// OCCLUDER_TERM(i) (OCCLUDER_TRANSMISSIVE_SPHERES, _OPAQUE_SPHERES, _TRANSMISSIVE_BOXES,
+/// _OPAQUE_BOXES), compiled into the surface program: a software rasteriser (llvmpipe) reads
+/// a uniform buffer lane by lane and does not unroll a loop over many proxies, and the
+/// geometry changes only with the scene (BENCHMARKS.md, "Shadows of transmissive objects"
+/// and "The proxies' terms written out").
 std::string occluder_geometry_define(std::span<const Occluder> selected);
 
 /// The selected occluders' transmittances on the GPU (occluders.glsl's Occluders block, one

@@ -13,17 +13,22 @@
 // The occluders (occluders.h's select_occluders), spheres first, their numbers and geometry
 // compiled in (OCCLUDER_SPHERES, OCCLUDER_BOXES, OCCLUDER_GEOMETRY: occluder_geometry_define's
 // five vec4 each: centre and slot; three pairs of faces; the faces' areas and a sphere's
-// radius), so that the loops unroll over constants: a software rasteriser (llvmpipe) would
-// read a uniform buffer lane by lane, and run a parallelepiped's form factor for a sphere
-// (it runs both sides of a branch that differs across lanes). Their transmittances, which
-// change with the materials, are in a uniform block.
+// radius), and each one's term written out from the lists of their indices by kind and role
+// (OCCLUDER_TRANSMISSIVE_SPHERES etc., "OCCLUDER_TERM(0) OCCLUDER_TERM(1)"), so that every
+// read is of a constant at a constant index: a software rasteriser (llvmpipe) reads a
+// uniform buffer lane by lane, runs a parallelepiped's form factor for a sphere (it runs
+// both sides of a branch that differs across lanes), and does not unroll a loop over many
+// proxies (a frame of 24 glass spheres, 16 of them proxies, 11% slower as loops). Their
+// transmittances, which change with the materials, are in a uniform block.
 const int kMaxOccluders = 16;  // occluders.h's
 #ifndef OCCLUDER_SPHERES
 #define OCCLUDER_SPHERES 0
 #define OCCLUDER_BOXES 0
 #define OCCLUDER_GEOMETRY vec4[](vec4(0.0))
-#define OCCLUDER_FIRST_OPAQUE_SPHERE 0
-#define OCCLUDER_FIRST_OPAQUE_BOX 0
+#define OCCLUDER_TRANSMISSIVE_SPHERES
+#define OCCLUDER_OPAQUE_SPHERES
+#define OCCLUDER_TRANSMISSIVE_BOXES
+#define OCCLUDER_OPAQUE_BOXES
 #endif
 #ifndef OCCLUDER_BOUNCE
 #define OCCLUDER_BOUNCE 0
@@ -56,6 +61,34 @@ float box_factor(int i, vec3 x, vec3 n, int slot) {
   return int(centre.w) == slot ? 0.0 : f;
 }
 
+#if OCCLUDER_BOUNCE
+// Opaque sphere i's F (L - L_hidden) at (x, n) (occluder_visibility's bounce): seen from x,
+// a sphere shows the side facing it, its normal the direction to x.
+vec3 opaque_sphere_bounce(int i, vec3 x, vec3 n, int slot) {
+  vec3 to_x = normalize(x - kOccluderGeometry[5 * i].xyz);
+  return sphere_factor(i, x, n, slot) *
+         (side_radiance(uOccluderAlbedo[i].rgb, to_x) - environment_irradiance(-to_x) * kInvPi);
+}
+
+// Opaque parallelepiped i's F (L - L_hidden) at (x, n): seen from x, it shows the sides whose
+// planes x lies beyond (a point on the floor beside a box resting on it sees the box's side,
+// not its base: a point in a side's plane, to 1e-3 of the extent, is not beyond it); their
+// normals weighted by their projected areas, area_k |u.N_k|, give the side's.
+vec3 opaque_box_bounce(int i, vec3 x, vec3 n, int slot) {
+  vec4 N0 = kOccluderGeometry[5 * i + 1], N1 = kOccluderGeometry[5 * i + 2],
+       N2 = kOccluderGeometry[5 * i + 3];
+  vec3 d = x - kOccluderGeometry[5 * i].xyz;
+  vec3 u = vec3(dot(d, N0.xyz), dot(d, N1.xyz), dot(d, N2.xyz));
+  vec3 w = step(1.001 * vec3(N0.w, N1.w, N2.w), abs(u)) * kOccluderGeometry[5 * i + 4].xyz * u;
+  vec3 side = w.x * N0.xyz + w.y * N1.xyz + w.z * N2.xyz;
+  float len = length(side);
+  vec3 to_x = normalize(d);
+  return box_factor(i, x, n, slot) *
+         (side_radiance(uOccluderAlbedo[i].rgb, len > 0.0 ? side / len : to_x) -
+          environment_irradiance(-to_x) * kInvPi);
+}
+#endif
+
 // The share of a uniform environment's light that reaches (x, n) past every transmissive
 // occluder but the surface's own (`slot`); and in `bounce` what the opaque ones change (0
 // without OCCLUDER_BOUNCE): each replaces the environment light it hides, F L_hidden, by its
@@ -66,37 +99,21 @@ float box_factor(int i, vec3 x, vec3 n, int slot) {
 vec3 occluder_visibility(vec3 x, vec3 n, int slot, out vec3 bounce) {
   vec3 vis = vec3(1.0);
   bounce = vec3(0.0);
-  // Each kind's transmissive proxies, then its opaque ones (select_occluders' order), in
-  // loops of their own: a software rasteriser would run a branch on the kind for all of
-  // them.
-  for (int i = 0; i < OCCLUDER_FIRST_OPAQUE_SPHERE; ++i)
-    vis *= 1.0 - sphere_factor(i, x, n, slot) * (1.0 - uOccluderTransmittance[i].rgb);
-  for (int i = OCCLUDER_SPHERES; i < OCCLUDER_FIRST_OPAQUE_BOX; ++i)
-    vis *= 1.0 - box_factor(i, x, n, slot) * (1.0 - uOccluderTransmittance[i].rgb);
+  // Each kind's transmissive proxies, then its opaque ones, as lists of their own: a
+  // software rasteriser would run a branch on the kind for all of them.
+#define OCCLUDER_TERM(i) vis *= 1.0 - sphere_factor(i, x, n, slot) * (1.0 - uOccluderTransmittance[i].rgb);
+  OCCLUDER_TRANSMISSIVE_SPHERES
+#undef OCCLUDER_TERM
+#define OCCLUDER_TERM(i) vis *= 1.0 - box_factor(i, x, n, slot) * (1.0 - uOccluderTransmittance[i].rgb);
+  OCCLUDER_TRANSMISSIVE_BOXES
+#undef OCCLUDER_TERM
 #if OCCLUDER_BOUNCE
-  for (int i = OCCLUDER_FIRST_OPAQUE_SPHERE; i < OCCLUDER_SPHERES; ++i) {
-    // Seen from x, a sphere shows the side facing it: its normal the direction to x.
-    vec3 to_x = normalize(x - kOccluderGeometry[5 * i].xyz);
-    bounce += sphere_factor(i, x, n, slot) * (side_radiance(uOccluderAlbedo[i].rgb, to_x) -
-                                              environment_irradiance(-to_x) * kInvPi);
-  }
-  for (int i = OCCLUDER_FIRST_OPAQUE_BOX; i < OCCLUDER_SPHERES + OCCLUDER_BOXES; ++i) {
-    // Seen from x, a parallelepiped shows the sides whose planes x lies beyond (a point on
-    // the floor beside a box resting on it sees the box's side, not its base: a point in a
-    // side's plane, to 1e-3 of the extent, is not beyond it); their normals weighted by
-    // their projected areas, area_k |u.N_k|, give the side's.
-    vec4 N0 = kOccluderGeometry[5 * i + 1], N1 = kOccluderGeometry[5 * i + 2],
-         N2 = kOccluderGeometry[5 * i + 3];
-    vec3 d = x - kOccluderGeometry[5 * i].xyz;
-    vec3 u = vec3(dot(d, N0.xyz), dot(d, N1.xyz), dot(d, N2.xyz));
-    vec3 w = step(1.001 * vec3(N0.w, N1.w, N2.w), abs(u)) * kOccluderGeometry[5 * i + 4].xyz * u;
-    vec3 side = w.x * N0.xyz + w.y * N1.xyz + w.z * N2.xyz;
-    float len = length(side);
-    vec3 to_x = normalize(d);
-    bounce += box_factor(i, x, n, slot) *
-              (side_radiance(uOccluderAlbedo[i].rgb, len > 0.0 ? side / len : to_x) -
-               environment_irradiance(-to_x) * kInvPi);
-  }
+#define OCCLUDER_TERM(i) bounce += opaque_sphere_bounce(i, x, n, slot);
+  OCCLUDER_OPAQUE_SPHERES
+#undef OCCLUDER_TERM
+#define OCCLUDER_TERM(i) bounce += opaque_box_bounce(i, x, n, slot);
+  OCCLUDER_OPAQUE_BOXES
+#undef OCCLUDER_TERM
 #endif
   return vis;
 }
