@@ -600,9 +600,8 @@ TEST(TransmissiveShadows, EachProxyIsWrittenOutOnceInTheListOfItsKindAndRole) {
     return o;
   };
   // select_occluders' order: spheres, then boxes; of each, the transmissive ones first.
-  const std::vector<Occluder> mixed = {proxy(true, false),  proxy(true, false),
-                                       proxy(true, true),   proxy(false, false),
-                                       proxy(false, true),  proxy(false, true)};
+  const std::vector<Occluder> mixed = {proxy(true, false),  proxy(true, false), proxy(true, true),
+                                       proxy(false, false), proxy(false, true), proxy(false, true)};
   const std::string d = occluder_geometry_define(mixed);
   EXPECT_NE(d.find("#define OCCLUDER_TRANSMISSIVE_SPHERES OCCLUDER_TERM(0) OCCLUDER_TERM(1)\n"),
             std::string::npos)
@@ -616,8 +615,7 @@ TEST(TransmissiveShadows, EachProxyIsWrittenOutOnceInTheListOfItsKindAndRole) {
   const std::string boxes = occluder_geometry_define(std::vector<Occluder>{proxy(false, false)});
   EXPECT_NE(boxes.find("#define OCCLUDER_TRANSMISSIVE_SPHERES\n"), std::string::npos) << boxes;
   EXPECT_NE(boxes.find("#define OCCLUDER_OPAQUE_BOXES\n"), std::string::npos) << boxes;
-  EXPECT_NE(boxes.find("#define OCCLUDER_TRANSMISSIVE_BOXES OCCLUDER_TERM(0)\n"),
-            std::string::npos)
+  EXPECT_NE(boxes.find("#define OCCLUDER_TRANSMISSIVE_BOXES OCCLUDER_TERM(0)\n"), std::string::npos)
       << boxes;
 }
 
