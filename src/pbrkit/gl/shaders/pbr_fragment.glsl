@@ -165,9 +165,22 @@ uniform float uIblScale;
 layout(binding = BINDING_SPECULAR_CUBE) uniform samplerCube uSpecularCube;
 layout(binding = BINDING_IRRADIANCE_CUBE) uniform samplerCube uIrradianceCube;
 
+#if IRRADIANCE_SH
+// uSH, copied once per fragment (main) and read from here: llvmpipe reads a uniform again at
+// each use, and the proxies' terms (occluders.glsl) evaluate the SH twice per opaque proxy.
+vec3 gSH[9];
+#endif
+
 #if IBL_OCCLUDERS
+// The irradiance the surface's own diffuse lobe is lit by (IRRADIANCE_SH: the nine terms,
+// else the irradiance cube), so that the light a proxy hides, and the light its sides
+// send, are what that lobe would have from the environment.
 vec3 environment_irradiance(vec3 n) {
+#if IRRADIANCE_SH
+  return max(eval_sh_irradiance(gSH, world_to_env(n, uIblRotation)), vec3(0.0));
+#else
   return textureLod(uIrradianceCube, world_to_env(n, uIblRotation), 0.0).rgb;
+#endif
 }
 #endif
 
@@ -457,7 +470,7 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
 #endif
   vec3 n_env = world_to_env(n, uIblRotation);
 #if IRRADIANCE_SH
-  vec3 irradiance = max(eval_sh_irradiance(uSH, n_env), vec3(0.0));
+  vec3 irradiance = max(eval_sh_irradiance(gSH, n_env), vec3(0.0));
 #else
   vec3 irradiance = textureLod(uIrradianceCube, n_env, 0.0).rgb;
 #endif
@@ -481,7 +494,7 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
     // The diffuse lobe's environment light: E(n) for the part that stays, dt E(-n) for the
     // diffuse BTDF; the specular BTDF's light is the frame's (transmitted_light).
 #if IRRADIANCE_SH
-    vec3 irradiance_back = max(eval_sh_irradiance(uSH, -n_env), vec3(0.0));
+    vec3 irradiance_back = max(eval_sh_irradiance(gSH, -n_env), vec3(0.0));
 #else
     vec3 irradiance_back = textureLod(uIrradianceCube, -n_env, 0.0).rgb;
 #endif
@@ -577,6 +590,9 @@ vec4 surface_output(MaterialInputs m, vec3 color) {
 }
 
 void main() {
+#if IRRADIANCE_SH
+  for (int k = 0; k < 9; ++k) gSH[k] = uSH[k];
+#endif
   vec4 base_color = material_base_color();
 #if ALPHA_MODE == 1
   if (base_color.a < uAlphaCutoff) discard;
