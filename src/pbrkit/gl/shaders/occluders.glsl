@@ -18,7 +18,7 @@
 // read is of a constant at a constant index: a software rasteriser (llvmpipe) reads a
 // uniform buffer lane by lane, runs a parallelepiped's form factor for a sphere (it runs
 // both sides of a branch that differs across lanes), and does not unroll a loop over many
-// proxies (a frame of 24 glass spheres, 16 of them proxies, 11% slower as loops). Their
+// proxies (a frame of 24 glass spheres, 16 of them proxies, 11-16% slower as loops). Their
 // transmittances, which change with the materials, are in a uniform block.
 const int kMaxOccluders = 16;  // occluders.h's
 #ifndef OCCLUDER_SPHERES

@@ -166,8 +166,9 @@ layout(binding = BINDING_SPECULAR_CUBE) uniform samplerCube uSpecularCube;
 layout(binding = BINDING_IRRADIANCE_CUBE) uniform samplerCube uIrradianceCube;
 
 #if IRRADIANCE_SH
-// uSH, copied once per fragment (main) and read from here: llvmpipe reads a uniform again at
-// each use, and the proxies' terms (occluders.glsl) evaluate the SH twice per opaque proxy.
+// uSH, copied once per fragment (main) and read from here by the diffuse lobe and by the
+// opaque proxies' terms (occluders.glsl, two SH sums each): read from the uniforms inside
+// the proxies' loop, the sums cost llvmpipe more than the irradiance cube's fetches.
 vec3 gSH[9];
 #endif
 
