@@ -302,9 +302,11 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
       if (selected_occluders.size() < occluders.size() &&
           !std::exchange(occluder_limit_warned, true))
         warn(
-            "OpenGL renderer: {} objects shadow the environment light; the {} largest spheres "
-            "and {} largest boxes among them do (at most {} of each)",
-            occluders.size(), occluder_counts.x, occluder_counts.y, kMaxOccluders);
+            "OpenGL renderer: {} objects shadow the environment light, more than a frame takes "
+            "({} spheres and {} boxes at most); the {} largest do ({} spheres, {} boxes), the "
+            "other {} do not",
+            occluders.size(), kMaxOccluders, kMaxOccluders, selected_occluders.size(),
+            occluder_counts.x, occluder_counts.y, occluders.size() - selected_occluders.size());
       occluder_buffer.upload(selected_occluders);
       programs.set_occluder_geometry(occluder_geometry_define(selected_occluders));
       occluders_changed = false;
