@@ -165,20 +165,15 @@ uniform float uIblScale;
 layout(binding = BINDING_SPECULAR_CUBE) uniform samplerCube uSpecularCube;
 layout(binding = BINDING_IRRADIANCE_CUBE) uniform samplerCube uIrradianceCube;
 
-#if IRRADIANCE_SH
-// uSH, copied once per fragment (main) and read from here by the diffuse lobe and by the
-// opaque proxies' terms (occluders.glsl, two SH sums each): read from the uniforms inside
-// the proxies' loop, the sums cost llvmpipe more than the irradiance cube's fetches.
-vec3 gSH[9];
-#endif
-
 #if IBL_OCCLUDERS
 // The irradiance the surface's own diffuse lobe is lit by (IRRADIANCE_SH: the nine terms,
 // else the irradiance cube), so that the light a proxy hides, and the light its sides
-// send, are what that lobe would have from the environment.
+// send, are what that lobe would have from the environment. With the proxies' terms
+// written out (occluders.glsl) the SH sums cost llvmpipe less than the cube's fetches; in a
+// loop over the proxies they cost more (BENCHMARKS.md, "The proxies' terms written out").
 vec3 environment_irradiance(vec3 n) {
 #if IRRADIANCE_SH
-  return max(eval_sh_irradiance(gSH, world_to_env(n, uIblRotation)), vec3(0.0));
+  return max(eval_sh_irradiance(uSH, world_to_env(n, uIblRotation)), vec3(0.0));
 #else
   return textureLod(uIrradianceCube, world_to_env(n, uIblRotation), 0.0).rgb;
 #endif
@@ -471,7 +466,7 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
 #endif
   vec3 n_env = world_to_env(n, uIblRotation);
 #if IRRADIANCE_SH
-  vec3 irradiance = max(eval_sh_irradiance(gSH, n_env), vec3(0.0));
+  vec3 irradiance = max(eval_sh_irradiance(uSH, n_env), vec3(0.0));
 #else
   vec3 irradiance = textureLod(uIrradianceCube, n_env, 0.0).rgb;
 #endif
@@ -495,7 +490,7 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
     // The diffuse lobe's environment light: E(n) for the part that stays, dt E(-n) for the
     // diffuse BTDF; the specular BTDF's light is the frame's (transmitted_light).
 #if IRRADIANCE_SH
-    vec3 irradiance_back = max(eval_sh_irradiance(gSH, -n_env), vec3(0.0));
+    vec3 irradiance_back = max(eval_sh_irradiance(uSH, -n_env), vec3(0.0));
 #else
     vec3 irradiance_back = textureLod(uIrradianceCube, -n_env, 0.0).rgb;
 #endif
@@ -591,9 +586,6 @@ vec4 surface_output(MaterialInputs m, vec3 color) {
 }
 
 void main() {
-#if IRRADIANCE_SH
-  for (int k = 0; k < 9; ++k) gSH[k] = uSH[k];
-#endif
   vec4 base_color = material_base_color();
 #if ALPHA_MODE == 1
   if (base_color.a < uAlphaCutoff) discard;
