@@ -342,21 +342,23 @@ int floor_ratios(Mesh object, const glm::mat4& transform, const Material& materi
 }
 
 // floor_ratios for a sphere of `material` (radius 0.5, centre 1.2 above the floor: wholly
-// above every floor point's horizon) in a white environment, seen from low at the side:
+// above every floor point's horizon) in a uniform environment (radiance `env_radiance`,
+// white by default), seen from low at the side:
 // each floor pixel's ratio held to want(F) in every channel within 4e-3, F the closed-form
 // sphere factor at the floor point; at least 1000 pixels, 100 of them with F > 0.05.
 template <class Want>
 void expect_floor_under_sphere(const char* what, const Material& material,
                                std::vector<Texture> textures, const RenderSettings& on_settings,
-                               const RenderSettings& off_settings, Want want) {
+                               const RenderSettings& off_settings, Want want,
+                               float env_radiance = 1.0f) {
   const float radius = 0.5f;
   const glm::dvec3 centre(0.0, 1.2, 0.0);
   int shadowed = 0;
   double worst = 0.0;
   const int counted = floor_ratios(
       make_uv_sphere(radius), glm::translate(glm::mat4(1.0f), glm::vec3(centre)), material,
-      std::move(textures), Environment::constant(glm::vec3(1.0f)), glm::vec3(0.0f, 0.5f, 3.5f),
-      on_settings, off_settings,
+      std::move(textures), Environment::constant(glm::vec3(env_radiance)),
+      glm::vec3(0.0f, 0.5f, 3.5f), on_settings, off_settings,
       [&](glm::dvec3 eye, glm::dvec3 d) { return ray_meets_sphere(eye, d, centre, radius * 1.15); },
       [&](glm::ivec2 px, glm::dvec3 p, glm::dvec3 ratio) {
         const glm::dvec3 w = centre - p;
@@ -422,6 +424,41 @@ TEST(OpaqueShadows, AFloorUnderAnOpaqueSphereKeepsOneMinusFPlusFTimesItsAlbedo) 
   expect_floor_under_sphere("floor under an opaque sphere", rock,
                             {Texture::from_linear(texels, false)}, on, off,
                             [&](double F) { return 1.0 - F + F * albedo; });
+}
+
+// An opaque proxy sends its emission besides what it reflects, and an unlit one (KHR_materials_
+// unlit) its base colour alone, as the path tracer's unlit surface does: in a uniform
+// environment of radiance 2 the floor under the sphere keeps (2 (1 - F) + F L) / 2 of its
+// light, L = 2 albedo + emission (emissive factor times strength times the emissive
+// texture's mean), and L = the base colour for the unlit sphere, which a lit sphere of that
+// albedo would send twice over.
+TEST(OpaqueShadows, AnEmissiveOrUnlitSphereSendsItsOwnLightToTheFloor) {
+  RenderSettings on;
+  on.msaa = 1;
+  on.opaque_shadows = true;
+  RenderSettings off = on;
+  off.opaque_shadows = false;
+  Material lamp;
+  lamp.metallic_factor = 0.0f;
+  lamp.roughness_factor = 1.0f;
+  lamp.base_color_factor = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
+  lamp.emissive_factor = glm::vec3(0.2f, 0.6f, 1.0f);
+  lamp.emissive_strength = 1.5f;
+  lamp.emissive_texture.texture = 0;
+  // Two texels, linear (1, 0.5, 0.2) and (1, 0.7, 0.4): mean (1, 0.6, 0.3).
+  Image texels(2, 1, 3);
+  texels.data = {1.0f, 0.5f, 0.2f, 1.0f, 0.7f, 0.4f};
+  const glm::dvec3 emission = 1.5 * glm::dvec3(0.2, 0.6 * 0.6, 1.0 * 0.3);
+  expect_floor_under_sphere(
+      "floor under an emissive sphere", lamp, {Texture::from_linear(texels, false)}, on, off,
+      [&](double F) { return 1.0 - F + F * (2.0 * glm::dvec3(0.5) + emission) / 2.0; }, 2.0f);
+  Material unlit;
+  unlit.unlit = true;
+  unlit.base_color_factor = glm::vec4(0.8f, 0.4f, 0.2f, 1.0f);
+  const glm::dvec3 colour(0.8, 0.4, 0.2);
+  expect_floor_under_sphere(
+      "floor under an unlit sphere", unlit, {}, on, off,
+      [&](double F) { return 1.0 - F + F * colour / 2.0; }, 2.0f);
 }
 
 // Each side of an opaque proxy sends back albedo E(N) / pi, E the environment's irradiance

@@ -80,6 +80,13 @@ glm::vec3 opaque_albedo(const Material& m, std::span<const glm::vec3> texture_me
   return glm::clamp(albedo, 0.0f, 1.0f);
 }
 
+glm::vec3 opaque_emission(const Material& m, std::span<const glm::vec3> texture_means) {
+  glm::vec3 emission = glm::max(m.emissive_factor, 0.0f) * std::max(m.emissive_strength, 0.0f);
+  const int t = m.emissive_texture.texture;
+  if (t >= 0 && std::size_t(t) < texture_means.size()) emission *= texture_means[std::size_t(t)];
+  return emission;
+}
+
 std::vector<Occluder> ibl_occluders(const GpuScene& scene, OccluderKinds kinds) {
   std::vector<Occluder> out;
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
@@ -130,7 +137,12 @@ std::vector<Occluder> ibl_occluders(const GpuScene& scene, OccluderKinds kinds) 
     }
     if (opaque) {
       o.transmittance = glm::vec3(0.0f);
-      o.albedo = opaque_albedo(m, scene.texture_means);
+      if (m.unlit) {
+        o.emission = opaque_albedo(m, scene.texture_means);
+      } else {
+        o.albedo = opaque_albedo(m, scene.texture_means);
+        o.emission = opaque_emission(m, scene.texture_means);
+      }
     } else {
       o.transmittance = occluder_transmittance(m, volume, chord);
     }
@@ -194,13 +206,16 @@ GpuOccluderBuffer::~GpuOccluderBuffer() {
 
 void GpuOccluderBuffer::upload(std::span<const Occluder> selected) {
   // The shader's block (occluders.glsl's Occluders) has room for kMaxOccluders of each kind:
-  // their transmittances, then their albedos (an opaque one's; 0 sends nothing back).
+  // their transmittances, then their albedos and their emissions (an opaque one's; 0 sends
+  // nothing).
   const std::size_t n = 2 * std::size_t(kMaxOccluders);
-  std::vector<glm::vec4> data(2 * n, glm::vec4(0.0f));
+  std::vector<glm::vec4> data(3 * n, glm::vec4(0.0f));
   std::fill(data.begin(), data.begin() + std::ptrdiff_t(n), glm::vec4(1.0f));
   for (std::size_t i = 0; i < selected.size() && i < n; ++i) {
-    data[i] = glm::vec4(selected[i].transmittance, 0.0f);
-    data[n + i] = glm::vec4(selected[i].opaque ? selected[i].albedo : glm::vec3(0.0f), 0.0f);
+    const Occluder& o = selected[i];
+    data[i] = glm::vec4(o.transmittance, 0.0f);
+    data[n + i] = glm::vec4(o.opaque ? o.albedo : glm::vec3(0.0f), 0.0f);
+    data[2 * n + i] = glm::vec4(o.opaque ? o.emission : glm::vec3(0.0f), 0.0f);
   }
   glNamedBufferData(buffer_, GLsizeiptr(data.size() * sizeof(glm::vec4)), data.data(),
                     GL_STREAM_DRAW);

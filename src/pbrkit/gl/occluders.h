@@ -46,6 +46,12 @@ struct Occluder {
   /// off).
   bool opaque = false;
   glm::vec3 albedo{0.0f};
+  /// An opaque proxy's own radiance from every side, added to what it reflects: its
+  /// material's emission (opaque_emission), or for an unlit material (KHR_materials_unlit)
+  /// its base colour, with albedo 0, as the path tracer takes an unlit surface: an emitter
+  /// of its colour that reflects nothing. (A single-sided emitter's proxy glows from its
+  /// back too.)
+  glm::vec3 emission{0.0f};
 };
 
 /// Which instances stand in as proxies.
@@ -77,6 +83,9 @@ std::vector<Occluder> ibl_occluders(const GpuScene& scene, OccluderKinds kinds =
 /// GpuScene's), which a rough dielectric's diffuse lobe and specular lobe reflect together
 /// to within its F_avg, and a metal's specular lobe reflects.
 glm::vec3 opaque_albedo(const Material& m, std::span<const glm::vec3> texture_means);
+/// The radiance an opaque surface of material `m` emits, for its proxy: the emissive factor
+/// times KHR_materials_emissive_strength times the emissive texture's mean.
+glm::vec3 opaque_emission(const Material& m, std::span<const glm::vec3> texture_means);
 
 /// What a frame compiles in: at most kMaxOccluders of each kind, the largest (a sphere's
 /// radius, a parallelepiped's surface), spheres first, and of each kind the transmissive
@@ -94,7 +103,8 @@ std::vector<Occluder> select_occluders(std::span<const Occluder> all, glm::ivec2
 std::string occluder_geometry_define(std::span<const Occluder> selected);
 
 /// The selected occluders' transmittances on the GPU (occluders.glsl's Occluders block, one
-/// vec4 each), which change with the materials without a new program. Needs the current GL
+/// vec4 each; the opaque ones' albedos and emissions after them), which change with the
+/// materials without a new program. Needs the current GL
 /// context for its whole life.
 class GpuOccluderBuffer {
  public:
@@ -102,7 +112,7 @@ class GpuOccluderBuffer {
   ~GpuOccluderBuffer();
   GpuOccluderBuffer(const GpuOccluderBuffer&) = delete;
   GpuOccluderBuffer& operator=(const GpuOccluderBuffer&) = delete;
-  /// Uploads the transmittances and the opaque ones' albedos of `selected`
+  /// Uploads the transmittances and the opaque ones' albedos and emissions of `selected`
   /// (select_occluders's) and binds the buffer.
   void upload(std::span<const Occluder> selected);
   /// Binds the buffer (GL_UNIFORM_BUFFER at kOccluderBufferBinding).

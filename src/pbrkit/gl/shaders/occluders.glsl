@@ -37,15 +37,19 @@ const vec4 kOccluderGeometry[] = OCCLUDER_GEOMETRY;
 layout(std140, binding = BINDING_OCCLUDERS) uniform Occluders {
   vec4 uOccluderTransmittance[2 * kMaxOccluders];  // rgb
   vec4 uOccluderAlbedo[2 * kMaxOccluders];         // rgb: an opaque proxy's, else 0
+  vec4 uOccluderEmission[2 * kMaxOccluders];       // rgb: an opaque proxy's, else 0
 };
 
 // The environment's irradiance at world normal n (pbr_fragment.glsl's: from the irradiance
 // cube, one fetch, where nine SH terms cost llvmpipe more).
 vec3 environment_irradiance(vec3 n);
 
-// The radiance an opaque proxy (albedo `albedo`) sends towards a point from its side of
-// outward normal n, lit by the whole environment: albedo E(n) / pi (occluders.h).
-vec3 side_radiance(vec3 albedo, vec3 n) { return albedo * environment_irradiance(n) * kInvPi; }
+// The radiance opaque proxy i sends towards a point from its side of outward normal n: its
+// albedo times the whole environment's light there, albedo E(n) / pi, plus its own emission
+// (occluders.h).
+vec3 side_radiance(int i, vec3 n) {
+  return uOccluderAlbedo[i].rgb * environment_irradiance(n) * kInvPi + uOccluderEmission[i].rgb;
+}
 
 // Occluder i's form factor from (x, n), 0 where it is the surface's own (`slot`).
 float sphere_factor(int i, vec3 x, vec3 n, int slot) {
@@ -67,7 +71,7 @@ float box_factor(int i, vec3 x, vec3 n, int slot) {
 vec3 opaque_sphere_bounce(int i, vec3 x, vec3 n, int slot) {
   vec3 to_x = normalize(x - kOccluderGeometry[5 * i].xyz);
   return sphere_factor(i, x, n, slot) *
-         (side_radiance(uOccluderAlbedo[i].rgb, to_x) - environment_irradiance(-to_x) * kInvPi);
+         (side_radiance(i, to_x) - environment_irradiance(-to_x) * kInvPi);
 }
 
 // Opaque parallelepiped i's F (L - L_hidden) at (x, n): seen from x, it shows the sides whose
@@ -84,7 +88,7 @@ vec3 opaque_box_bounce(int i, vec3 x, vec3 n, int slot) {
   float len = length(side);
   vec3 to_x = normalize(d);
   return box_factor(i, x, n, slot) *
-         (side_radiance(uOccluderAlbedo[i].rgb, len > 0.0 ? side / len : to_x) -
+         (side_radiance(i, len > 0.0 ? side / len : to_x) -
           environment_irradiance(-to_x) * kInvPi);
 }
 #endif
