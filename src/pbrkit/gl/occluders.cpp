@@ -146,9 +146,10 @@ std::vector<Occluder> ibl_occluders(const GpuScene& scene, OccluderKinds kinds) 
     } else {
       o.transmittance = occluder_transmittance(m, volume, chord);
     }
-    // A proxy written into a shader must be finite (a degenerate transform is not).
+    // A proxy written into a shader must be finite (a degenerate transform is not), and so
+    // must the light it sends (an emission past the float range).
     if (!std::isfinite(o.radius + glm::dot(o.center, o.center) + o.faces.areas.x + o.faces.areas.y +
-                       o.faces.areas.z))
+                       o.faces.areas.z + o.emission.x + o.emission.y + o.emission.z))
       continue;
     out.push_back(o);
   }

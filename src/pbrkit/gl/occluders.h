@@ -104,8 +104,7 @@ std::string occluder_geometry_define(std::span<const Occluder> selected);
 
 /// The selected occluders' transmittances on the GPU (occluders.glsl's Occluders block, one
 /// vec4 each; the opaque ones' albedos and emissions after them), which change with the
-/// materials without a new program. Needs the current GL
-/// context for its whole life.
+/// materials without a new program. Needs the current GL context for its whole life.
 class GpuOccluderBuffer {
  public:
   GpuOccluderBuffer();

@@ -40,8 +40,8 @@ layout(std140, binding = BINDING_OCCLUDERS) uniform Occluders {
   vec4 uOccluderEmission[2 * kMaxOccluders];       // rgb: an opaque proxy's, else 0
 };
 
-// The environment's irradiance at world normal n (pbr_fragment.glsl's: from the irradiance
-// cube, one fetch, where nine SH terms cost llvmpipe more).
+// The environment's irradiance at world normal n, as the surface's own diffuse lobe gets it
+// (pbr_fragment.glsl's: the nine SH terms', or the irradiance cube's).
 vec3 environment_irradiance(vec3 n);
 
 // The radiance opaque proxy i sends towards a point from its side of outward normal n: its
