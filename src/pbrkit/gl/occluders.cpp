@@ -25,6 +25,13 @@ float average_fresnel(float ior) {
   return 2.0f * sum / kSteps;
 }
 
+// The mean of the texture `ref` names (GpuScene::texture_means), 1 where it names none.
+glm::vec3 mean_of(const TextureRef& ref, std::span<const glm::vec3> texture_means) {
+  const int t = ref.texture;
+  return t >= 0 && std::size_t(t) < texture_means.size() ? texture_means[std::size_t(t)]
+                                                         : glm::vec3(1.0f);
+}
+
 }  // namespace
 
 ParallelepipedFaces parallelepiped_faces(const glm::vec3 axes[3]) {
@@ -74,17 +81,13 @@ glm::vec3 occluder_transmittance(const Material& m, bool volume, float chord) {
 }
 
 glm::vec3 opaque_albedo(const Material& m, std::span<const glm::vec3> texture_means) {
-  glm::vec3 albedo = glm::vec3(m.base_color_factor);
-  const int t = m.base_color_texture.texture;
-  if (t >= 0 && std::size_t(t) < texture_means.size()) albedo *= texture_means[std::size_t(t)];
-  return glm::clamp(albedo, 0.0f, 1.0f);
+  return glm::clamp(glm::vec3(m.base_color_factor) * mean_of(m.base_color_texture, texture_means),
+                    0.0f, 1.0f);
 }
 
 glm::vec3 opaque_emission(const Material& m, std::span<const glm::vec3> texture_means) {
-  glm::vec3 emission = glm::max(m.emissive_factor, 0.0f) * std::max(m.emissive_strength, 0.0f);
-  const int t = m.emissive_texture.texture;
-  if (t >= 0 && std::size_t(t) < texture_means.size()) emission *= texture_means[std::size_t(t)];
-  return emission;
+  // The surface's own emission as the renderer draws it (uEmissive), times the texture's mean.
+  return m.emissive_factor * m.emissive_strength * mean_of(m.emissive_texture, texture_means);
 }
 
 std::vector<Occluder> ibl_occluders(const GpuScene& scene, OccluderKinds kinds) {
