@@ -165,12 +165,12 @@ uniform float uIblScale;
 layout(binding = BINDING_SPECULAR_CUBE) uniform samplerCube uSpecularCube;
 layout(binding = BINDING_IRRADIANCE_CUBE) uniform samplerCube uIrradianceCube;
 
-#if IBL_OCCLUDERS
-// The irradiance the surface's own diffuse lobe is lit by (IRRADIANCE_SH: the nine terms,
-// else the irradiance cube), so that the light a proxy hides, and the light its sides
-// send, are what that lobe would have from the environment. With the proxies' terms
-// written out (occluders.glsl) the SH sums cost llvmpipe less than the cube's fetches; in a
-// loop over the proxies they cost more (BENCHMARKS.md, "The proxies' terms written out").
+// The environment's irradiance at world normal n (IRRADIANCE_SH: the nine terms, else the
+// irradiance cube): what the diffuse lobe is lit by, and (occluders.glsl) the light a proxy
+// hides and its sides send, so that those are what that lobe would have from the
+// environment. With the proxies' terms written out the SH sums cost llvmpipe less than the
+// cube's fetches; in a loop over the proxies they cost more (BENCHMARKS.md, "The proxies'
+// terms written out").
 vec3 environment_irradiance(vec3 n) {
 #if IRRADIANCE_SH
   return max(eval_sh_irradiance(uSH, world_to_env(n, uIblRotation)), vec3(0.0));
@@ -178,7 +178,6 @@ vec3 environment_irradiance(vec3 n) {
   return textureLod(uIrradianceCube, world_to_env(n, uIblRotation), 0.0).rgb;
 #endif
 }
-#endif
 
 // The sheen's image-based lighting: sheenColor times the sheen's directional albedo E(n.v)
 // (the split sum's DG term for the README's Charlie visibility, ibl/sheen_lut.h) times the
@@ -464,12 +463,7 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
       prefiltered = seen / (uIblScale * max(visibility, vec3(1e-4)));
   }
 #endif
-  vec3 n_env = world_to_env(n, uIblRotation);
-#if IRRADIANCE_SH
-  vec3 irradiance = max(eval_sh_irradiance(uSH, n_env), vec3(0.0));
-#else
-  vec3 irradiance = textureLod(uIrradianceCube, n_env, 0.0).rgb;
-#endif
+  vec3 irradiance = environment_irradiance(n);
 #if OCCLUDER_BOUNCE
   irradiance = max(irradiance + kPi * unshadowed_bounce, vec3(0.0));
 #endif
@@ -489,11 +483,7 @@ vec3 image_based_light(MaterialInputs m, Shading s, float through, vec3 dt_weigh
   {
     // The diffuse lobe's environment light: E(n) for the part that stays, dt E(-n) for the
     // diffuse BTDF; the specular BTDF's light is the frame's (transmitted_light).
-#if IRRADIANCE_SH
-    vec3 irradiance_back = max(eval_sh_irradiance(uSH, -n_env), vec3(0.0));
-#else
-    vec3 irradiance_back = textureLod(uIrradianceCube, -n_env, 0.0).rgb;
-#endif
+    vec3 irradiance_back = environment_irradiance(-n);
     Brdf ibl_dt = ibl;
     ibl_dt.base_color = m.dt_color;
     indirect += lobe(DEBUG_DIFFUSE, ibl_diffuse(ibl_dt, uEnergyIBL, dot(n, v), dt_weight * irradiance_back) -
