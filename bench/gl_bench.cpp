@@ -213,15 +213,19 @@ BENCHMARK(BM_GlFrameSheen)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTim
 // own cameras; `liquid` captures the frame twice: its amber behind its glass); 5 and 6: the
 // same without the transmissive objects' shadows in the environment light (what they cost);
 // 7 and 8: without thick glass's reflections of the frame (what they cost); 9 and 10: with the
-// opaque objects' shadows too (RenderSettings::opaque_shadows, off by default).
+// opaque objects' shadows too (RenderSettings::opaque_shadows, off by default); 11 and 12:
+// with neither the transmissive objects' shadows nor the reflections, the two-interface
+// refraction alone against the frame before it.
 void BM_GlFrameTransmission(benchmark::State& state) {
   constexpr int kWidth = 1280, kHeight = 720;
   gl::HeadlessContext context;
   const int variant = int(state.range(0));
-  Scene scene =
-      variant == 3 || variant == 5 || variant == 7 || variant == 9    ? builtin_scene("glass")
-      : variant == 4 || variant == 6 || variant == 8 || variant == 10 ? builtin_scene("liquid")
-                                                                      : spheres_with_two_lights();
+  const bool glass = variant == 3 || variant == 5 || variant == 7 || variant == 9 || variant == 11;
+  const bool liquid =
+      variant == 4 || variant == 6 || variant == 8 || variant == 10 || variant == 12;
+  Scene scene = glass    ? builtin_scene("glass")
+                : liquid ? builtin_scene("liquid")
+                         : spheres_with_two_lights();
   if (variant == 1 || variant == 2) {
     const std::size_t count = scene.materials.size();
     for (std::size_t i = 0; i < count; i += 2) {
@@ -235,8 +239,8 @@ void BM_GlFrameTransmission(benchmark::State& state) {
   }
   gl::RenderSettings settings;
   settings.msaa = 1;
-  settings.transmissive_shadows = variant != 5 && variant != 6;
-  settings.transmissive_reflections = variant != 7 && variant != 8;
+  settings.transmissive_shadows = variant != 5 && variant != 6 && variant < 11;
+  settings.transmissive_reflections = variant != 7 && variant != 8 && variant < 11;
   settings.opaque_shadows = variant == 9 || variant == 10;
   time_frames(state, scene, kWidth, kHeight, settings);
   static const char* const kNames[] = {"opaque",
@@ -249,11 +253,13 @@ void BM_GlFrameTransmission(benchmark::State& state) {
                                        "builtin glass, no glass reflections",
                                        "builtin liquid, no glass reflections",
                                        "builtin glass, opaque shadows",
-                                       "builtin liquid, opaque shadows"};
+                                       "builtin liquid, opaque shadows",
+                                       "builtin glass, two-interface refraction alone",
+                                       "builtin liquid, two-interface refraction alone"};
   state.SetLabel(kNames[variant]);
 }
 BENCHMARK(BM_GlFrameTransmission)
-    ->DenseRange(0, 10)
+    ->DenseRange(0, 12)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->MinTime(3.0);
