@@ -11,6 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "gl_test_context.h"
+#include "pbrkit/gl/context.h"
 #include "pbrkit/gl/gpu_scene.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/scene/camera.h"
@@ -82,6 +83,37 @@ TEST(GlInstancedDrawing, InstancesOfOneMeshDrawLikeSeparateMeshes) {
               largest);
   EXPECT_GT(lit, kSize * kSize / 5);  // the boxes fill a good part of the image
   EXPECT_LT(largest, 1e-5);
+}
+
+// On a software rasteriser (llvmpipe, as in CI) the frame draws a run in chunks of at most
+// RenderSettings::software_queue_triangles and waits for the rasteriser after each: with a
+// limit of two boxes (24 triangles) the runs of 29 and 7 instances are drawn two at a time,
+// each chunk from its own first slot, and the image must be the one drawn without chunks (a
+// chunk drawn from the run's first slot, or one instance short, would change it).
+TEST(GlInstancedDrawing, ChunksOfARunDrawTheSameImage) {
+  testing::context();
+  std::printf("context: %s, chunked: %s\n", describe_current_context().c_str(),
+              is_software_renderer(current_renderer()) ? "yes" : "no (a GPU: no chunks)");
+  const Scene scene = grid(true);
+  Camera camera;
+  camera.yfov = 0.9f;
+  camera.camera_to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 9.0f));
+  RenderSettings whole;
+  whole.msaa = 1;
+  whole.software_queue_triangles = 0;
+  RenderSettings chunked = whole;
+  chunked.software_queue_triangles = 24;
+  constexpr int kSize = 96;
+  const Image a = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, chunked);
+  const Image b = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, whole);
+  int lit = 0, differ = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      lit += glm::dot(b.rgb(x, y), glm::vec3(1.0f)) > 0.01f;
+      differ += a.rgb(x, y) != b.rgb(x, y);
+    }
+  EXPECT_GT(lit, kSize * kSize / 5);
+  EXPECT_EQ(differ, 0);
 }
 
 TEST(GlInstancedDrawing, OneRunPerMeshAndWinding) {

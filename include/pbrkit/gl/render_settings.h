@@ -3,6 +3,7 @@
 // Fresnel form, image-based and punctual lighting on or off, the irradiance form, MSAA,
 // the background, and the live overrides of the viewer's panel. Typed values only; the
 // command line's spellings are parsed in apps/pbrkit/gl_options.cpp.
+#include <cstddef>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -65,6 +66,14 @@ struct RenderSettings {
   bool clustered_lights = true;
   LightClusterGrid light_clusters;
   int msaa = 4;  ///< samples per pixel (1 = off)
+  /// On a software rasteriser (Mesa's llvmpipe), which queues the triangles it has binned for
+  /// its rasteriser threads, the frame waits for that queue to drain after each this many
+  /// triangles and draws a run of instances in chunks of at most that many (at least one
+  /// instance each): it bounds the memory the queue holds (a frame of 57 million instanced
+  /// triangles: 1.5 GB at its peak without, 0.44 GB with 2 million; BENCHMARKS.md, "The
+  /// OpenGL frame's memory at production scale"). The same image either way. 0: never wait.
+  /// A GPU's driver needs no such wait, and there it is not made.
+  std::size_t software_queue_triangles = 2'000'000;
   Background background;
   float env_rotation_deg = 0.0f;
   float env_intensity = 1.0f;

@@ -231,6 +231,14 @@ struct Renderer::State {
   // The back-face pass's program (pbr_vertex.glsl, back_face_fragment.glsl), made on the
   // first frame with a thick transmissive object.
   Program back_faces;
+  // Whether the context is a software rasteriser's, and the triangles this frame has drawn
+  // since it began or last waited for its queue (RenderSettings::software_queue_triangles).
+  bool software = false;
+  std::size_t queued_triangles = 0;
+  // The most triangles a draw may hold and be followed by no wait (0: no limit).
+  std::size_t queue_limit(const Frame& f) const {
+    return software ? f.settings->software_queue_triangles : 0;
+  }
 
   // render()'s steps, in the order it takes them.
   Frame begin_frame(const Camera& camera, int width, int height, const RenderSettings& settings);
@@ -262,6 +270,7 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
   f.view_projection = f.projection * f.view;
 
   timer.begin();
+  queued_triangles = 0;
   glBindFramebuffer(GL_FRAMEBUFFER, targets.msaa_fbo);
   glViewport(0, 0, width, height);
   glDisable(GL_BLEND);
@@ -441,6 +450,13 @@ void Renderer::State::draw(Frame& f, std::size_t index, GLenum cull, std::size_t
   glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
   glBindVertexArray(mesh.vao);
   glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, GLsizei(count));
+  if (const std::size_t limit = queue_limit(f); limit > 0) {
+    queued_triangles += std::size_t(mesh.index_count / 3) * count;
+    if (queued_triangles >= limit) {
+      glFinish();
+      queued_triangles = 0;
+    }
+  }
 }
 
 // Opaque and masked instances a run at a time (GpuScene::runs: one mesh, one winding); the
@@ -457,7 +473,13 @@ QueuedDraws Renderer::State::draw_opaque(Frame& f) {
     // Surfaces with KHR_materials_transmission read the opaque frame: they wait for it.
     const bool transmits = m.transmission.has_value() && m.transmission->factor > 0.0f;
     if (mesh.alpha_mode != 2 && !transmits) {
-      draw(f, scene.at_slot[run.first_slot], 0, run.count);
+      // One draw for the run, or on a software rasteriser chunks of at most queue_limit's
+      // triangles (at least one instance each).
+      const std::size_t limit = queue_limit(f);
+      const std::size_t triangles = std::max<std::size_t>(1, std::size_t(mesh.index_count / 3));
+      const std::size_t chunk = limit > 0 ? std::max<std::size_t>(1, limit / triangles) : run.count;
+      for (std::size_t k = 0; k < run.count; k += chunk)
+        draw(f, scene.at_slot[run.first_slot + k], 0, std::min(chunk, run.count - k));
       continue;
     }
     queued.frame_blurred = queued.frame_blurred || (transmits && blurs_frame(m, *f.settings));
@@ -599,6 +621,7 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {
     fail("OpenGL: {} fragment texture units, the surface shader needs {}", units,
          kLastSurfaceUnit + 1);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
+  s.software = is_software_renderer(current_renderer());
 }
 
 Renderer::~Renderer() {
