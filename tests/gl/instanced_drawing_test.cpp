@@ -57,14 +57,20 @@ Scene grid(bool shared) {
   return scene;
 }
 
+// The grid seen from the front, all of it in the frame.
+Camera front_camera() {
+  Camera camera;
+  camera.yfov = 0.9f;
+  camera.camera_to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 9.0f));
+  return camera;
+}
+
 TEST(GlInstancedDrawing, InstancesOfOneMeshDrawLikeSeparateMeshes) {
   testing::context();
   const Scene shared = grid(true), separate = grid(false);
   ASSERT_EQ(shared.meshes.size(), 1u);
   ASSERT_EQ(separate.meshes.size(), 36u);
-  Camera camera;
-  camera.yfov = 0.9f;
-  camera.camera_to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 9.0f));
+  const Camera camera = front_camera();
   RenderSettings settings;
   settings.msaa = 1;
   constexpr int kSize = 96;
@@ -95,9 +101,7 @@ TEST(GlInstancedDrawing, ChunksOfARunDrawTheSameImage) {
   std::printf("context: %s, chunked: %s\n", describe_current_context().c_str(),
               is_software_renderer(current_renderer()) ? "yes" : "no (a GPU: no chunks)");
   const Scene scene = grid(true);
-  Camera camera;
-  camera.yfov = 0.9f;
-  camera.camera_to_world = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 9.0f));
+  const Camera camera = front_camera();
   RenderSettings whole;
   whole.msaa = 1;
   whole.software_queue_triangles = 0;

@@ -249,8 +249,8 @@ struct Renderer::State {
   // Sets the frame's uniforms on `p` the first time the frame uses it.
   void prepare(Frame& f, const Program& p);
   // Instance `index` and the `count` - 1 after it in slot order (one run: the same mesh and
-  // winding), in one glDrawElementsInstanced. `cull`: the faces to cull (GL_BACK,
-  // GL_FRONT), or 0 for the material's choice.
+  // winding), in one glDrawElementsInstanced (in chunks on a software rasteriser: queue_limit).
+  // `cull`: the faces to cull (GL_BACK, GL_FRONT), or 0 for the material's choice.
   void draw(Frame& f, std::size_t index, GLenum cull = 0, std::size_t count = 1);
 };
 
@@ -449,10 +449,18 @@ void Renderer::State::draw(Frame& f, std::size_t index, GLenum cull, std::size_t
   }
   glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
   glBindVertexArray(mesh.vao);
-  glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, GLsizei(count));
-  if (const std::size_t limit = queue_limit(f); limit > 0) {
-    queued_triangles += std::size_t(mesh.index_count / 3) * count;
-    if (queued_triangles >= limit) {
+  // One instanced draw; on a software rasteriser chunks of at most queue_limit's triangles
+  // (at least one instance each), the frame waiting for the rasteriser's queue once that many
+  // have been drawn.
+  const std::size_t limit = queue_limit(f);
+  const std::size_t triangles = std::size_t(mesh.index_count / 3);
+  const std::size_t chunk =
+      limit > 0 ? std::max<std::size_t>(1, limit / std::max<std::size_t>(1, triangles)) : count;
+  for (std::size_t k = 0; k < count; k += chunk) {
+    const std::size_t n = std::min(chunk, count - k);
+    if (k > 0) p.set("uInstanceBase", GLint(scene.slot_of[index] + k));
+    glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, GLsizei(n));
+    if (limit > 0 && (queued_triangles += triangles * n) >= limit) {
       glFinish();
       queued_triangles = 0;
     }
@@ -473,13 +481,7 @@ QueuedDraws Renderer::State::draw_opaque(Frame& f) {
     // Surfaces with KHR_materials_transmission read the opaque frame: they wait for it.
     const bool transmits = m.transmission.has_value() && m.transmission->factor > 0.0f;
     if (mesh.alpha_mode != 2 && !transmits) {
-      // One draw for the run, or on a software rasteriser chunks of at most queue_limit's
-      // triangles (at least one instance each).
-      const std::size_t limit = queue_limit(f);
-      const std::size_t triangles = std::max<std::size_t>(1, std::size_t(mesh.index_count / 3));
-      const std::size_t chunk = limit > 0 ? std::max<std::size_t>(1, limit / triangles) : run.count;
-      for (std::size_t k = 0; k < run.count; k += chunk)
-        draw(f, scene.at_slot[run.first_slot + k], 0, std::min(chunk, run.count - k));
+      draw(f, scene.at_slot[run.first_slot], 0, run.count);
       continue;
     }
     queued.frame_blurred = queued.frame_blurred || (transmits && blurs_frame(m, *f.settings));
