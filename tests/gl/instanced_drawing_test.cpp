@@ -120,6 +120,44 @@ TEST(GlInstancedDrawing, ChunksOfARunDrawTheSameImage) {
   EXPECT_EQ(differ, 0);
 }
 
+// A mesh of more triangles than the limit is drawn in index ranges of at most that many (a
+// limit of 5: each box's 12 triangles as 5, 5 and 2; the glass sphere in front as ranges of
+// 5, its back-face pass too), and the image must be the one drawn whole: a range drawn from
+// the mesh's first index, or the last short range dropped, leaves faces out, and a back-face
+// pass drawn wrong changes what the thick glass refracts.
+TEST(GlInstancedDrawing, IndexRangesOfAMeshDrawTheSameImage) {
+  testing::context();
+  Scene scene = grid(true);
+  Material glass;
+  glass.base_color_factor = glm::vec4(1.0f);
+  glass.metallic_factor = 0.0f;
+  glass.roughness_factor = 0.05f;
+  glass.transmission = TransmissionExtension{1.0f, {}};
+  glass.volume = VolumeExtension{1.5f, {}, 4.0f, glm::vec3(0.9f, 0.7f, 0.5f)};
+  scene.materials.push_back(glass);
+  const int sphere =
+      add_mesh_instance(scene, make_uv_sphere(1.6f, 32, 16), 1,
+                        glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 2.5f)));
+  ASSERT_TRUE(scene.meshes[std::size_t(sphere)].closed);  // a volume: the back-face pass runs
+  const Camera camera = front_camera();
+  RenderSettings whole;
+  whole.msaa = 1;
+  whole.software_queue_triangles = 0;
+  RenderSettings ranges = whole;
+  ranges.software_queue_triangles = 5;
+  constexpr int kSize = 96;
+  const Image a = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, ranges);
+  const Image b = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, whole);
+  int lit = 0, differ = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      lit += glm::dot(b.rgb(x, y), glm::vec3(1.0f)) > 0.01f;
+      differ += a.rgb(x, y) != b.rgb(x, y);
+    }
+  EXPECT_GT(lit, kSize * kSize / 5);
+  EXPECT_EQ(differ, 0);
+}
+
 TEST(GlInstancedDrawing, OneRunPerMeshAndWinding) {
   // The shared grid draws in two runs (its 7 mirrored boxes, its 29 others), each with its
   // instances at consecutive slots; the separate one in 36 runs of one.

@@ -69,9 +69,10 @@ struct RenderSettings {
   /// On a software rasteriser (Mesa's llvmpipe), which queues the triangles it has binned for
   /// its rasteriser threads, the frame waits for that queue to drain after each this many
   /// triangles and draws a run of instances in chunks of at most that many (at least one
-  /// instance each): it bounds the memory the queue holds (a frame of 57 million instanced
-  /// triangles: 1.5 GB at its peak without, 0.44 GB with 2 million; BENCHMARKS.md, "The
-  /// OpenGL frame's memory at production scale"). The same image either way. 0: never wait.
+  /// instance each; a mesh of more in index ranges of that many): it bounds the memory the
+  /// queue holds (a frame of 57 million instanced triangles: 1.5 GB at its peak without,
+  /// 0.44 GB with 2 million; BENCHMARKS.md, "The OpenGL frame's memory at production
+  /// scale"). The same image either way. 0: never wait.
   /// A GPU's driver needs no such wait, and there it is not made.
   std::size_t software_queue_triangles = 2'000'000;
   Background background;

@@ -132,15 +132,38 @@ bool refracts_thick(const Material& m, bool closed) {
   return f.transmission && f.volume;
 }
 
+// `instances` instances of the bound vertex array's first `triangles` triangles, from the
+// instance slot its program's uInstanceBase names. With `limit` > 0 (a software rasteriser:
+// Renderer::State::queue_limit) a mesh of more triangles is drawn in index ranges of at most
+// `limit`, and the frame waits for the rasteriser (glFinish) once `queued` reaches `limit`.
+// Each triangle is rasterised from the same vertices and in the same order as in one draw,
+// so the image is the same (the invariance rules, OpenGL 4.5 core profile, appendix A).
+void draw_triangles(std::size_t triangles, std::size_t instances, std::size_t limit,
+                    std::size_t& queued) {
+  const std::size_t range = limit > 0 ? limit : triangles;
+  for (std::size_t first = 0; first < triangles; first += range) {
+    const std::size_t n = std::min(range, triangles - first);
+    glDrawElementsInstanced(GL_TRIANGLES, GLsizei(3 * n), GL_UNSIGNED_INT,
+                            reinterpret_cast<const void*>(3 * first * sizeof(std::uint32_t)),
+                            GLsizei(instances));
+    if (limit > 0 && (queued += n * instances) >= limit) {
+      glFinish();
+      queued = 0;
+    }
+  }
+}
+
 // The back-face pass of thick refraction (Wyman 2005; thick_refraction.glsl): instance
 // `index`'s back faces alone (front faces culled, the nearest back face kept) into the
 // back-face target over the object's screen rectangle `lo`..`hi` (NDC), cleared first;
 // then the frame's target is bound again. Binds the target's textures for the surface
 // shader and returns the rectangle in texture coordinates: the shader reads back faces only
-// inside it (outside, the target holds other objects'). `program` is made on first use.
+// inside it (outside, the target holds other objects'). `program` is made on first use;
+// `limit` and `queued` as draw_triangles'.
 glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuScene& scene,
                           std::size_t index, glm::vec2 lo, glm::vec2 hi,
-                          const glm::mat4& view_projection) {
+                          const glm::mat4& view_projection, std::size_t limit,
+                          std::size_t& queued) {
   const glm::vec2 size(float(targets.width), float(targets.height));
   // Whole pixels covering the rectangle, one more each side for rounding (clamped as floats:
   // a corner just in front of the camera projects far outside any int).
@@ -161,7 +184,7 @@ glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuSce
   glCullFace(GL_FRONT);
   glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
   glBindVertexArray(mesh.vao);
-  glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, 1);
+  draw_triangles(std::size_t(mesh.index_count / 3), 1, limit, queued);
   glDisable(GL_SCISSOR_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, targets.msaa_fbo);
   glBindTextureUnit(kBackPositionUnit, targets.back_position);
@@ -450,8 +473,8 @@ void Renderer::State::draw(Frame& f, std::size_t index, GLenum cull, std::size_t
   glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
   glBindVertexArray(mesh.vao);
   // One instanced draw; on a software rasteriser chunks of at most queue_limit's triangles
-  // (at least one instance each), the frame waiting for the rasteriser's queue once that many
-  // have been drawn.
+  // (at least one instance each, a larger mesh in index ranges: draw_triangles), the frame
+  // waiting for the rasteriser's queue once that many have been drawn.
   const std::size_t limit = queue_limit(f);
   const std::size_t triangles = std::size_t(mesh.index_count / 3);
   const std::size_t chunk =
@@ -459,11 +482,7 @@ void Renderer::State::draw(Frame& f, std::size_t index, GLenum cull, std::size_t
   for (std::size_t k = 0; k < count; k += chunk) {
     const std::size_t n = std::min(chunk, count - k);
     if (k > 0) p.set("uInstanceBase", GLint(scene.slot_of[index] + k));
-    glDrawElementsInstanced(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr, GLsizei(n));
-    if (limit > 0 && (queued_triangles += triangles * n) >= limit) {
-      glFinish();
-      queued_triangles = 0;
-    }
+    draw_triangles(triangles, n, limit, queued_triangles);
   }
 }
 
@@ -574,8 +593,8 @@ void Renderer::State::draw_transmissive(Frame& f, QueuedDraws& queued) {
     const GpuMesh& mesh = scene.meshes[std::size_t(scene.instances[t.index].mesh)];
     f.back_faces_drawn = refracts_thick(scene.material_of(mesh), mesh.closed);
     if (f.back_faces_drawn)
-      f.back_face_rect =
-          draw_back_faces(back_faces, targets, scene, t.index, t.lo, t.hi, f.view_projection);
+      f.back_face_rect = draw_back_faces(back_faces, targets, scene, t.index, t.lo, t.hi,
+                                         f.view_projection, queue_limit(f), queued_triangles);
     draw(f, t.index);
     f.back_faces_drawn = false;
   }
