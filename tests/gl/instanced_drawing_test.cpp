@@ -65,6 +65,28 @@ Camera front_camera() {
   return camera;
 }
 
+// `scene`, seen from the front, drawn with RenderSettings::software_queue_triangles =
+// `limit` and with no limit: the same image, bit for bit, with a good part of it lit.
+void expect_same_image_with_queue_limit(const Scene& scene, std::size_t limit) {
+  RenderSettings whole;
+  whole.msaa = 1;
+  whole.software_queue_triangles = 0;
+  RenderSettings limited = whole;
+  limited.software_queue_triangles = limit;
+  constexpr int kSize = 96;
+  const Camera camera = front_camera();
+  const Image a = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, limited);
+  const Image b = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, whole);
+  int lit = 0, differ = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      lit += glm::dot(b.rgb(x, y), glm::vec3(1.0f)) > 0.01f;
+      differ += a.rgb(x, y) != b.rgb(x, y);
+    }
+  EXPECT_GT(lit, kSize * kSize / 5);
+  EXPECT_EQ(differ, 0) << "queue limit " << limit;
+}
+
 TEST(GlInstancedDrawing, InstancesOfOneMeshDrawLikeSeparateMeshes) {
   testing::context();
   const Scene shared = grid(true), separate = grid(false);
@@ -100,24 +122,7 @@ TEST(GlInstancedDrawing, ChunksOfARunDrawTheSameImage) {
   testing::context();
   std::printf("context: %s, chunked: %s\n", describe_current_context().c_str(),
               is_software_renderer(current_renderer()) ? "yes" : "no (a GPU: no chunks)");
-  const Scene scene = grid(true);
-  const Camera camera = front_camera();
-  RenderSettings whole;
-  whole.msaa = 1;
-  whole.software_queue_triangles = 0;
-  RenderSettings chunked = whole;
-  chunked.software_queue_triangles = 24;
-  constexpr int kSize = 96;
-  const Image a = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, chunked);
-  const Image b = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, whole);
-  int lit = 0, differ = 0;
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
-      lit += glm::dot(b.rgb(x, y), glm::vec3(1.0f)) > 0.01f;
-      differ += a.rgb(x, y) != b.rgb(x, y);
-    }
-  EXPECT_GT(lit, kSize * kSize / 5);
-  EXPECT_EQ(differ, 0);
+  expect_same_image_with_queue_limit(grid(true), 24);
 }
 
 // A mesh of more triangles than the limit is drawn in index ranges of at most that many (a
@@ -139,23 +144,7 @@ TEST(GlInstancedDrawing, IndexRangesOfAMeshDrawTheSameImage) {
       add_mesh_instance(scene, make_uv_sphere(1.6f, 32, 16), 1,
                         glm::translate(glm::mat4(1.0f), glm::vec3(0.5f, 0.3f, 2.5f)));
   ASSERT_TRUE(scene.meshes[std::size_t(sphere)].closed);  // a volume: the back-face pass runs
-  const Camera camera = front_camera();
-  RenderSettings whole;
-  whole.msaa = 1;
-  whole.software_queue_triangles = 0;
-  RenderSettings ranges = whole;
-  ranges.software_queue_triangles = 5;
-  constexpr int kSize = 96;
-  const Image a = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, ranges);
-  const Image b = render_headless(scene, camera, kSize, kSize, nullptr, nullptr, whole);
-  int lit = 0, differ = 0;
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
-      lit += glm::dot(b.rgb(x, y), glm::vec3(1.0f)) > 0.01f;
-      differ += a.rgb(x, y) != b.rgb(x, y);
-    }
-  EXPECT_GT(lit, kSize * kSize / 5);
-  EXPECT_EQ(differ, 0);
+  expect_same_image_with_queue_limit(scene, 5);
 }
 
 TEST(GlInstancedDrawing, OneRunPerMeshAndWinding) {
