@@ -5,6 +5,8 @@
 //   instancing_bench instances N   N instances of one 5,696-triangle sphere on a grid
 //   instancing_bench unique N      N triangles in distinct 5,696-triangle meshes, each once
 //   instancing_bench flatten       ray rate on `spheres`, flattened vs behind instances
+//   instancing_bench layout        BVH memory and ray rate on `spheres`, Embree's fast
+//                                  layout vs its compact one (BvhLayout)
 //
 // One measurement per process (peak RSS is the process's); bench/run loops over N.
 // Output: one line of key=value pairs.
@@ -18,6 +20,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -122,9 +126,11 @@ int run_field(std::size_t count, bool shared) {
   return 0;
 }
 
-// Rays from points around the grid towards points in it: the same rays through the same
-// triangles, in the top level or behind one instance each.
-int run_flatten() {
+// Rays from points around the `spheres` grid towards points in it, through the geometry
+// built with each of `variants` in turn (five rounds): the same rays through the same
+// triangles, built differently.
+int trace_variants(const char* mode,
+                   const std::vector<std::pair<const char*, pbrkit::GeometryOptions>>& variants) {
   const pbrkit::Scene scene = pbrkit::builtin_scene("spheres");
   pbrkit::Pcg32 rng(7);
   const std::size_t n = 1 << 21;
@@ -138,15 +144,15 @@ int run_flatten() {
   }
   tbb::task_arena arena(2);
   for (int rep = 0; rep < 5; ++rep)
-    for (const bool flatten : {true, false}) {
-      pbrkit::GeometryOptions options;
-      options.flatten_single_use = flatten;
+    for (const auto& [name, options] : variants) {
       const auto tb = Clock::now();
       double rate = 0.0, cpu_rate = 0.0, build = 0.0;
       std::size_t hits = 0;
+      pbrkit::GeometryMemory memory;
       arena.execute([&] {
         const pbrkit::SceneGeometry g(scene, options);
         build = since(tb);
+        memory = g.memory();
         const auto t = Clock::now();
         const double cpu0 = cpu_seconds();
         std::atomic<std::size_t> h{0};
@@ -169,11 +175,25 @@ int run_flatten() {
         hits = h;
       });
       std::printf(
-          "mode=flatten flattened=%d build_s=%.4f mrays_per_s=%.2f mrays_per_cpu_s=%.2f "
-          "hits=%zu\n",
-          int(flatten), build, rate, cpu_rate, hits);
+          "mode=%s variant=%s build_s=%.4f bvh_mb=%.2f bvh_peak_mb=%.2f mrays_per_s=%.2f "
+          "mrays_per_cpu_s=%.2f hits=%zu\n",
+          mode, name, build, double(memory.bvh) * 1e-6, double(memory.bvh_peak) * 1e-6, rate,
+          cpu_rate, hits);
     }
   return 0;
+}
+
+int run_flatten() {
+  pbrkit::GeometryOptions flattened, instanced;
+  instanced.flatten_single_use = false;
+  return trace_variants("flatten", {{"flattened", flattened}, {"instanced", instanced}});
+}
+
+int run_layout() {
+  pbrkit::GeometryOptions fast, compact;
+  fast.layout = pbrkit::BvhLayout::kFast;
+  compact.layout = pbrkit::BvhLayout::kCompact;
+  return trace_variants("layout", {{"fast", fast}, {"compact", compact}});
 }
 
 }  // namespace
@@ -181,8 +201,10 @@ int run_flatten() {
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "flatten") return run_flatten();
+  if (mode == "layout") return run_layout();
   if ((mode == "instances" || mode == "unique") && argc > 2)
     return run_field(std::size_t(std::strtoull(argv[2], nullptr, 10)), mode == "instances");
-  std::fprintf(stderr, "usage: instancing_bench instances N | unique TRIANGLES | flatten\n");
+  std::fprintf(stderr,
+               "usage: instancing_bench instances N | unique TRIANGLES | flatten | layout\n");
   return 2;
 }

@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <string>
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include "pbrkit/util/available_memory.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 
@@ -24,6 +24,12 @@ namespace {
 // which Embree allocates outside the monitor (about 300 more by the peak RSS of 10^6
 // instances).
 constexpr double kBvhBytesPerTriangle = 128.0;
+// The same with RTC_SCENE_FLAG_COMPACT (BvhLayout::kCompact), whose leaves index the mesh's
+// vertices instead of copying them. By the monitor, its peak is 70-81 bytes per triangle on
+// meshes of 5,696 to 194,432 triangles and 36-47 on meshes of 8 and 24 million, against
+// the fast layout's 99-117; 35-47 stay after the build, against 65-71 (BENCHMARKS.md,
+// "Embree's compact layout for scenes that do not fit").
+constexpr double kCompactBvhBytesPerTriangle = 88.0;
 constexpr double kBvhBytesPerInstance = 640.0;
 constexpr double kBvhBytesPerScene = 16384.0;  // an Embree scene's fixed cost
 
@@ -36,30 +42,6 @@ std::string format_bytes(double bytes) {
   if (bytes >= 1e9) return fmt::format("{:.2f} GB", bytes * 1e-9);
   if (bytes >= 1e6) return fmt::format("{:.1f} MB", bytes * 1e-6);
   return fmt::format("{:.1f} kB", bytes * 1e-3);
-}
-
-// Bytes this process can still allocate without being killed: MemAvailable, and the
-// cgroup's (v2) memory.max less memory.current when the process runs in a limited one.
-std::size_t available_memory() {
-  std::size_t available = std::numeric_limits<std::size_t>::max();
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  std::size_t kb = 0;
-  std::string unit;
-  while (meminfo >> key >> kb >> unit)
-    if (key == "MemAvailable:") {
-      available = kb * 1024;
-      break;
-    }
-  std::ifstream max_file("/sys/fs/cgroup/memory.max"),
-      current_file("/sys/fs/cgroup/memory.current");
-  std::string max_text;
-  std::size_t current = 0;
-  if (max_file >> max_text && max_text != "max" && current_file >> current) {
-    const std::size_t max = std::stoull(max_text);
-    available = std::min(available, max > current ? max - current : 0);
-  }
-  return available;
 }
 
 // Embree reads a vertex with a 16-byte load, so the buffer must extend 4 bytes past the
@@ -124,6 +106,8 @@ Plan plan(const Scene& scene, const GeometryOptions& options) {
 
 GeometryMemory estimate_geometry_memory(const Scene& scene, const GeometryOptions& options) {
   const Plan p = plan(scene, options);
+  const double per_triangle =
+      options.layout == BvhLayout::kCompact ? kCompactBvhBytesPerTriangle : kBvhBytesPerTriangle;
   double geometry = double(sizeof(WorldMesh)) * double(scene.instances.size());
   double bvh = kBvhBytesPerScene;
   for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
@@ -131,11 +115,11 @@ GeometryMemory estimate_geometry_memory(const Scene& scene, const GeometryOption
     const double triangles = double(mesh.triangle_count());
     const double copy = double(mesh.positions.size() + 1) * sizeof(glm::vec3);
     geometry += copy * double(p.flat[m]);
-    bvh += kBvhBytesPerTriangle * triangles * double(p.flat[m]);
+    bvh += per_triangle * triangles * double(p.flat[m]);
     if (p.shared[m] > 0) {
       if (!padded(mesh.positions)) geometry += copy;
-      bvh += kBvhBytesPerScene + kBvhBytesPerTriangle * triangles +
-             kBvhBytesPerInstance * double(p.shared[m]);
+      bvh +=
+          kBvhBytesPerScene + per_triangle * triangles + kBvhBytesPerInstance * double(p.shared[m]);
     }
   }
   return {std::size_t(geometry), std::size_t(bvh), std::size_t(bvh)};
@@ -165,18 +149,35 @@ struct SceneGeometry::Monitor {
 
 SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
     : monitor_(std::make_unique<Monitor>()) {
-  // Refuse what cannot fit before anything is allocated.
-  const GeometryMemory estimate = estimate_geometry_memory(scene, options);
+  // Refuse what cannot fit before anything is allocated; a scene that fits only with the
+  // compact layout is built with it.
   const std::size_t limit = options.memory_limit > 0 ? options.memory_limit : available_memory();
+  GeometryOptions chosen = options;
+  if (chosen.layout == BvhLayout::kAuto) chosen.layout = BvhLayout::kFast;
+  GeometryMemory estimate = estimate_geometry_memory(scene, chosen);
+  const GeometryMemory fast = estimate;
+  if (options.layout == BvhLayout::kAuto && estimate.geometry + estimate.bvh > limit) {
+    chosen.layout = BvhLayout::kCompact;
+    estimate = estimate_geometry_memory(scene, chosen);
+  }
   std::size_t unique_triangles = 0;
   for (const Mesh& m : scene.meshes) unique_triangles += m.triangle_count();
   if (estimate.geometry + estimate.bvh > limit)
     fail(
-        "{}: the path tracer's geometry needs an estimated {} (geometry {}, BVH {}; {} unique "
+        "{}: the path tracer's geometry needs an estimated {} (geometry {}, BVH {}{}; {} unique "
         "triangles in {} meshes, {} instances) but {} is available",
         scene.source, format_bytes(double(estimate.geometry + estimate.bvh)),
         format_bytes(double(estimate.geometry)), format_bytes(double(estimate.bvh)),
-        unique_triangles, scene.meshes.size(), scene.instances.size(), format_bytes(double(limit)));
+        chosen.layout == BvhLayout::kCompact ? " in Embree's compact layout" : "", unique_triangles,
+        scene.meshes.size(), scene.instances.size(), format_bytes(double(limit)));
+  memory_.compact = chosen.layout == BvhLayout::kCompact;
+  if (memory_.compact && options.layout == BvhLayout::kAuto)
+    note(
+        "{}: the geometry would need an estimated {} with the fast BVH layout but {} is "
+        "available; building Embree's compact layout ({}), whose rays are 10-17% slower",
+        scene.source, format_bytes(double(fast.geometry + fast.bvh)), format_bytes(double(limit)),
+        format_bytes(double(estimate.geometry + estimate.bvh)));
+  const RTCSceneFlags scene_flags = memory_.compact ? RTC_SCENE_FLAG_COMPACT : RTC_SCENE_FLAG_NONE;
   monitor_->limit =
       std::int64_t(std::min<std::size_t>(limit - std::min(limit, estimate.geometry),
                                          std::size_t(std::numeric_limits<std::int64_t>::max())));
@@ -194,6 +195,7 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
   rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
   rtcSetDeviceMemoryMonitorFunction(device_, &Monitor::callback, monitor_.get());
   rtc_scene_ = rtcNewScene(device_);
+  rtcSetSceneFlags(rtc_scene_, scene_flags);
   // MEDIUM: about half the build time of HIGH (../shared/PLATFORM.md section 4) for
   // a few percent of trace speed; renders here are short enough for build time to matter.
   rtcSetSceneBuildQuality(rtc_scene_, RTC_BUILD_QUALITY_MEDIUM);
@@ -242,6 +244,7 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
     mesh_positions[m] = positions;
     for (const glm::vec3& q : mesh.positions) mesh_bounds[m].extend(q);
     RTCScene s = rtcNewScene(device_);
+    rtcSetSceneFlags(s, scene_flags);
     rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_MEDIUM);
     RTCGeometry g = triangle_geometry(mesh, positions, mesh_alpha[m] ? kMaskAlpha : kMaskOpaque);
     rtcAttachGeometryByID(s, g, 0);

@@ -18,6 +18,10 @@
 // flattened than with each mesh behind an instance (bench/instancing_bench.cpp `flatten`;
 // BENCHMARKS.md, "instanced geometry").
 //
+// Before anything is built the memory is estimated against what the system has: a scene
+// that fits only with Embree's compact layout (BvhLayout) is built with it, one that fits
+// with neither is refused with the figures.
+//
 // A hit names its instance (`geom`, the index in Scene::instances) and its triangle
 // (`prim`, the index in the instance's mesh), whichever level it came from.
 #include <cstddef>
@@ -61,12 +65,23 @@ struct WorldMesh {
   bool visible = true;  ///< false for a transform of rank 0 or 1 (no area, nothing to hit)
 };
 
+/// How Embree lays out the BVHs' triangles.
+enum class BvhLayout {
+  kAuto,  ///< kFast where the scene fits `GeometryOptions::memory_limit` with it, else kCompact
+  kFast,  ///< Embree's default: each leaf holds its triangles' vertices and edges
+  /// RTC_SCENE_FLAG_COMPACT: leaves hold indices into the mesh's own vertex array, which
+  /// Embree reads at each triangle test: less memory per triangle, slower rays (figures in
+  /// geometry.cpp).
+  kCompact,
+};
+
 /// What the geometry is built with.
 struct GeometryOptions {
-  /// Bytes the geometry and its BVH may use; 0: what the system has available
-  /// (/proc/meminfo MemAvailable). A scene whose estimate exceeds it is refused before
-  /// anything is built.
+  /// Bytes the geometry and its BVH may use; 0: what the process may still allocate
+  /// (util/available_memory.h: MemAvailable, and its cgroups' limits). A scene whose estimate
+  /// exceeds it with every layout `layout` allows is refused before anything is built.
   std::size_t memory_limit = 0;
+  BvhLayout layout = BvhLayout::kAuto;
   /// Meshes placed once go into the top level in world space (see above); false puts every
   /// mesh behind an instance (benchmarks compare both).
   bool flatten_single_use = true;
@@ -77,10 +92,12 @@ struct GeometryMemory {
   std::size_t geometry = 0;  ///< vertex copies and per-instance records
   std::size_t bvh = 0;       ///< Embree's allocations (BVHs, its geometry objects)
   std::size_t bvh_peak = 0;  ///< the most Embree held at once (during the build)
+  bool compact = false;      ///< built with BvhLayout::kCompact
 };
 
 /// The estimate a SceneGeometry is checked against before it is built (an upper bound of
-/// what it allocates: `bvh` bounds Embree's peak; see geometry.cpp for the figures).
+/// what it allocates: `bvh` bounds Embree's peak; see geometry.cpp for the figures), for
+/// the kCompact layout when `options.layout` says so and for kFast otherwise.
 GeometryMemory estimate_geometry_memory(const Scene& scene, const GeometryOptions& options = {});
 
 /// A ray hit resolved to shading data.

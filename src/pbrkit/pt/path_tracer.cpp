@@ -91,10 +91,11 @@ void note_memory(const Scene& scene, const SceneGeometry& geometry) {
   for (const Texture& t : scene.textures) texture_bytes += t.bytes();
   const GeometryMemory& mem = geometry.memory();
   note(
-      "memory: geometry {:.1f} MB, BVH {:.1f} MB, textures {:.1f} MB ({} instances, {} of "
+      "memory: geometry {:.1f} MB, BVH {:.1f} MB{}, textures {:.1f} MB ({} instances, {} of "
       "them of {} shared meshes)",
-      double(mem.geometry) * 1e-6, double(mem.bvh) * 1e-6, double(texture_bytes) * 1e-6,
-      geometry.meshes().size(), geometry.instanced(), geometry.shared_meshes());
+      double(mem.geometry) * 1e-6, double(mem.bvh) * 1e-6, mem.compact ? " (compact)" : "",
+      double(texture_bytes) * 1e-6, geometry.meshes().size(), geometry.instanced(),
+      geometry.shared_meshes());
 }
 
 // The film the samples go to: the checkpoint to resume, or a new one.
