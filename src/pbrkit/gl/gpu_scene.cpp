@@ -8,6 +8,10 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
+#include "pbrkit/gl/context.h"
+#include "pbrkit/util/available_memory.h"
+#include "pbrkit/util/error.h"
+
 namespace pbrkit::gl {
 
 namespace {
@@ -120,8 +124,59 @@ GLuint upload_cube(const Cubemap* cube) {
 
 }  // namespace
 
-void GpuScene::upload(const Scene& scene) {
-  release();
+GlSceneBytes gl_scene_bytes(const Scene& scene) {
+  GlSceneBytes b;
+  for (const Mesh& mesh : scene.meshes) {
+    b.vertices += sizeof(float) * (3 * mesh.positions.size() + 3 * mesh.normals.size() +
+                                   4 * mesh.tangents.size() + 2 * mesh.texcoords0.size() +
+                                   2 * mesh.texcoords1.size() + 4 * mesh.colors0.size());
+    b.indices += sizeof(std::uint32_t) * mesh.indices.size();
+  }
+  for (const Texture& t : scene.textures) {
+    // upload_texture's formats: RGBA8, RGBA16 or RGBA32F.
+    const std::size_t texel = t.format == TexelFormat::kUnorm8               ? 4
+                              : t.format == TexelFormat::kUnorm16 && !t.srgb ? 8
+                                                                             : 16;
+    std::size_t texels = t.empty() ? 1 : 0;
+    for (const TextureLevel& l : t.levels) texels += std::size_t(l.width) * std::size_t(l.height);
+    b.textures += texel * texels;
+  }
+  b.instances = 2 * sizeof(glm::mat4) * scene.instances.size();
+  return b;
+}
+
+namespace {
+
+std::string megabytes(std::size_t bytes) {
+  return fmt::format("{:.1f} MB", double(bytes) * 1e-6);
+}
+
+}  // namespace
+
+void GpuScene::upload(const Scene& scene, std::size_t memory_limit) {
+  const GlSceneBytes need = gl_scene_bytes(scene);
+  const bool software = is_software_renderer(current_renderer());
+  std::size_t frame_reserve = 0;
+  if (memory_limit == 0 && software) {
+    // What the frame needs besides the scene, kept free: llvmpipe's queue of binned
+    // triangles (bounded by RenderSettings::software_queue_triangles; about 100 MB on an
+    // 8 M-triangle mesh) and the render targets (about 115 MB more at 1280x720 than at
+    // 128x128); BENCHMARKS.md, "The OpenGL renderer's memory check".
+    constexpr std::size_t kFrameBytes = std::size_t(224) << 20;
+    const std::size_t available = available_memory();
+    frame_reserve = std::min(available, kFrameBytes);
+    memory_limit = std::max<std::size_t>(1, available - frame_reserve);
+  }
+  if (memory_limit > 0 && need.total() > memory_limit)
+    fail(
+        "{}: the OpenGL renderer's copy of the scene needs {} (vertex buffers {}, indices {}, "
+        "textures {}, instances {}) but {} is available{}{}",
+        scene.source, megabytes(need.total()), megabytes(need.vertices), megabytes(need.indices),
+        megabytes(need.textures), megabytes(need.instances), megabytes(memory_limit),
+        frame_reserve > 0 ? fmt::format(" ({} more kept for the frame)", megabytes(frame_reserve))
+                          : "",
+        software ? "; a software rasteriser keeps them in this process's memory" : "");
+  release();  // only now: a scene refused leaves the one drawn before in place
   for (const Mesh& mesh : scene.meshes) {
     GpuMesh g;
     glCreateVertexArrays(1, &g.vao);
@@ -203,6 +258,12 @@ void GpuScene::upload(const Scene& scene) {
   instances = scene.instances;
   lights = scene.lights;
   upload_instances();
+  if (glGetError() == GL_OUT_OF_MEMORY)
+    fail(
+        "{}: the GPU ran out of memory for the scene's {} (vertex buffers {}, indices {}, "
+        "textures {})",
+        scene.source, megabytes(need.total()), megabytes(need.vertices), megabytes(need.indices),
+        megabytes(need.textures));
 }
 
 void GpuScene::upload_instances() {

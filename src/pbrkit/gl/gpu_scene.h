@@ -46,6 +46,14 @@ struct InstanceRun {
 /// The binding point of GpuScene::instance_buffer (pbr_vertex.glsl's InstanceTransforms).
 inline constexpr GLuint kInstanceBufferBinding = 3;
 
+/// The bytes GpuScene::upload allocates for `scene`: its meshes' vertex and index buffers,
+/// its textures' mip chains in the formats they are uploaded in, and the instance buffer.
+struct GlSceneBytes {
+  std::size_t vertices = 0, indices = 0, textures = 0, instances = 0;
+  std::size_t total() const { return vertices + indices + textures + instances; }
+};
+GlSceneBytes gl_scene_bytes(const Scene& scene);
+
 /// A Scene's meshes and textures on the GPU, with the materials, instances and lights
 /// that index them. Needs the current GL context for its whole life.
 struct GpuScene {
@@ -70,8 +78,14 @@ struct GpuScene {
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
 
-  /// Uploads `scene`, replacing what was there.
-  void upload(const Scene& scene);
+  /// Uploads `scene`, replacing what was there. Refuses (util/error.h), before anything is
+  /// allocated or released (the scene uploaded before stays), a scene whose buffers and
+  /// textures (gl_scene_bytes) exceed `memory_limit`
+  /// bytes; 0: on a software rasteriser, whose buffers are this process's memory, what the
+  /// process may still allocate (util/available_memory.h) less what its frame needs, and
+  /// no limit on a GPU. A GPU that runs out (GL_OUT_OF_MEMORY) is reported with the figure
+  /// after the upload.
+  void upload(const Scene& scene, std::size_t memory_limit = 0);
   void release();
   /// The instance buffer, slots and runs of `instances` (upload() calls it).
   void upload_instances();

@@ -200,8 +200,9 @@ void load_environment(ViewerState& s, gl::Renderer& renderer) {
 }
 
 void load_scene_into(ViewerState& s, gl::Renderer& renderer) {
-  s.scene = load_scene(s.options.scene);
-  renderer.set_scene(s.scene);
+  Scene scene = load_scene(s.options.scene);
+  renderer.set_scene(scene);  // a scene too large is refused here, the previous one kept
+  s.scene = std::move(scene);
   renderer.set_materials(overridden_materials(s));  // the panel's overrides survive a reload
   s.settings.light_enabled.assign(s.scene.lights.size(), true);
   s.path_scene_dirty = true;
