@@ -258,12 +258,14 @@ void GpuScene::upload(const Scene& scene, std::size_t memory_limit) {
   instances = scene.instances;
   lights = scene.lights;
   upload_instances();
-  if (glGetError() == GL_OUT_OF_MEMORY)
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    release();  // not a scene drawn in part
     fail(
         "{}: the GPU ran out of memory for the scene's {} (vertex buffers {}, indices {}, "
         "textures {})",
         scene.source, megabytes(need.total()), megabytes(need.vertices), megabytes(need.indices),
         megabytes(need.textures));
+  }
 }
 
 void GpuScene::upload_instances() {
@@ -315,6 +317,13 @@ void GpuScene::release() {
   if (!textures.empty()) glDeleteTextures(GLsizei(textures.size()), textures.data());
   textures.clear();
   texture_means.clear();
+  // Nothing may index the meshes released.
+  materials.clear();
+  instances.clear();
+  lights.clear();
+  slot_of.clear();
+  at_slot.clear();
+  runs.clear();
 }
 
 const Material& GpuScene::material_of(const GpuMesh& mesh) const {

@@ -80,12 +80,13 @@ struct GpuScene {
 
   /// Uploads `scene`, replacing what was there. Refuses (util/error.h), before anything is
   /// allocated or released (the scene uploaded before stays), a scene whose buffers and
-  /// textures (gl_scene_bytes) exceed `memory_limit`
-  /// bytes; 0: on a software rasteriser, whose buffers are this process's memory, what the
-  /// process may still allocate (util/available_memory.h) less what its frame needs, and
-  /// no limit on a GPU. A GPU that runs out (GL_OUT_OF_MEMORY) is reported with the figure
-  /// after the upload.
+  /// textures (gl_scene_bytes) exceed `memory_limit` bytes; 0: on a software rasteriser,
+  /// whose buffers are this process's memory, what the process may still allocate
+  /// (util/available_memory.h) less what its frame needs, and no limit on a GPU. A GPU that
+  /// runs out (GL_OUT_OF_MEMORY) is reported with the figures after the upload, which is
+  /// then released (the GpuScene left empty).
   void upload(const Scene& scene, std::size_t memory_limit = 0);
+  /// Deletes the GL objects and forgets the scene (materials, instances, runs): empty.
   void release();
   /// The instance buffer, slots and runs of `instances` (upload() calls it).
   void upload_instances();
