@@ -1,6 +1,7 @@
 #include "pbrkit/gl/gpu_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <numeric>
@@ -67,31 +68,56 @@ glm::vec3 texture_mean(const Texture& t) {
   return t.empty() ? glm::vec3(1.0f) : glm::vec3(t.texel(int(t.levels.size()) - 1, 0, 0));
 }
 
-// A texture's own mip chain at its precision: 8-bit as GL_SRGB8_ALPHA8 (colour) or
-// GL_RGBA8, which GL decodes to linear before filtering as Texture::sample does (OpenGL 4.6
-// section 8.24); 16-bit data as GL_RGBA16; 16-bit colour (GL has no 16-bit sRGB format)
-// and float as GL_RGBA32F, decoded here.
+// The format a texture's own mip chain is uploaded in, at its precision: 8-bit as
+// GL_SRGB8_ALPHA8 (colour) or GL_RGBA8, which GL decodes to linear before filtering as
+// Texture::sample does (OpenGL 4.6 section 8.24); 16-bit data as GL_RGBA16; 16-bit colour
+// (GL has no 16-bit sRGB format) and float as GL_RGBA32F, decoded here.
+GLenum upload_format(const Texture& t) {
+  if (t.format == TexelFormat::kUnorm8) return t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8;
+  if (t.format == TexelFormat::kUnorm16 && !t.srgb) return GL_RGBA16;
+  return GL_RGBA32F;
+}
+
+std::size_t texel_bytes(GLenum format) {
+  return format == GL_RGBA32F ? 16 : format == GL_RGBA16 ? 8 : 4;
+}
+
 void upload_texture(GLuint tex, const Texture& t) {
   const GLsizei levels = GLsizei(t.levels.size());
+  const GLenum format = upload_format(t);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  if (t.format == TexelFormat::kUnorm8) {
-    glTextureStorage2D(tex, levels, t.srgb ? GL_SRGB8_ALPHA8 : GL_RGBA8, t.width(), t.height());
+  glTextureStorage2D(tex, levels, format, t.width(), t.height());
+  if (format == GL_RGBA8 || format == GL_SRGB8_ALPHA8) {
     for (GLsizei level = 0; level < levels; ++level)
       upload_level(tex, t, level, t.texels8.data() + t.levels[std::size_t(level)].offset,
                    GL_UNSIGNED_BYTE);
-  } else if (t.format == TexelFormat::kUnorm16 && !t.srgb) {
-    glTextureStorage2D(tex, levels, GL_RGBA16, t.width(), t.height());
+  } else if (format == GL_RGBA16) {
     for (GLsizei level = 0; level < levels; ++level)
       upload_level(tex, t, level, t.texels16.data() + t.levels[std::size_t(level)].offset,
                    GL_UNSIGNED_SHORT);
   } else {
-    glTextureStorage2D(tex, levels, GL_RGBA32F, t.width(), t.height());
     for (GLsizei level = 0; level < levels; ++level) {
       const Image img = t.level_image(level);
       glTextureSubImage2D(tex, level, 0, 0, img.width, img.height, GL_RGBA, GL_FLOAT,
                           img.data.data());
     }
   }
+}
+
+// A mesh's vertex arrays at their attribute locations 0-5 (pbr_vertex.glsl): the data, the
+// number of vertices it has (0: absent) and the floats per vertex.
+struct VertexArray {
+  const void* data;
+  std::size_t count;
+  int components;
+};
+std::array<VertexArray, 6> vertex_arrays(const Mesh& m) {
+  return {{{m.positions.data(), m.positions.size(), 3},
+           {m.normals.data(), m.normals.size(), 3},
+           {m.tangents.data(), m.tangents.size(), 4},
+           {m.texcoords0.data(), m.texcoords0.size(), 2},
+           {m.texcoords1.data(), m.texcoords1.size(), 2},
+           {m.colors0.data(), m.colors0.size(), 4}}};
 }
 
 // One cube texture with every level of `cube` (RGB float), or a 1x1 black one.
@@ -127,19 +153,15 @@ GLuint upload_cube(const Cubemap* cube) {
 GlSceneBytes gl_scene_bytes(const Scene& scene) {
   GlSceneBytes b;
   for (const Mesh& mesh : scene.meshes) {
-    b.vertices += sizeof(float) * (3 * mesh.positions.size() + 3 * mesh.normals.size() +
-                                   4 * mesh.tangents.size() + 2 * mesh.texcoords0.size() +
-                                   2 * mesh.texcoords1.size() + 4 * mesh.colors0.size());
+    for (const VertexArray& a : vertex_arrays(mesh))
+      b.vertices += sizeof(float) * a.count * std::size_t(a.components);
     b.indices += sizeof(std::uint32_t) * mesh.indices.size();
   }
   for (const Texture& t : scene.textures) {
-    // upload_texture's formats: RGBA8, RGBA16 or RGBA32F.
-    const std::size_t texel = t.format == TexelFormat::kUnorm8               ? 4
-                              : t.format == TexelFormat::kUnorm16 && !t.srgb ? 8
-                                                                             : 16;
+    // An empty texture is uploaded as one float texel.
     std::size_t texels = t.empty() ? 1 : 0;
     for (const TextureLevel& l : t.levels) texels += std::size_t(l.width) * std::size_t(l.height);
-    b.textures += texel * texels;
+    b.textures += texel_bytes(t.empty() ? GL_RGBA32F : upload_format(t)) * texels;
   }
   b.instances = 2 * sizeof(glm::mat4) * scene.instances.size();
   return b;
@@ -191,12 +213,9 @@ void GpuScene::upload(const Scene& scene, std::size_t memory_limit) {
       glVertexArrayAttribBinding(g.vao, index, index);
       glEnableVertexArrayAttrib(g.vao, index);
     };
-    attribute(0, mesh.positions.data(), mesh.positions.size(), 3);
-    attribute(1, mesh.normals.data(), mesh.normals.size(), 3);
-    attribute(2, mesh.tangents.data(), mesh.tangents.size(), 4);
-    attribute(3, mesh.texcoords0.data(), mesh.texcoords0.size(), 2);
-    attribute(4, mesh.texcoords1.data(), mesh.texcoords1.size(), 2);
-    attribute(5, mesh.colors0.data(), mesh.colors0.size(), 4);
+    const std::array<VertexArray, 6> arrays = vertex_arrays(mesh);
+    for (GLuint i = 0; i < GLuint(arrays.size()); ++i)
+      attribute(i, arrays[i].data, arrays[i].count, arrays[i].components);
     g.has_colors = !mesh.colors0.empty();
     g.closed = mesh.closed;
     g.material = mesh.material;
