@@ -108,7 +108,6 @@ class Bsdf {
   float pdf(glm::vec3 wo, glm::vec3 wi) const;
 
   const Brdf& base() const { return base_; }
-  bool has_coat() const { return coat_.has_value(); }
   /// Whether any light goes through the surface (transmission or diffuse transmission on a
   /// material that is not fully metallic).
   bool has_transmission() const { return transmissive_; }

@@ -93,8 +93,6 @@ class SheenTable {
   /// One entry computed directly with a `samples` x `samples` midpoint product quadrature in
   /// (sqrt(n.l), phi) (the half vector follows from l): used to build the table and by tests.
   static float integrate_E(float mu, float roughness, int samples);
-  /// lobe_angle's entry by the same quadrature as integrate_E.
-  static float integrate_lobe_angle(float mu, float roughness, int samples);
 
  private:
   struct Moments {

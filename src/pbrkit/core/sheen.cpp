@@ -118,11 +118,6 @@ float SheenTable::integrate_E(float mu, float roughness, int samples) {
   return float(integrate_moments(mu, roughness, samples).e);
 }
 
-float SheenTable::integrate_lobe_angle(float mu, float roughness, int samples) {
-  const Moments m = integrate_moments(mu, roughness, samples);
-  return float(std::atan2(m.mean_t, m.mean_n));
-}
-
 SheenTable::SheenTable()
     : e_(std::size_t(kMuSize) * kRoughnessSize),
       mean_t_(e_.size()),

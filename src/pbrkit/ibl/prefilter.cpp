@@ -14,7 +14,6 @@
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"
-#include "pbrkit/ibl/cube_lookup.h"
 #include "pbrkit/ibl/prefilter_kernels.h"
 #include "pbrkit/ibl/roughness_mapping.h"
 #include "pbrkit/util/parallel.h"
@@ -99,34 +98,6 @@ std::vector<PrefilterSample> prefilter_samples(float roughness, int samples, int
     out.push_back({l, l.z, lod});
   }
   return out;
-}
-
-namespace {
-
-// Trilinear lookup in a chain stored as RGBA float faces (see cube_lookup.h).
-inline glm::vec3 fetch(const Cubemap& src, glm::vec3 d, float lod) {
-  const detail::FaceHit hit = detail::cube_face_hit(d);
-  const int l0 = int(lod);
-  const float f = lod - float(l0);
-  const glm::vec3 c0 = detail::bilinear(src.mips[l0][hit.face], hit.sc, hit.tc);
-  if (f <= 0.0f) return c0;
-  const glm::vec3 c1 = detail::bilinear(src.mips[l0 + 1][hit.face], hit.sc, hit.tc);
-  return c0 + f * (c1 - c0);
-}
-
-}  // namespace
-
-glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<PrefilterSample>& samples,
-                              glm::vec3 R) {
-  const Frame frame(R);
-  glm::vec3 sum(0.0f);
-  float weight = 0.0f;
-  for (const PrefilterSample& s : samples) {
-    const glm::vec3 l = frame.t * s.l.x + frame.b * s.l.y + frame.n * s.l.z;
-    sum += fetch(source, l, s.lod) * s.weight;
-    weight += s.weight;
-  }
-  return weight > 0.0f ? sum / weight : glm::vec3(0.0f);
 }
 
 int quadrature_source_level(const Cubemap& source, float roughness) {

@@ -49,10 +49,6 @@ std::vector<PrefilterSample> prefilter_samples(float roughness, int samples, int
 /// The GGX NDF's probability of theta_h < acos(cos_theta_h) (1 for cos_theta_h <= 0).
 float ggx_cone_fraction(float alpha, float cos_theta_h);
 
-/// The prefiltered radiance in direction R (unit): sum L(l) n.l / sum n.l over `samples`.
-glm::vec3 prefilter_direction(const Cubemap& source, const std::vector<PrefilterSample>& samples,
-                              glm::vec3 R);
-
 /// The level of `source` the direct quadrature reads for `roughness`: the coarsest whose
 /// texels are small against the lobe (and at least 128 px, or the finest level).
 int quadrature_source_level(const Cubemap& source, float roughness);
