@@ -1,0 +1,151 @@
+#!/usr/bin/env python3
+"""Renders training examples for the learned denoiser through pbrkit's Python module.
+
+Each example is one random view (tools/denoiser/scenes.py) rendered twice with
+independent seeds: the input at 1 to 64 spp with its albedo and normal AOVs, and a target
+at --target-spp. The target need not be converged: with an L2-type loss a noisy,
+independent target trains toward the mean (Noise2Noise, Lehtinen et al. 2018), which is
+what two cores can afford. Example k of a data set depends only on (seed, split, k), so a
+set is reproducible and an interrupted run resumes where it stopped (existing files are
+kept).
+
+  PYTHONPATH=build/release/python python3 tools/denoiser/generate.py \
+      --assets ../shared/assets --out /work/denoiser-data --split train --count 4000
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+import scenes
+
+SPP_CHOICES = np.array([1, 2, 4, 8, 16, 32, 64])
+SPP_WEIGHTS = np.array([0.08, 0.1, 0.16, 0.2, 0.22, 0.14, 0.1])
+
+
+def default_assets() -> Path:
+    return Path(__file__).resolve().parents[2] / "tests" / "data" / "assets"
+
+
+def environments(split: str, assets: Path) -> list[str]:
+    names = sorted(p.stem for p in (assets / "hdri").glob("*.exr"))
+    if split == "heldout":
+        return [n for n in names if n in scenes.HELD_OUT_ENVS]
+    return [n for n in names if n not in scenes.HELD_OUT_ENVS] + ["builtin"]
+
+
+def model_files(split: str, assets: Path) -> list[Path]:
+    wanted = scenes.HELD_OUT_MODELS if split == "heldout" else scenes.TRAIN_MODELS
+    return sorted(p for p in (assets / "models").rglob("*") if p.name in wanted)
+
+
+def make_view(rng, split: str, assets: Path, work: Path) -> scenes.View:
+    import pbrkit
+    envs = environments(split, assets)
+    env = str(rng.choice(envs))
+    env_arg = "builtin" if env == "builtin" else str(assets / "hdri" / f"{env}.exr")
+    kinds = ["outdoor", "interior", "builtin", "model"]
+    p = [0.35, 0.2, 0.25, 0.2] if split == "train" else [0.25, 0.15, 0.2, 0.4]
+    kind = str(rng.choice(kinds, p=p))
+    rotation = float(rng.uniform(0, 360))
+    intensity = float(np.exp(rng.uniform(-0.7, 0.7)))
+    if kind in ("outdoor", "interior"):
+        path = work / "scene.gltf"
+        info, eye, target, fov, needs_env = scenes.procedural_scene(rng, path,
+                                                                    interior=kind == "interior")
+        return scenes.View(str(path), eye, target, fov, env_arg if needs_env else None,
+                           rotation, intensity, kind, {**info, "env": env if needs_env else None})
+    if kind == "builtin":
+        name = str(rng.choice(scenes.BUILTINS))
+        scene = pbrkit.load(name)
+        eye, target, fov = scenes.orbit_camera(rng, *scene.bounds)
+        no_env = name in ("lights", "cornell")
+        return scenes.View(name, eye, target, fov, None if no_env else env_arg, rotation,
+                           intensity, kind, {"builtin": name, "env": None if no_env else env})
+    model = model_files(split, assets)[int(rng.integers(len(model_files(split, assets))))]
+    scene = pbrkit.load(str(model))
+    eye, target, fov = scenes.orbit_camera(rng, *scene.bounds)
+    return scenes.View(str(model), eye, target, fov, env_arg, rotation, intensity, kind,
+                       {"model": model.name, "env": env})
+
+
+def render_example(view: scenes.View, spp: int, target_spp: int, size: int, seed: int,
+                   threads: int):
+    import pbrkit
+    scene = pbrkit.load(view.scene)
+    cam = pbrkit.look_at(view.eye, view.target, fov=view.fov)
+    common = dict(width=size, height=size, camera=cam, env=view.env,
+                  env_rotation=view.env_rotation, env_intensity=view.env_intensity,
+                  threads=threads)
+    color, aovs = pbrkit.render(scene, spp=spp, seed=seed, aovs=["albedo", "normal"], **common)
+    target = pbrkit.render(scene, spp=target_spp, seed=seed + 1_000_003, **common)
+    return color, aovs["albedo"], aovs["normal"], target
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--out", required=True, type=Path, help="the data set's folder")
+    ap.add_argument("--split", choices=["train", "heldout"], default="train")
+    ap.add_argument("--count", type=int, default=2000, help="examples in the set")
+    ap.add_argument("--start", type=int, default=0, help="first example index")
+    ap.add_argument("--seed", type=int, default=1, help="the data set's seed")
+    ap.add_argument("--size", type=int, default=128, help="image width and height")
+    ap.add_argument("--target-spp", type=int, default=128)
+    ap.add_argument("--threads", type=int, default=0, help="render threads (0: all)")
+    ap.add_argument("--assets", type=Path, default=default_assets(),
+                    help="a folder with hdri/*.exr and models/ (default: the repository's "
+                         "tests/data/assets; the shipped weights were trained on the project's "
+                         "twelve shared HDRIs, see docs/LEARNED_DENOISER.md)")
+    args = ap.parse_args()
+    out = args.out / args.split
+    out.mkdir(parents=True, exist_ok=True)
+    assets = args.assets
+    if not (assets / "hdri").is_dir():
+        print(f"generate.py: {assets}: no hdri/ folder", file=sys.stderr)
+        return 1
+    split_id = 0 if args.split == "train" else 1
+    t0 = time.time()
+    made = 0
+    for k in range(args.start, args.count):
+        dest = out / f"{k:06d}.npz"
+        if dest.exists():
+            continue
+        rng = np.random.default_rng([args.seed, split_id, k])
+        spp = int(rng.choice(SPP_CHOICES, p=SPP_WEIGHTS / SPP_WEIGHTS.sum()))
+        with tempfile.TemporaryDirectory() as tmp:
+            try:
+                view = make_view(rng, args.split, assets, Path(tmp))
+                color, albedo, normal, target = render_example(
+                    view, spp, args.target_spp, args.size, 1 + 2 * k, args.threads)
+            except Exception as e:  # a bad random scene is skipped, and said
+                print(f"example {k}: skipped ({e})", file=sys.stderr)
+                continue
+        if not (np.isfinite(color).all() and np.isfinite(target).all()):
+            print(f"example {k}: skipped (non-finite pixels)", file=sys.stderr)
+            continue
+        if target.mean() < 1e-6:
+            print(f"example {k}: skipped (black)", file=sys.stderr)
+            continue
+        meta = {"kind": view.kind, "scene": Path(view.scene).name, "spp": spp,
+                "target_spp": args.target_spp, "info": view.info}
+        tmpdest = dest.with_name(dest.name + ".tmp.npz")
+        np.savez(tmpdest, color=color.astype(np.float32), albedo=albedo.astype(np.float16),
+                 normal=normal.astype(np.float16), target=target.astype(np.float32),
+                 meta=json.dumps(meta))
+        os.replace(tmpdest, dest)
+        made += 1
+        el = time.time() - t0
+        print(f"[{args.split} {k + 1}/{args.count}] {view.kind} {meta['scene']} {spp} spp "
+              f"({el / made:.1f} s per example)", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,94 @@
+"""The training code on a tiny set: a few steps must lower the loss, the weights file must
+round-trip, and a data set must be reproducible from its seed. Run by ctest
+(denoiser_training_tests) with the build tree's pbrkit package on PYTHONPATH."""
+from __future__ import annotations
+
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+torch = pytest.importorskip("torch")
+
+HERE = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(HERE))
+
+import model as net  # noqa: E402
+import train  # noqa: E402
+
+
+def generate(out: Path, count: int, split: str = "train", seed: int = 7) -> None:
+    subprocess.run([sys.executable, str(HERE / "generate.py"), "--out", str(out), "--split", split,
+                    "--count", str(count), "--seed", str(seed), "--size", "48",
+                    "--target-spp", "16"], check=True, capture_output=True)
+
+
+@pytest.fixture(scope="module")
+def tiny_set(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("data")
+    generate(out, 3)
+    generate(out, 1, split="heldout")
+    return out
+
+
+def test_data_set_is_reproducible_from_its_seed(tiny_set: Path, tmp_path: Path) -> None:
+    generate(tmp_path, 1)
+    a = np.load(tiny_set / "train" / "000000.npz")
+    b = np.load(tmp_path / "train" / "000000.npz")
+    for key in ("color", "albedo", "normal", "target"):
+        assert np.array_equal(a[key], b[key]), key
+    assert a["color"].shape == (48, 48, 3)
+
+
+def test_a_few_steps_lower_the_loss(tiny_set: Path, tmp_path: Path) -> None:
+    # Fitting three 48x48 examples: after 60 steps the mean of the last ten losses must be
+    # below the first ten's (an untrained network's kernels are near uniform 5x5 boxes;
+    # learning anything about the features makes the error fall).
+    rc = train.main(["--data", str(tiny_set), "--run", str(tmp_path / "run"), "--steps", "60",
+                     "--batch", "4", "--crop", "32", "--lr", "3e-3", "--threads", "2",
+                     "--eval-every", "60", "--ckpt-every", "30", "--quiet",
+                     "--export", str(tmp_path / "w.pbnn")])
+    assert rc == 0
+    losses = train.main.losses
+    assert len(losses) == 60
+    assert np.mean(losses[-10:]) < 0.9 * np.mean(losses[:10])
+    assert (tmp_path / "run" / "loss.png").stat().st_size > 1000
+    # The exported file reads back into the same network.
+    model, header = net.read_weights(tmp_path / "w.pbnn")
+    assert header["network"] == net.NETWORK and header["steps"] == 60
+
+
+def test_training_resumes_from_its_checkpoint(tiny_set: Path, tmp_path: Path) -> None:
+    # 20 steps in one go equal 10 steps, a stop, and 10 more (same seed, same batches).
+    common = ["--data", str(tiny_set), "--steps", "20", "--batch", "2", "--crop", "32",
+              "--threads", "1", "--quiet", "--ckpt-every", "10", "--eval-every", "100",
+              "--rescan", "1000"]
+    train.main(common + ["--run", str(tmp_path / "a"), "--export", str(tmp_path / "a.pbnn")])
+    train.main(common + ["--run", str(tmp_path / "b"), "--stop-after", "10"])
+    train.main(common + ["--run", str(tmp_path / "b"), "--export", str(tmp_path / "b.pbnn")])
+    a, _ = net.read_weights(tmp_path / "a.pbnn")
+    b, _ = net.read_weights(tmp_path / "b.pbnn")
+    for (name, pa), (_, pb) in zip(a.state_dict().items(), b.state_dict().items()):
+        assert torch.equal(pa, pb), name
+
+
+def test_output_is_a_normalised_average() -> None:
+    # The kernels are softmax weights: a constant colour comes out unchanged whatever the
+    # weights, and exposure scales the output exactly (the input transform divides it out).
+    torch.manual_seed(3)
+    m = net.KpcnUnet()
+    for p in m.parameters():
+        p.data.mul_(4)
+    rng = np.random.default_rng(1)
+    albedo = rng.random((40, 37, 3)).astype(np.float32)
+    normal = rng.uniform(-1, 1, (40, 37, 3)).astype(np.float32)
+    flat = np.full((40, 37, 3), 0.7, np.float32)
+    assert np.allclose(net.denoise(m, flat, albedo, normal), 0.7, rtol=1e-5)
+    color = rng.exponential(1.0, (40, 37, 3)).astype(np.float32)
+    out = net.denoise(m, color, albedo, normal)
+    out100 = net.denoise(m, color * 100, albedo, normal)
+    # float32 rounding of color * 100 and of the log moves the kernels a little; pixels near
+    # the clamp at 0 get an absolute tolerance on the image's scale
+    assert np.allclose(out100, out * 100, rtol=1e-3, atol=1e-3 * 100 * color.mean())

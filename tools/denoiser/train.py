@@ -1,0 +1,285 @@
+#!/usr/bin/env python3
+"""Trains the learned denoiser (model.py) on examples from generate.py.
+
+Noise2Noise training (Lehtinen et al. 2018): the target is an independent noisy render,
+and the loss is the relative squared error whose denominator is the network's own output
+without gradient (their section 3.3 for Monte Carlo renders), in the exposure-normalised
+units the network sees, so that an L2-type loss trains toward the mean. Random crops,
+flips, quarter turns and colour-channel permutations of the examples.
+
+Resumable: --run DIR holds the checkpoint (the model, the optimiser, the step and both
+random generators), the loss log and its curves (loss.png); a second call with the same
+DIR continues from the last checkpoint. The data set may grow while training: the folder
+is rescanned every --rescan steps.
+
+  python3 tools/denoiser/train.py --data /work/denoiser-data --run /work/denoiser-run \
+      --steps 20000 --export data/denoiser/kpcn-unet-v1.pbnn
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import torch
+
+import model as net
+
+EPS = 1e-2  # the relative loss's floor (Lehtinen et al. 2018, section 3.3)
+
+
+class Example:
+    __slots__ = ("x", "color", "target", "scale", "name")
+
+    def __init__(self, path: Path) -> None:
+        with np.load(path) as z:
+            color, albedo, normal = z["color"], z["albedo"], z["normal"]
+            target = z["target"]
+        c = net.sanitize(color)
+        self.scale = net.autoexposure(c)
+        self.x, self.color = net.network_input(c, albedo.astype(np.float32),
+                                               normal.astype(np.float32), self.scale)
+        self.target = np.ascontiguousarray(net.sanitize(target).transpose(2, 0, 1))
+        self.name = path.name
+
+
+class DataSet:
+    def __init__(self, folder: Path, limit: int = 0) -> None:
+        self.folder = folder
+        self.limit = limit
+        self.examples: list[Example] = []
+        self.seen: set[str] = set()
+        self.rescan()
+
+    def rescan(self) -> int:
+        paths = sorted(self.folder.glob("*.npz")) if self.folder.is_dir() else []
+        added = 0
+        for p in paths:
+            if p.name in self.seen or p.name.endswith(".tmp.npz"):
+                continue
+            if self.limit and len(self.examples) >= self.limit:
+                break
+            try:
+                self.examples.append(Example(p))
+            except Exception as e:  # a file being written, or damaged: skipped, and said
+                print(f"train.py: {p}: skipped ({e})", file=sys.stderr)
+                continue
+            self.seen.add(p.name)
+            added += 1
+        return added
+
+
+def augment(rng: np.random.Generator, ex: Example, crop: int):
+    _, h, w = ex.x.shape
+    y0 = int(rng.integers(0, h - crop + 1))
+    x0 = int(rng.integers(0, w - crop + 1))
+    sl = (slice(None), slice(y0, y0 + crop), slice(x0, x0 + crop))
+    x, c, t = ex.x[sl], ex.color[sl], ex.target[sl]
+    k = int(rng.integers(4))
+    flip = bool(rng.integers(2))
+    perm = rng.permutation(3)
+
+    def geo(a):
+        a = np.rot90(a, k, axes=(1, 2))
+        return a[:, :, ::-1] if flip else a
+
+    x = geo(x)
+    x = np.concatenate([x[0:3][perm], x[3:6][perm], x[6:9]], 0)
+    return (np.ascontiguousarray(x), np.ascontiguousarray(geo(c)[perm]),
+            np.ascontiguousarray(geo(t)[perm]), ex.scale)
+
+
+def batch(rng, data: DataSet, size: int, crop: int):
+    picks = [data.examples[int(i)] for i in rng.integers(0, len(data.examples), size)]
+    parts = [augment(rng, ex, crop) for ex in picks]
+    x = torch.from_numpy(np.stack([p[0] for p in parts]))
+    c = torch.from_numpy(np.stack([p[1] for p in parts]))
+    t = torch.from_numpy(np.stack([p[2] for p in parts]))
+    s = torch.tensor([p[3] for p in parts], dtype=torch.float32).view(-1, 1, 1, 1)
+    return x, c, t, s
+
+
+def relative_loss(out: torch.Tensor, target: torch.Tensor, scale: torch.Tensor) -> torch.Tensor:
+    o = out * scale
+    denom = o.detach().mean(dim=1, keepdim=True) ** 2 + EPS
+    return (((o - target * scale) ** 2) / denom).mean()
+
+
+@torch.no_grad()
+def evaluate(model, data: DataSet, count: int = 16) -> tuple[float, float]:
+    """Relative MSE of the network's output and of the raw input against the targets, on
+    the first `count` whole examples (the targets' own noise is in both)."""
+    if not data.examples:
+        return float("nan"), float("nan")
+    den, raw = [], []
+    for ex in data.examples[:count]:
+        _, h, w = ex.x.shape
+        x = torch.from_numpy(net.pad_to_multiple(ex.x))[None]
+        c = torch.from_numpy(net.pad_to_multiple(ex.color))[None]
+        out = model(x, c)[:, :, :h, :w]
+        t = torch.from_numpy(ex.target)[None]
+        s = torch.tensor(ex.scale).view(1, 1, 1, 1)
+        den.append(float(relative_loss(out, t, s)))
+        raw.append(float(relative_loss(torch.from_numpy(ex.color)[None], t, s)))
+    return float(np.mean(den)), float(np.mean(raw))
+
+
+def learning_rate(step: int, steps: int, peak: float) -> float:
+    warm = min(500, steps // 10 + 1)
+    if step < warm:
+        return peak * (step + 1) / warm
+    return 1e-5 + 0.5 * (peak - 1e-5) * (1 + math.cos(math.pi * (step - warm) / max(1, steps - warm)))
+
+
+def save_checkpoint(path: Path, state: dict) -> None:
+    tmp = path.with_name(path.name + ".tmp")
+    torch.save(state, tmp)
+    os.replace(tmp, path)
+
+
+def plot(log_path: Path, png: Path) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    rows = [json.loads(line) for line in log_path.read_text().splitlines() if line.strip()]
+    if not rows:
+        return
+    fig, ax = plt.subplots(figsize=(7, 4))
+    train = [(r["step"], r["loss"]) for r in rows if "loss" in r]
+    if train:
+        ax.plot(*zip(*train), label="training loss (running mean)", lw=1)
+    for key, label in (("val", "validation (training scenes)"), ("heldout", "held-out scenes")):
+        pts = [(r["step"], r[key]) for r in rows if key in r and math.isfinite(r[key])]
+        if pts:
+            ax.plot(*zip(*pts), "o-", label=label, ms=3)
+    raw = [r["heldout_raw"] for r in rows if "heldout_raw" in r and math.isfinite(r["heldout_raw"])]
+    if raw:
+        ax.axhline(raw[-1], color="gray", ls="--", lw=0.8, label="held-out raw input")
+    ax.set_yscale("log")
+    ax.set_xlabel("step")
+    ax.set_ylabel("relative MSE against a noisy target")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    tmp = png.with_name(png.name + ".tmp.png")
+    fig.savefig(tmp, dpi=110)
+    plt.close(fig)
+    os.replace(tmp, png)
+
+
+def git_commit() -> str:
+    try:
+        return subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=Path(__file__).parent,
+                              capture_output=True, text=True, check=True).stdout.strip()
+    except Exception:
+        return "unknown"
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--data", required=True, type=Path, help="generate.py's folder (train/, heldout/)")
+    ap.add_argument("--run", required=True, type=Path, help="checkpoint, log and curves folder")
+    ap.add_argument("--steps", type=int, default=20000, help="total steps (the schedule's length)")
+    ap.add_argument("--stop-after", type=int, default=0, help="stop at this step (0: --steps)")
+    ap.add_argument("--batch", type=int, default=8)
+    ap.add_argument("--crop", type=int, default=96, help="crop size, a multiple of 16")
+    ap.add_argument("--lr", type=float, default=1e-3)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--limit", type=int, default=0, help="use at most this many examples")
+    ap.add_argument("--ckpt-every", type=int, default=250)
+    ap.add_argument("--eval-every", type=int, default=500)
+    ap.add_argument("--rescan", type=int, default=500)
+    ap.add_argument("--export", type=Path, help="write the weights file here at the end")
+    ap.add_argument("--quiet", action="store_true")
+    args = ap.parse_args(argv)
+    if args.crop % net.ALIGN:
+        ap.error(f"--crop must be a multiple of {net.ALIGN}")
+    torch.set_num_threads(args.threads)
+    args.run.mkdir(parents=True, exist_ok=True)
+    ckpt = args.run / "checkpoint.pt"
+    log_path = args.run / "log.jsonl"
+
+    train = DataSet(args.data / "train", args.limit)
+    heldout = DataSet(args.data / "heldout", 64)
+    if not train.examples:
+        print(f"train.py: no examples in {args.data / 'train'}", file=sys.stderr)
+        return 1
+    torch.manual_seed(args.seed)  # before the model: its initial weights come from it
+    model = net.KpcnUnet()
+    opt = torch.optim.Adam(model.parameters(), lr=args.lr)
+    step = 0
+    rng = np.random.default_rng(args.seed)
+    if ckpt.exists():
+        state = torch.load(ckpt)
+        model.load_state_dict(state["model"])
+        opt.load_state_dict(state["optimizer"])
+        step = state["step"]
+        rng.bit_generator.state = state["numpy_rng"]
+        torch.set_rng_state(state["torch_rng"])
+        if not args.quiet:
+            print(f"resumed {ckpt} at step {step}")
+    stop = args.stop_after or args.steps
+    running = None
+    t0 = time.time()
+    first_step = step
+    losses = []
+    with log_path.open("a") as log:
+        while step < stop:
+            for g in opt.param_groups:
+                g["lr"] = learning_rate(step, args.steps, args.lr)
+            x, c, t, s = batch(rng, train, args.batch, args.crop)
+            loss = relative_loss(model(x, c), t, s)
+            opt.zero_grad()
+            loss.backward()
+            torch.nn.utils.clip_grad_norm_(model.parameters(), 1.0)
+            opt.step()
+            step += 1
+            value = float(loss)
+            losses.append(value)
+            running = value if running is None else 0.98 * running + 0.02 * value
+            record = {"step": step, "loss": running}
+            if step % args.eval_every == 0 or step == stop:
+                record["val"], record["val_raw"] = evaluate(model, train)
+                record["heldout"], record["heldout_raw"] = evaluate(model, heldout)
+            log.write(json.dumps(record) + "\n")
+            if step % args.ckpt_every == 0 or step == stop:
+                log.flush()
+                save_checkpoint(ckpt, {"model": model.state_dict(), "optimizer": opt.state_dict(),
+                                       "step": step, "numpy_rng": rng.bit_generator.state,
+                                       "torch_rng": torch.get_rng_state(),
+                                       "examples": len(train.examples)})
+                plot(log_path, args.run / "loss.png")
+            if step % args.rescan == 0:
+                added = train.rescan() + heldout.rescan()
+                if added and not args.quiet:
+                    print(f"  {added} new examples ({len(train.examples)} for training)")
+            if not args.quiet and (step % 50 == 0 or "val" in record):
+                rate = (step - first_step) / (time.time() - t0)
+                extra = ""
+                if "val" in record:
+                    extra = (f" val {record['val']:.4f} (raw {record['val_raw']:.4f}) held-out "
+                             f"{record['heldout']:.4f} (raw {record['heldout_raw']:.4f})")
+                print(f"step {step}/{args.steps} loss {running:.4f} lr "
+                      f"{opt.param_groups[0]['lr']:.2e} {rate:.2f} steps/s{extra}", flush=True)
+    if args.export:
+        meta = net.WeightsMeta(commit=git_commit(),
+                               dataset=f"{args.data.name} ({len(train.examples)} examples)",
+                               steps=step,
+                               created=datetime.datetime.now(datetime.timezone.utc).isoformat())
+        net.write_weights(args.export, model, meta)
+        if not args.quiet:
+            print(f"wrote {args.export}")
+    main.losses = losses  # for the tests
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
