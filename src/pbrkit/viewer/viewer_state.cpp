@@ -1,0 +1,181 @@
+#include "viewer_state.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <thread>
+
+#include <epoxy/gl.h>
+
+#include "pbrkit/gl/context.h"
+#include "pbrkit/ibl/bake.h"
+#include "pbrkit/scene/load.h"
+#include "pbrkit/scene/material_schema.h"
+#include "pbrkit/util/data_dir.h"
+#include "pbrkit/util/log.h"
+
+namespace pbrkit::viewer {
+
+namespace {
+
+// The scene the path tracer renders: the panel's material overrides applied to the
+// materials (metallic and roughness replace the factor and the texture's value, as the
+// raster shader's overrides do) and the lights the panel turned off left out.
+std::shared_ptr<const Scene> make_path_scene(const ViewerState& s) {
+  auto scene = std::make_shared<Scene>(s.scene);
+  scene->materials = overridden_materials(s);
+  for (Material& m : scene->materials) {
+    if (s.override_metallic || s.override_roughness) m.metallic_roughness_texture = {};
+    if (s.override_metallic) m.metallic_factor = s.metallic;
+    if (s.override_roughness) m.roughness_factor = s.roughness;
+  }
+  scene->lights.clear();
+  for (std::size_t i = 0; i < s.scene.lights.size(); ++i)
+    if (i >= s.settings.light_enabled.size() || s.settings.light_enabled[i])
+      scene->lights.push_back(s.scene.lights[i]);
+  return scene;
+}
+
+// The channel the path texture shows: the panel's in the path view; the split and the
+// error compare colours.
+PathChannel shown_path_channel(const ViewerState& s) {
+  if (s.mode != ViewMode::kPath || s.snapshot->preview) return PathChannel::kColor;
+  return s.path_channel;
+}
+
+}  // namespace
+
+std::vector<ExtensionOverride> extension_overrides() {
+  std::vector<ExtensionOverride> out;
+  for (const MaterialExtension& x : material_schema()) {
+    ExtensionOverride& o = out.emplace_back();
+    for (const MaterialFactor& f : x.factors)
+      o.values.insert(o.values.end(), f.components, f.control.start);
+  }
+  return out;
+}
+
+void init_state(ViewerState& s, const ViewerOptions& options) {
+  s.options = options;
+  s.settings.brdf = options.brdf;
+  s.settings.background = options.background;
+  s.settings.msaa = options.msaa;
+  glGetIntegerv(GL_MAX_SAMPLES, &s.max_samples);
+  if (s.settings.msaa <= 0) {
+    const std::string gpu = gl::current_renderer();
+    s.settings.msaa = gl::interactive_msaa(gpu);
+    if (s.settings.msaa == 1)
+      note("view: MSAA off on {}, a software rasteriser (--msaa 4 or the panel turns it on)", gpu);
+  }
+  s.display = options.display;
+  s.env_choices.push_back(options.env);
+  // The environments pbrkit ships (data/env/), offered in the panel by name order.
+  std::vector<std::string> shipped;
+  for (const auto& entry : std::filesystem::directory_iterator(data_dir() / "env"))
+    if (entry.path().extension() == ".exr") shipped.push_back(entry.path().string());
+  std::sort(shipped.begin(), shipped.end());
+  s.env_choices.insert(s.env_choices.end(), shipped.begin(), shipped.end());
+  s.mode = options.mode;
+  s.channel = options.channel;
+  s.path_channel = options.path_channel;
+  s.denoise = options.denoise;
+  s.split = std::clamp(options.split, 0.0f, 1.0f);
+}
+
+std::vector<Material> overridden_materials(const ViewerState& s) {
+  std::vector<Material> materials = s.scene.materials;
+  const auto schema = material_schema();
+  for (Material& m : materials)
+    for (std::size_t i = 0; i < schema.size(); ++i) {
+      const MaterialExtension& x = schema[i];
+      if (!s.ext[i].on) continue;
+      if (!x.present(m)) x.add(m);
+      const float* v = s.ext[i].values.data();
+      for (const MaterialFactor& f : x.factors) {
+        std::copy(v, v + f.components, f.values(m));
+        v += f.components;
+      }
+    }
+  return materials;
+}
+
+void load_environment(ViewerState& s, gl::Renderer& renderer) {
+  s.env.reset();
+  s.ibl.reset();
+  if (!s.options.no_env) {
+    s.env = load_environment_or_default(s.env_choices[std::size_t(s.env_choice)], 0.0f, 1.0f);
+    const BakeOptions bake = gl::realtime_bake_options(s.options.bake_size, s.options.bake_samples);
+    s.ibl = gl::ibl_maps_from_bake(bake_environment(*s.env, bake), *s.env);
+  }
+  renderer.set_environment(s.env ? &*s.env : nullptr);
+  renderer.set_ibl(s.ibl ? &*s.ibl : nullptr);
+}
+
+void load_scene_into(ViewerState& s, gl::Renderer& renderer) {
+  Scene scene = load_scene(s.options.scene);
+  renderer.set_scene(scene);  // a scene too large is refused here, the previous one kept
+  s.scene = std::move(scene);
+  renderer.set_materials(overridden_materials(s));  // the panel's overrides survive a reload
+  s.settings.light_enabled.assign(s.scene.lights.size(), true);
+  s.path_scene_dirty = true;
+}
+
+void reset_orbit(ViewerState& s, float aspect) {
+  s.orbit =
+      Orbit::from_camera(select_camera(s.scene, s.options.camera, aspect), s.scene.world_bounds());
+}
+
+Camera current_camera(const ViewerState& s, int width, int height) {
+  if (!s.orbit_moved) return select_view(s.scene, s.options.camera, width, height).camera;
+  return s.orbit.camera();
+}
+
+void start_path(ViewerState& s, int width, int height) {
+  ProgressiveJob job;
+  if (!s.path_scene || s.path_scene_dirty) {
+    s.path_scene = make_path_scene(s);
+    s.path_scene_dirty = false;
+  }
+  job.scene = s.path_scene;
+  if (s.env) {
+    auto env = std::make_shared<Environment>(*s.env);
+    env->rotation_deg = s.settings.env_rotation_deg;
+    env->intensity = s.settings.env_intensity;
+    job.env = std::move(env);
+  }
+  job.camera = current_camera(s, width, height);
+  PathTracerSettings& p = job.settings;
+  p.width = width;
+  p.height = height;
+  p.spp = s.options.spp;
+  p.min_spp = 1;
+  p.noise_threshold = 0.0f;
+  p.seed = s.options.seed;
+  p.brdf = s.settings.brdf;
+  p.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);
+  p.checkpoint_interval = 0.1;
+  s.path_job = s.path.start(std::move(job));
+  s.snapshot.reset();
+  s.path_dirty = false;
+}
+
+Image path_linear(const ViewerState& s) {
+  const ProgressiveSnapshot& snap = *s.snapshot;
+  if (s.denoise && s.mode == ViewMode::kPath && s.path_channel == PathChannel::kColor)
+    if (const Image* denoised = s.denoiser.result(snap.serial)) return *denoised;
+  return path_channel_image(snap, shown_path_channel(s));
+}
+
+Image path_display(const ViewerState& s) {
+  return path_channel_display(path_linear(s), shown_path_channel(s), s.display);
+}
+
+DisplaySettings raster_display(const ViewerState& s) {
+  if (s.channel != gl::DebugChannel::kNone) return {0.0f, ToneMapper::kNone};
+  return s.display;
+}
+
+bool denoise_shown(const ViewerState& s) {
+  return s.denoise && s.path_channel == PathChannel::kColor;
+}
+
+}  // namespace pbrkit::viewer
