@@ -38,7 +38,7 @@ std::vector<std::string> supported_gltf_extensions();
 /// diffuse sphere), "cornell" (the Cornell box), and one comparison scene per
 /// KHR_materials_* extension, "clearcoat", "sheen", "anisotropy", "iridescence", "specular",
 /// "ior" and "unlit" (3 rows of 6 spheres: a control sphere without the extension, then a
-/// sweep of one parameter; builtin_scenes.cpp says which), and the transmission scenes
+/// sweep of one parameter; builtin/extension_rows.cpp says which), and the transmission scenes
 /// "glass" (smooth, rough, tinted, thin-walled and dispersive glass before a checker
 /// backdrop) and "liquid" (a tumbler with a liquid beside an empty one), and "instances" (a
 /// 100 x 100 field of one rock mesh, some mirrored, some squashed, one glowing), and
