@@ -6,11 +6,11 @@
 
 #include "commands.h"
 #include "denoising.h"
-#include "output_paths.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image_io.h"
+#include "pbrkit/image/output_paths.h"
 #include "pbrkit/util/log.h"
 
 namespace pbrkit::cli {
@@ -60,7 +60,7 @@ void register_denoise_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--float", o->full_float, "write the EXR as 32-bit floats (default half)");
   cmd->callback([o] {
-    const ImageOutputs outputs = image_outputs(o->output);
+    const ImageOutputPaths outputs = image_output_paths(o->output, "-o");
     const DenoiseInput input = read_input(o->input);
     const std::optional<Image> denoised = run_denoiser(input);
     create_output_directory(outputs);

@@ -10,11 +10,11 @@
 #include "accumulation.h"
 #include "commands.h"
 #include "denoising.h"
-#include "output_paths.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image_io.h"
+#include "pbrkit/image/output_paths.h"
 #include "pbrkit/pt/film.h"
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/util/error.h"
@@ -63,7 +63,7 @@ void register_merge_command(CLI::App& app) {
   cmd->add_option("--accumulation", o->accumulation,
                   "also write the merged accumulation EXR here (to merge again later)");
   cmd->callback([o] {
-    const ImageOutputs outputs = image_outputs(o->output);
+    const ImageOutputPaths outputs = image_output_paths(o->output, "-o");
     Film film = read_accumulation(o->parts.front());
     for (std::size_t i = 1; i < o->parts.size(); ++i) {
       const Film part = read_accumulation(o->parts[i]);

@@ -116,7 +116,7 @@ void register_render_command(CLI::App& app) {
       std::string stem = std::filesystem::path(o.scene).stem().string();
       o.output = "out/" + stem + "_" + *renderer + ".png";
     }
-    o.outputs = image_outputs(o.output);
+    o.outputs = image_output_paths(o.output, "-o");
     create_output_directory(o.outputs);
     (*renderer == "path" ? path : gl)(o);
   });

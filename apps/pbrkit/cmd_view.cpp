@@ -11,6 +11,7 @@
 #include "gl_options.h"
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/image/output_paths.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/viewer/viewer.h"
 
@@ -115,7 +116,8 @@ void register_view_command(CLI::App& app) {
                   "automation: render this many frames, save --screenshot, and quit")
       ->check(CLI::NonNegativeNumber);
   cmd->add_option("--screenshot", o->screenshot,
-                  "screenshot PNG path (the linear EXR goes beside it); default out/view_<n>.png");
+                  "screenshot .png or .exr; both are written, the other beside it with the same "
+                  "name (default out/view_<n>.png)");
   cmd->callback([o, names] {
     o->display.tone_mapper = parse_tone_mapper(names->tonemap);
     o->brdf.model = parse_brdf_model(names->model);
@@ -123,6 +125,8 @@ void register_view_command(CLI::App& app) {
     o->background = parse_background(names->background);
     o->mode = parse_view_mode(names->mode);
     if (names->channel) parse_channel(*names->channel, *o);
+    // A bad name is refused by its flag's name before a window opens.
+    if (!o->screenshot.empty()) image_output_paths(o->screenshot, "--screenshot");
     run_viewer(*o);
   });
 }

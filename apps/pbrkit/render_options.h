@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "output_paths.h"
+#include "pbrkit/image/output_paths.h"
 #include "pbrkit/scene/camera.h"
 
 namespace pbrkit::cli {
@@ -30,8 +30,8 @@ struct RenderCommandOptions {
   /// --float / --half: the EXR's pixel type; unset: the renderer's default (half for the
   /// path tracer, float for the OpenGL renderer).
   std::optional<bool> exr_float;
-  std::string output;    ///< -o: a .png or .exr path (or empty: out/<scene>_<renderer>.png)
-  ImageOutputs outputs;  ///< resolved from `output` before rendering
+  std::string output;        ///< -o: a .png or .exr path (or empty: out/<scene>_<renderer>.png)
+  ImageOutputPaths outputs;  ///< resolved from `output` before rendering
 };
 
 /// The --help groups of each renderer's own options. An option of one renderer given with

@@ -1,10 +1,10 @@
-// `pbrkit render` end to end: what -o writes (the files' magic bytes, not our reader's
-// opinion) and the image's aspect (a sphere at the centre of a wide image is round).
+// `pbrkit render` end to end: the image's aspect (a sphere at the centre of a wide image is
+// round), the options' effects, merge's refusal of a non-accumulation file. What -o writes
+// is tested with every other image-writing command in output_names_test.cpp.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
@@ -24,53 +24,6 @@ std::string render(const std::string& args, int* code) {
   *code = test::run_command(test::cli_path().string() + " render " + args, &output);
   return output;
 }
-
-// The first bytes of a file: OpenEXR's magic number is 76 2f 31 01 (OpenEXR file layout,
-// "Magic Number"); PNG's signature is 89 50 4e 47 0d 0a 1a 0a (PNG spec, section 5.2).
-std::string magic(const fs::path& path, std::size_t n) {
-  std::ifstream in(path, std::ios::binary);
-  std::string bytes(n, '\0');
-  in.read(bytes.data(), std::streamsize(n));
-  return in.gcount() == std::streamsize(n) ? bytes : std::string();
-}
-const std::string kExrMagic("\x76\x2f\x31\x01", 4);
-const std::string kPngMagic("\x89PNG\r\n\x1a\n", 8);
-
-class RenderOutput : public ::testing::TestWithParam<const char*> {};
-
-TEST_P(RenderOutput, EitherExtensionWritesBothFilesWithTheRightFormat) {
-  const fs::path dir = test::scratch_dir();
-  const std::string renderer = GetParam();
-  const std::string fast = renderer == "path" ? " --spp 1" : " --msaa 1 --bake-size 16";
-  for (const char* name : {"a.exr", "b.png", "c.EXR"}) {
-    int code = 0;
-    const fs::path out = dir / "sub" / name;
-    const std::string log = render(
-        "furnace --renderer " + renderer + fast + " --width 16 --height 16 -o " + out.string(),
-        &code);
-    ASSERT_EQ(code, 0) << log;
-    const fs::path stem = out.parent_path() / out.stem();
-    const fs::path exr = out.extension() == ".EXR" ? out : fs::path(stem.string() + ".exr");
-    const fs::path png = out.extension() == ".png" ? out : fs::path(stem.string() + ".png");
-    EXPECT_EQ(magic(exr, 4), kExrMagic) << exr;
-    EXPECT_EQ(magic(png, 8), kPngMagic) << png;
-  }
-}
-
-TEST_P(RenderOutput, OtherExtensionsAreAClearErrorAndWriteNothing) {
-  const fs::path dir = test::scratch_dir();
-  for (const char* name : {"x.jpg", "x", "x.png.tmp"}) {
-    int code = 0;
-    const std::string log = render(
-        std::string("furnace --renderer ") + GetParam() + " -o " + (dir / name).string(), &code);
-    EXPECT_EQ(code, 1) << log;
-    EXPECT_NE(log.find(".png or .exr"), std::string::npos) << log;
-    EXPECT_NE(log.find((dir / name).string()), std::string::npos) << log;
-  }
-  EXPECT_TRUE(fs::is_empty(dir));
-}
-
-INSTANTIATE_TEST_SUITE_P(Renderers, RenderOutput, ::testing::Values("path", "gl"));
 
 // Width and height in pixels of the connected region of pixels for which `inside` holds
 // that contains the image's centre (4-connected flood fill).

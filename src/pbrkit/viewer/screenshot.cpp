@@ -1,10 +1,9 @@
 #include "screenshot.h"
 
-#include <filesystem>
-
 #include "pbrkit/image/compare.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image_io.h"
+#include "pbrkit/image/output_paths.h"
 #include "pbrkit/util/log.h"
 #include "truth_view.h"
 
@@ -13,18 +12,18 @@ namespace pbrkit::viewer {
 namespace {
 
 // Writes `linear` as a float EXR and, through the display transform, a PNG (or, for the
-// error view, `display` as is).
-void save_screenshot(const std::string& png, const Image& linear, const DisplaySettings& settings,
+// error view, `display` as is): `path` names either, the other goes beside it, as for
+// every image output.
+void save_screenshot(const std::string& path, const Image& linear, const DisplaySettings& settings,
                      const Image* display = nullptr) {
-  const std::filesystem::path parent = std::filesystem::path(png).parent_path();
-  if (!parent.empty()) std::filesystem::create_directories(parent);
-  const std::string exr = std::filesystem::path(png).replace_extension(".exr").string();
-  write_exr(exr, linear.channels == 1 ? linear : rgb_channels(linear), ExrPixelType::kFloat);
+  const ImageOutputPaths out = image_output_paths(path, "screenshot");
+  create_output_directory(out);
+  write_exr(out.exr, linear.channels == 1 ? linear : rgb_channels(linear), ExrPixelType::kFloat);
   if (display)
-    write_png(png, *display);
+    write_png(out.png, *display);
   else
-    write_display_png(png, linear, settings);
-  note("wrote {} and {}", png, exr);
+    write_display_png(out.png, linear, settings);
+  note("wrote {} and {}", out.png, out.exr);
 }
 
 }  // namespace

@@ -8,7 +8,8 @@
 
 namespace pbrkit::viewer {
 
-/// The view shown, saved as `path` (PNG and EXR): the raster frame, the path-traced image,
+/// The view shown, saved as `path` (a .png or .exr: both are written, image/output_paths.h):
+/// the raster frame, the path-traced image,
 /// the split of the two, or the raster image's error against the truth.
 void save_view(const ViewerState& s, const std::string& path, const Image& frame, int fb_w);
 

@@ -9,6 +9,7 @@
 
 #include "frame_loop.h"
 #include "pbrkit/gl/renderer.h"
+#include "pbrkit/image/output_paths.h"
 #include "pbrkit/util/error.h"
 #include "viewer_state.h"
 
@@ -49,6 +50,8 @@ void shutdown_imgui() {
 }  // namespace
 
 void run_viewer(const ViewerOptions& options) {
+  // A bad screenshot name is refused now, not after the frames are rendered.
+  if (!options.screenshot.empty()) image_output_paths(options.screenshot, "screenshot");
   if (!glfwInit())
     fail(
         "pbrkit view: cannot open a window (GLFW could not initialise; is there an X display? "

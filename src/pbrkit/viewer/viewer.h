@@ -69,11 +69,14 @@ struct ViewerOptions {
   bool exit_when_done = false;
   /// Automation (CI): render this many frames, save `screenshot`, quit (0: interactive).
   int frames = 0;
-  std::string screenshot;  ///< PNG path (the EXR goes beside it); also the F12 target
+  /// A .png or .exr path: both are written, the other beside it (image/output_paths.h); also
+  /// the F12 target.
+  std::string screenshot;
 };
 
 /// Opens the window and runs until closed (or `frames` frames). Throws pbrkit::Error when
-/// no window can be opened (e.g. no X display: run under xvfb-run).
+/// no window can be opened (e.g. no X display: run under xvfb-run), or, before opening
+/// one, when `screenshot` is not a .png or .exr name.
 void run_viewer(const ViewerOptions& options);
 
 }  // namespace pbrkit

@@ -1,4 +1,4 @@
-#include "output_paths.h"
+#include "pbrkit/image/output_paths.h"
 
 #include <algorithm>
 #include <cctype>
@@ -6,24 +6,24 @@
 
 #include "pbrkit/util/error.h"
 
-namespace pbrkit::cli {
+namespace pbrkit {
 
-ImageOutputs image_outputs(const std::string& output, std::string_view flag) {
+ImageOutputPaths image_output_paths(const std::string& path, std::string_view what) {
   namespace fs = std::filesystem;
-  std::string ext = fs::path(output).extension().string();
+  std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return char(std::tolower(c)); });
   if (ext != ".png" && ext != ".exr")
     fail("{} {}: the output must end in .png or .exr (pbrkit writes both, the other beside it)",
-         flag, output);
+         what, path);
   const bool png = ext == ".png";
-  const std::string other = fs::path(output).replace_extension(png ? ".exr" : ".png").string();
-  return png ? ImageOutputs{output, other} : ImageOutputs{other, output};
+  const std::string other = fs::path(path).replace_extension(png ? ".exr" : ".png").string();
+  return png ? ImageOutputPaths{path, other} : ImageOutputPaths{other, path};
 }
 
-void create_output_directory(const ImageOutputs& outputs) {
+void create_output_directory(const ImageOutputPaths& outputs) {
   const std::filesystem::path parent = std::filesystem::path(outputs.png).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
 }
 
-}  // namespace pbrkit::cli
+}  // namespace pbrkit
