@@ -12,6 +12,17 @@ find_package(TinyGLTF CONFIG REQUIRED)           # TinyGLTF::TinyGLTF (Debian's 
 find_package(draco CONFIG REQUIRED)              # draco::draco
 find_package(meshoptimizer CONFIG REQUIRED)      # meshoptimizer::meshoptimizer
 find_package(OpenGL REQUIRED COMPONENTS OpenGL EGL)
+find_package(ZLIB REQUIRED)                      # ZLIB::ZLIB (the learned denoiser's CRC-32)
+# oneDNN 2.6 (libdnnl-dev), the learned denoiser's network. Found by hand, not through its
+# dnnl-config.cmake: Debian built it with an OpenCL GPU runtime, and that file requires
+# OpenCL's headers, which the CPU engine pbrkit uses never includes. Its CPU runtime is
+# OpenMP (libgomp: DNNL_CPU_RUNTIME OMP in dnnl_config.h), so libgomp is linked too, for
+# the thread count (omp_set_num_threads).
+find_path(DNNL_INCLUDE_DIR oneapi/dnnl/dnnl.hpp REQUIRED)
+find_library(DNNL_LIBRARY dnnl REQUIRED)
+add_library(pbrkit_dnnl INTERFACE IMPORTED)      # pbrkit_dnnl
+target_include_directories(pbrkit_dnnl SYSTEM INTERFACE ${DNNL_INCLUDE_DIR})
+target_link_libraries(pbrkit_dnnl INTERFACE ${DNNL_LIBRARY} gomp)
 find_package(glfw3 3.3 CONFIG REQUIRED)          # glfw
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(STB REQUIRED IMPORTED_TARGET stb)      # PkgConfig::STB (implementations in libstb.so)
