@@ -6,8 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
-
-#include <fmt/format.h>
+#include <vector>
 
 #include "pbrkit/core/color.h"
 #include "pbrkit/gl/program.h"
@@ -19,8 +18,17 @@ namespace pbrkit::gl {
 // over constant buffer offsets faster than one over a uniform count).
 inline constexpr int kCompiledLightCount = 16;
 
-// Compile-time features of the surface program (pbr_fragment.glsl says why they are not
-// uniforms: on llvmpipe an unused branch still costs its texture fetches).
+/// One #define of the surface program (pbr_fragment.glsl and the files it includes).
+struct SurfaceDefine {
+  std::string name;          ///< e.g. "MATERIAL_SHEEN", "HAS_BASE_COLOR_TEXTURE"
+  int value = 0;             ///< its value in this permutation
+  const char* meaning = "";  ///< what it selects in the shaders, and its values
+};
+
+// Compile-time features of the surface program. They are #defines rather than uniforms
+// because llvmpipe, the software rasteriser of CI and headless servers, runs both sides of a
+// branch on a uniform with masked lanes: an unused texture or IBL term would still cost its
+// fetches. define_list() names each one and says what it selects.
 struct SurfaceFeatures {
   unsigned textures = 0;  ///< bit t: texture slot t bound (scene.h's TextureSlot: HAS_<slot>)
   bool colors = false;    ///< the mesh has COLOR_0
@@ -89,31 +97,12 @@ struct SurfaceFeatures {
            std::uint64_t(box_occluders) << (kOccluderKeyShift + 5) |
            std::uint64_t(glass_reflections) << (kOccluderKeyShift + kOccluderKeyBits);
   }
-  std::string defines() const {
-    std::string d = surface_prelude();
-    d += fmt::format(
-        "#define MATERIAL_SPECULAR {}\n#define MATERIAL_ANISOTROPY {}\n"
-        "#define MATERIAL_IRIDESCENCE {}\n#define MATERIAL_CLEARCOAT {}\n"
-        "#define MATERIAL_SHEEN {}\n#define MATERIAL_UNLIT {}\n"
-        "#define MATERIAL_TRANSMISSION {}\n#define MATERIAL_VOLUME {}\n"
-        "#define MATERIAL_DISPERSION {}\n#define MATERIAL_DIFFUSE_TRANSMISSION {}\n",
-        int(specular), int(anisotropy), int(iridescence), int(clearcoat), int(sheen), int(unlit),
-        int(transmission), int(volume), int(dispersion), int(diffuse_transmission));
-    for (int t = 0; t < kTextureSlotCount; ++t)
-      d += fmt::format("#define HAS_{} {}\n", texture_slot_macro(TextureSlot(t)),
-                       (textures >> t) & 1u);
-    d += fmt::format("#define HAS_COLOR_0 {}\n", int(colors));
-    d += fmt::format(
-        "#define ALPHA_MODE {}\n#define IBL {}\n#define IRRADIANCE_SH {}\n"
-        "#define MULTISCATTER {}\n#define GEOMETRY {}\n#define FRESNEL {}\n"
-        "#define LIGHTS {}\n#define LIGHT_COUNT {}\n#define DEBUG_CHANNEL {}\n"
-        "#define IBL_OCCLUDERS {}\n#define OCCLUDER_SPHERES {}\n#define OCCLUDER_BOXES {}\n"
-        "#define OCCLUDER_BOUNCE {}\n#define GLASS_REFLECTIONS {}\n",
-        alpha_mode, int(ibl), int(irradiance_sh), int(multiscatter), geometry, fresnel, lights,
-        light_count, debug_channel, int(ibl && sphere_occluders + box_occluders > 0),
-        sphere_occluders, box_occluders, int(ibl && occluder_bounce), int(glass_reflections));
-    return d;
-  }
+  /// The #defines of this permutation, each with what it selects (shader_permutations.cpp
+  /// documents every one; no GLSL file lists them), in the order defines() writes them.
+  std::vector<SurfaceDefine> define_list() const;
+  /// surface_prelude() (slots, units and binding points) and then define_list() as
+  /// `#define NAME value` lines: the text every surface program starts with.
+  std::string defines() const;
 };
 
 /// Sets `f`'s transmission features (transmission, volume, dispersion, diffuse

@@ -3,35 +3,10 @@
 // and split-sum IBL (ibl.glsl), with glTF's textures, emission, normal and occlusion maps
 // (occlusion on indirect light only), alpha MASK / BLEND and double-sided materials.
 //
-// Features are compile-time constants (shader_permutations.h's SurfaceFeatures writes the
-// #defines after surface_bindings.h's prelude, which names every texture slot, SLOT_<slot>,
-// and every texture unit and buffer binding point, BINDING_<name>; the feature defaults
-// below are only for tools that compile this file with the prelude alone): llvmpipe, the
-// software rasteriser of CI and headless servers, runs both sides of a branch on a
-// uniform with masked lanes, so an unused texture or IBL term would still cost its
-// fetches. HAS_<slot> (HAS_BASE_COLOR_TEXTURE, ..., one per scene.h TextureSlot): the slot
-// is bound; HAS_COLOR_0: the mesh has COLOR_0 (a varying fewer without: llvmpipe sets up
-// and interpolates every varying of every small triangle); ALPHA_MODE 0 opaque, 1 mask,
-// 2 blend; IBL, IRRADIANCE_SH, MULTISCATTER 0/1; GEOMETRY (G for lights) and FRESNEL as
-// in brdf.glsl; LIGHTS: the punctual lights, 0 none, 1 every light for every fragment, 2
-// the fragment's cluster's (light_clusters.h), 3 the same with spot lights among them;
-// LIGHT_COUNT: with LIGHTS 1, the number of
-// lights when compiled in (-1: uLightCount).
-// The KHR_materials_* extensions, each its own permutation feature with its
-// texture slots (HAS_SPECULAR_TEXTURE .. HAS_IRIDESCENCE_THICKNESS_TEXTURE): MATERIAL_SPECULAR (ior and
-// specular), MATERIAL_ANISOTROPY, MATERIAL_IRIDESCENCE, MATERIAL_CLEARCOAT, MATERIAL_SHEEN,
-// MATERIAL_UNLIT. Every input is computed as the path tracer's shade_inputs
-// (pt/shading.cpp) computes it.
-// The transmission features (transmission.glsl; HAS_TRANSMISSION_TEXTURE ..
-// HAS_DIFFUSE_TRANSMISSION_COLOR_TEXTURE): MATERIAL_TRANSMISSION (the opaque
-// frame, uTransmissionFrame, read through the surface), MATERIAL_VOLUME (a thickness > 0:
-// refraction through the medium, Beer-Lambert), MATERIAL_DISPERSION (three iors),
-// MATERIAL_DIFFUSE_TRANSMISSION (the irradiance at -n through the diffuse lobe). With
-// MATERIAL_TRANSMISSION and MATERIAL_VOLUME the refraction goes through both interfaces
-// (thick_refraction.glsl) where renderer.cpp has drawn the object's back faces, and with
-// GLASS_REFLECTIONS its specular reflection reads the opaque frame where the mirror
-// direction meets it on the screen (thick_refraction.glsl's reflected_frame). IBL_OCCLUDERS:
-// the environment light is shadowed by the transmissive objects (occluders.glsl).
+// Every feature is a compile-time #define: shader_permutations.cpp's
+// SurfaceFeatures::define_list() writes each one (MATERIAL_*, HAS_<slot>, LIGHTS, IBL, ...)
+// and says what it selects, after surface_bindings.h's prelude, which names every texture
+// slot (SLOT_<slot>) and every texture unit and buffer binding point (BINDING_<name>).
 //
 // main() reads as the shading's steps: the material's inputs (material_inputs.glsl, one
 // function per extension), the material bound to the viewer (shading_at) and the
@@ -39,31 +14,6 @@
 // (surface_light_punctual.glsl), the image-based light and the light transmitted from the
 // frame behind (surface_light_indirect.glsl), the output. The lights' files follow
 // Filament's surface_light_punctual.fs and surface_light_indirect.fs.
-#ifndef MATERIAL_SPECULAR
-#define MATERIAL_SPECULAR 0
-#define MATERIAL_ANISOTROPY 0
-#define MATERIAL_IRIDESCENCE 0
-#define MATERIAL_CLEARCOAT 0
-#define MATERIAL_SHEEN 0
-#define MATERIAL_UNLIT 0
-#endif
-#ifndef MATERIAL_TRANSMISSION
-#define MATERIAL_TRANSMISSION 0
-#define MATERIAL_VOLUME 0
-#define MATERIAL_DISPERSION 0
-#define MATERIAL_DIFFUSE_TRANSMISSION 0
-#endif
-#ifndef HAS_COLOR_0
-#define HAS_COLOR_0 1
-#define ALPHA_MODE 0
-#define IBL 1
-#define IRRADIANCE_SH 1
-#define MULTISCATTER 0
-#define GEOMETRY 0
-#define FRESNEL 0
-#define LIGHTS 0
-#define LIGHT_COUNT -1
-#endif
 #if MATERIAL_IRIDESCENCE
 #define BRDF_IRIDESCENCE 1
 #endif
@@ -79,12 +29,6 @@
 #endif
 #if MATERIAL_TRANSMISSION && MATERIAL_VOLUME
 #include "thick_refraction.glsl"
-#endif
-#ifndef IBL_OCCLUDERS
-#define IBL_OCCLUDERS 0
-#endif
-#ifndef GLASS_REFLECTIONS
-#define GLASS_REFLECTIONS 0
 #endif
 #if IBL_OCCLUDERS
 #include "occluders.glsl"
