@@ -43,9 +43,6 @@ struct InstanceRun {
   std::size_t count = 0;
 };
 
-/// The binding point of GpuScene::instance_buffer (pbr_vertex.glsl's InstanceTransforms).
-inline constexpr GLuint kInstanceBufferBinding = 3;
-
 /// The bytes GpuScene::upload allocates for `scene`: its meshes' vertex and index buffers,
 /// its textures' mip chains in the formats they are uploaded in, and the instance buffer.
 struct GlSceneBytes {

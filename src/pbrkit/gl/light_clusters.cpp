@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "pbrkit/gl/surface_bindings.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit::gl {

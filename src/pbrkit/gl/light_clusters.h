@@ -25,12 +25,6 @@
 
 namespace pbrkit::gl {
 
-/// The binding points of the light buffers (pbr_fragment.glsl's PunctualLights,
-/// LightClusterRanges and ListedLights).
-inline constexpr GLuint kLightBufferBinding = 4;
-inline constexpr GLuint kClusterRangeBufferBinding = 5;
-inline constexpr GLuint kListedLightBufferBinding = 6;
-
 /// A light's sphere of influence in world space; none for a light that reaches everything
 /// (directional, or no `range`).
 struct InfluenceSphere {

@@ -7,6 +7,7 @@
 
 #include "pbrkit/core/transmission.h"
 #include "pbrkit/gl/shader_permutations.h"
+#include "pbrkit/gl/surface_bindings.h"
 
 namespace pbrkit::gl {
 

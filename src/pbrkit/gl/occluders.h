@@ -16,9 +16,6 @@ namespace pbrkit::gl {
 /// numbers are part of the shader's permutation (5 bits each in SurfaceFeatures::key).
 inline constexpr int kMaxOccluders = 16;
 
-/// The binding point of the occluder buffer (occluders.glsl's Occluders).
-inline constexpr GLuint kOccluderBufferBinding = 7;
-
 /// A parallelepiped's three pairs of faces as box_form_factor takes them
 /// (occluder_form_factors.glsl).
 struct ParallelepipedFaces {
@@ -114,7 +111,7 @@ class GpuOccluderBuffer {
   /// Uploads the transmittances and the opaque ones' albedos and emissions of `selected`
   /// (select_occluders's) and binds the buffer.
   void upload(std::span<const Occluder> selected);
-  /// Binds the buffer (GL_UNIFORM_BUFFER at kOccluderBufferBinding).
+  /// Binds the buffer (GL_UNIFORM_BUFFER at surface_bindings.h's kOccluderBufferBinding).
   void bind() const;
   GLuint id() const { return buffer_; }
 

@@ -4,20 +4,9 @@
 
 #include <fmt/format.h>
 
-#include "pbrkit/gl/gpu_scene.h"
-#include "pbrkit/gl/light_clusters.h"
-#include "pbrkit/gl/occluders.h"
 #include "pbrkit/scene/material_schema.h"
 
 namespace pbrkit::gl {
-
-GLuint texture_unit(TextureSlot slot) {
-  const int t = int(slot);
-  if (t < int(kFirstExtensionTextureSlot)) return GLuint(t);
-  if (t < int(TextureSlot::kTransmission)) return GLuint(t + 4);
-  if (t <= int(kLastInterleavedSlot)) return GLuint(t + 7);
-  return kAnisotropicAlbedoUnit + GLuint(t - int(kLastInterleavedSlot));
-}
 
 std::string texture_slot_macro(TextureSlot slot) {
   std::string name = texture_slot_name(slot);

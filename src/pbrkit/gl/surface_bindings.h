@@ -5,7 +5,10 @@
 // surface_prelude(), background_prelude() and display_prelude() write them as #defines that
 // the shaders read by name, so no GLSL file types a slot, a unit or a binding point, and
 // adding a texture slot to scene.h's TextureSlot names its defines without touching this
-// file.
+// file. It is the one list of every unit and binding point, handed out in order, and it
+// sits at the bottom of the module: gpu_scene, light_clusters and occluders read their
+// binding points from it, and it includes none of the renderer's other parts
+// (tests/gl/source_includes_test.cpp).
 #include <epoxy/gl.h>
 
 #include <string>
@@ -16,29 +19,43 @@
 
 namespace pbrkit::gl {
 
-/// The last slot whose unit lies among the other units below; the slots after it take
-/// the units after kAnisotropicAlbedoUnit, so that a new slot needs no unit chosen by hand.
-inline constexpr TextureSlot kLastInterleavedSlot = TextureSlot::kDiffuseTransmissionColor;
+/// The texture unit of a material texture slot: the slot's own index, so the material's
+/// units are 0 .. kTextureSlotCount - 1 in scene.h's TextureSlot order and a new slot takes
+/// the next one.
+constexpr GLuint texture_unit(TextureSlot slot) {
+  return GLuint(slot);
+}
 
-/// The texture unit of a material texture slot: the core slots on 0..4, kSpecular ..
-/// kIridescenceThickness on 9..18, the transmission extensions' on 22..25 (the units
-/// between hold the tables and cubes below), any later slot from 31 on.
-GLuint texture_unit(TextureSlot slot);
-
-// The surface program's other texture units.
-inline constexpr GLuint kEnergyDirectUnit = 5;  ///< EnergyTable of the direct lights' G
-inline constexpr GLuint kEnergyIblUnit = 6;     ///< EnergyTable of the IBL's G
-inline constexpr GLuint kSpecularCubeUnit = 7;
-inline constexpr GLuint kIrradianceCubeUnit = 8;
-inline constexpr GLuint kCoatEnergyUnit = 19;  ///< EnergyTable of the reference G
-inline constexpr GLuint kSheenCubeUnit = 20;
-inline constexpr GLuint kSheenLutUnit = 21;
-inline constexpr GLuint kTransmissionFrameUnit = 26;
-inline constexpr GLuint kBackPositionUnit = 27, kBackNormalUnit = 28, kFrameDepthUnit = 29;
-inline constexpr GLuint kAnisotropicAlbedoUnit = 30;  ///< AnisotropicAlbedoTable (3D)
+// The surface program's other texture units, handed out in this order after the material
+// slots' (surface_bindings() lists them in the same order).
+inline constexpr GLuint kEnergyDirectUnit = GLuint(kTextureSlotCount);  ///< EnergyTable, direct G
+inline constexpr GLuint kEnergyIblUnit = kEnergyDirectUnit + 1;  ///< EnergyTable of the IBL's G
+inline constexpr GLuint kSpecularCubeUnit = kEnergyIblUnit + 1;
+inline constexpr GLuint kIrradianceCubeUnit = kSpecularCubeUnit + 1;
+inline constexpr GLuint kCoatEnergyUnit = kIrradianceCubeUnit + 1;  ///< EnergyTable, reference G
+inline constexpr GLuint kSheenCubeUnit = kCoatEnergyUnit + 1;
+inline constexpr GLuint kSheenLutUnit = kSheenCubeUnit + 1;
+inline constexpr GLuint kTransmissionFrameUnit = kSheenLutUnit + 1;
+inline constexpr GLuint kBackPositionUnit = kTransmissionFrameUnit + 1;
+inline constexpr GLuint kBackNormalUnit = kBackPositionUnit + 1;
+inline constexpr GLuint kFrameDepthUnit = kBackNormalUnit + 1;
+inline constexpr GLuint kAnisotropicAlbedoUnit = kFrameDepthUnit + 1;  ///< AnisotropicAlbedoTable
 /// The highest unit the surface program samples.
-inline constexpr GLuint kLastSurfaceUnit =
-    kAnisotropicAlbedoUnit + GLuint(kTextureSlotCount - 1 - int(kLastInterleavedSlot));
+inline constexpr GLuint kLastSurfaceUnit = kAnisotropicAlbedoUnit;
+
+// The surface program's buffers, each kind numbered from 0 in this order (GL numbers
+// shader storage and uniform buffer binding points apart). The files that fill them read
+// their points from here: gpu_scene.h, light_clusters.h, occluders.h.
+/// GpuScene::instance_buffer (pbr_vertex.glsl's InstanceTransforms).
+inline constexpr GLuint kInstanceBufferBinding = 0;
+/// The light buffers (surface_light_punctual.glsl's PunctualLights, LightClusterRanges and
+/// ListedLights; light_clusters.h's GpuLightBuffers).
+inline constexpr GLuint kLightBufferBinding = kInstanceBufferBinding + 1;
+inline constexpr GLuint kClusterRangeBufferBinding = kLightBufferBinding + 1;
+inline constexpr GLuint kListedLightBufferBinding = kClusterRangeBufferBinding + 1;
+/// The occluder block (occluders.glsl's Occluders; occluders.h's GpuOccluderBuffer), the
+/// only uniform buffer.
+inline constexpr GLuint kOccluderBufferBinding = 0;
 
 /// One binding of a program (the surface's, the background's, the display's) as its
 /// prelude names it: BINDING_<name>.
@@ -50,7 +67,8 @@ struct SurfaceBinding {
   Kind kind = Kind::kSampler;
 };
 
-/// Every texture unit and buffer binding point of the surface program.
+/// Every texture unit and buffer binding point of the surface program: the one list, in
+/// the order the points are handed out above.
 std::vector<SurfaceBinding> surface_bindings();
 
 /// The slot's name in the shaders' defines, from its glTF property name:
