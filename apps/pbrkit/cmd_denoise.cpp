@@ -23,6 +23,7 @@ struct DenoiseCommandOptions {
   float exposure = 0.0f;
   std::string tonemap = "pbr-neutral";
   bool full_float = false;
+  DenoiserFlags denoiser;
 };
 
 Image mean_of(const Image& a, const Image& b) {
@@ -59,10 +60,12 @@ void register_denoise_command(CLI::App& app) {
       ->check(CLI::IsMember(tone_mapper_names()))
       ->capture_default_str();
   cmd->add_flag("--float", o->full_float, "write the EXR as 32-bit floats (default half)");
+  add_denoiser_options(*cmd, &o->denoiser);
   cmd->callback([o] {
     const ImageOutputPaths outputs = image_output_paths(o->output, "-o");
+    const DenoiserChoice choice = o->denoiser.choice();
     const DenoiseInput input = read_input(o->input);
-    const std::optional<Image> denoised = run_denoiser(input);
+    const std::optional<Image> denoised = run_denoiser(input, choice);
     create_output_directory(outputs);
     const auto type = o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;
     const Image raw = mean_of(input.color[0], input.color[1]);
@@ -75,7 +78,8 @@ void register_denoise_command(CLI::App& app) {
                                    {"normal", {"X", "Y", "Z"}, &normal, type},
                                    {"depth", {"Z"}, &depth, ExrPixelType::kFloat}});
     write_display_png(outputs.png, *denoised, {o->exposure, parse_tone_mapper(o->tonemap)});
-    note("denoised {} into {} and {}", o->input, outputs.png, outputs.exr);
+    note("denoised {} ({} denoiser) into {} and {}", o->input, denoiser_name(choice.kind),
+         outputs.png, outputs.exr);
   });
 }
 

@@ -33,6 +33,7 @@ struct MergeOptions {
   bool full_float = false;
   std::string accumulation;
   bool denoise = false;
+  DenoiserFlags denoiser;
 };
 
 }  // namespace
@@ -59,11 +60,13 @@ void register_merge_command(CLI::App& app) {
   cmd->add_flag("--denoise", o->denoise,
                 "denoise the merged image (the EXR keeps the raw image and the albedo, normal "
                 "and depth as layers)");
+  add_denoiser_options(*cmd, &o->denoiser);
   cmd->add_flag("--float", o->full_float, "write the EXR as 32-bit floats (default half)");
   cmd->add_option("--accumulation", o->accumulation,
                   "also write the merged accumulation EXR here (to merge again later)");
   cmd->callback([o] {
     const ImageOutputPaths outputs = image_output_paths(o->output, "-o");
+    const DenoiserChoice choice = o->denoise ? o->denoiser.choice() : DenoiserChoice{};
     Film film = read_accumulation(o->parts.front());
     for (std::size_t i = 1; i < o->parts.size(); ++i) {
       const Film part = read_accumulation(o->parts[i]);
@@ -84,7 +87,7 @@ void register_merge_command(CLI::App& app) {
     if (!o->accumulation.empty()) write_film(o->accumulation, film);
     const auto type = o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;
     if (o->denoise) {
-      const Image denoised = *run_denoiser(denoise_input(film));
+      const Image denoised = *run_denoiser(denoise_input(film), choice);
       write_render_exr(exr, film, with_denoise_aovs(o->aovs), type, &denoised);
       write_display_png(outputs.png, denoised, {o->exposure, parse_tone_mapper(o->tonemap)});
     } else {

@@ -82,6 +82,7 @@ struct PathOptions {
   std::string resume;
   std::vector<std::string> aovs;
   bool denoise = false;
+  DenoiserFlags denoiser;
   std::string adaptive = "noise";
   bool noise_threshold_given = false;
   std::string filter{pixel_filter_name(PathTracerSettings{}.filter)};
@@ -188,9 +189,10 @@ RenderRunner add_path_render_options(CLI::App& render) {
       ->group(group);
   render
       .add_flag("--denoise", p->denoise,
-                "denoise the image (docs/DENOISER.md); the EXR keeps the raw image (layer "
-                "'raw') and the albedo, normal and depth as layers")
+                "denoise the image (--denoiser); the EXR keeps the raw image (layer 'raw') and "
+                "the albedo, normal and depth as layers")
       ->group(group);
+  add_denoiser_options(render, &p->denoiser, group);
   render.add_option("--filter", p->filter, "pixel filter: tent (radius 1 px) or box (1 px)")
       ->check(CLI::IsMember(pixel_filter_names()))
       ->capture_default_str()
@@ -238,6 +240,8 @@ RenderRunner add_path_render_options(CLI::App& render) {
             "samples go (use --adaptive noise for the per-pixel rule)");
       s.noise_threshold = 0.0f;
     }
+    // The weights are checked before the render, not after it.
+    const DenoiserChoice denoiser = po.denoise || driven ? po.denoiser.choice() : DenoiserChoice{};
     if (partial && po.denoise)
       fail(
           "--denoise with --sample-range: a part cannot be denoised alone; denoise when "
@@ -297,9 +301,12 @@ RenderRunner add_path_render_options(CLI::App& render) {
       const auto type = o.exr_float.value_or(false) ? ExrPixelType::kFloat : ExrPixelType::kHalf;
       // Denoising is skipped when the render was interrupted, and stops (leaving the raw
       // image to be written) when Ctrl-C comes while it runs.
-      std::optional<Image> denoised = std::move(driven_denoised);
-      if (po.denoise && !driven && !g_stop.load())
-        denoised = run_denoiser(denoise_input(result.film), &g_stop);
+      // Denoiser-driven passes choose their pixels from the classic denoiser's own error
+      // estimate (docs/DENOISER.md); the learned denoiser then denoises the final film.
+      std::optional<Image> denoised;
+      if (driven && denoiser.kind == DenoiserKind::kClassic) denoised = std::move(driven_denoised);
+      if ((po.denoise || driven) && !denoised && !g_stop.load())
+        denoised = run_denoiser(denoise_input(result.film), denoiser, &g_stop);
       if ((po.denoise || driven) && !denoised)
         warn("interrupted: not denoised, wrote the raw image");
       if (denoised) {

@@ -8,6 +8,7 @@
 #include <fmt/ranges.h>
 
 #include "commands.h"
+#include "denoising.h"
 #include "gl_options.h"
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
@@ -28,6 +29,7 @@ struct ViewNames {
   std::string background = "env";
   std::string mode{view_mode_name(ViewerOptions{}.mode)};
   std::optional<std::string> channel;
+  DenoiserFlags denoiser;
 };
 
 // --channel: a debug channel of the raster view, or a feature of the path view.
@@ -109,6 +111,7 @@ void register_view_command(CLI::App& app) {
   cmd->add_flag("--denoise", o->denoise,
                 "path view: denoise the image once the path tracer reaches --spp (the panel's "
                 "toggle, key D)");
+  add_denoiser_options(*cmd, &names->denoiser);
   cmd->add_flag("--exit", o->exit_when_done,
                 "automation: once the view is final (the path tracer at --spp; raster: after "
                 "--frames, at least 2), save --screenshot and quit");
@@ -127,6 +130,9 @@ void register_view_command(CLI::App& app) {
     if (names->channel) parse_channel(*names->channel, *o);
     // A bad name is refused by its flag's name before a window opens.
     if (!o->screenshot.empty()) image_output_paths(o->screenshot, "--screenshot");
+    // With --denoise the weights are checked before the window opens; without it, a bad
+    // file is reported in the panel when the toggle is turned on.
+    o->denoiser = o->denoise ? names->denoiser.choice() : names->denoiser.unchecked_choice();
     run_viewer(*o);
   });
 }

@@ -7,24 +7,48 @@
 
 namespace pbrkit::cli {
 
-std::optional<Image> run_denoiser(const DenoiseInput& input, const std::atomic<bool>* stop) {
-  ProgressBar bar("denoise");
+DenoiserChoice DenoiserFlags::unchecked_choice() const {
+  DenoiserChoice c;
+  c.kind = denoiser == "classic" ? DenoiserKind::kClassic : DenoiserKind::kLearned;
+  c.weights = weights;
+  return c;
+}
+
+DenoiserChoice DenoiserFlags::choice() const {
+  const DenoiserChoice c = unchecked_choice();
+  check_denoiser(c);
+  return c;
+}
+
+void add_denoiser_options(CLI::App& cmd, DenoiserFlags* flags, const std::string& group) {
+  cmd.add_option("--denoiser", flags->denoiser,
+                 "which denoiser: classic (the feature-guided filter, docs/DENOISER.md) or "
+                 "learned (a network trained on pbrkit's renders, docs/LEARNED_DENOISER.md; "
+                 "reads a weights file)")
+      ->check(CLI::IsMember({"learned", "classic"}))
+      ->capture_default_str()
+      ->group(group);
+  cmd.add_option("--denoiser-weights", flags->weights,
+                 "the learned denoiser's weights file (default: the one pbrkit ships, "
+                 "data/denoiser/kpcn-unet-v1.pbnn)")
+      ->group(group);
+}
+
+std::optional<Image> run_denoiser(const DenoiseInput& input, const DenoiserChoice& choice,
+                                  const std::atomic<bool>* stop) {
+  ProgressBar bar(fmt::format("denoise ({})", denoiser_name(choice.kind)));
   auto update = bar.callback();
-  DenoiseStats stats;
-  Image out = denoise(
-      input, {},
-      [&](double fraction, const std::string& detail) {
-        update(fraction, detail);
-        return !(stop && stop->load());
-      },
-      &stats);
-  if (stats.interrupted) {
+  DenoiseRun run = denoise_render(input, choice, [&](double fraction, const std::string& detail) {
+    update(fraction, detail);
+    return !(stop && stop->load());
+  });
+  if (run.interrupted) {
     bar.finish("interrupted");
     return std::nullopt;
   }
   bar.finish(
-      fmt::format("{}x{} in {:.2f} s", input.color[0].width, input.color[0].height, stats.seconds));
-  return out;
+      fmt::format("{}x{} in {:.2f} s", input.color[0].width, input.color[0].height, run.seconds));
+  return std::move(run.image);
 }
 
 std::vector<std::string> with_denoise_aovs(std::vector<std::string> aovs) {

@@ -1,17 +1,33 @@
 #pragma once
 // The denoiser as the CLI runs it (render --denoise, merge --denoise, pbrkit denoise):
-// a progress bar on stderr and an optional stop flag (Ctrl-C during a render).
+// the --denoiser and --denoiser-weights options, a progress bar on stderr and an optional
+// stop flag (Ctrl-C during a render).
 #include <atomic>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "pbrkit/denoise/denoiser.h"
+#include <CLI/CLI.hpp>
+
+#include "pbrkit/denoise/denoiser_choice.h"
 
 namespace pbrkit::cli {
 
+/// The denoiser options as given on the command line.
+struct DenoiserFlags {
+  std::string denoiser = denoiser_name(kDefaultDenoiser);
+  std::string weights;
+  /// The typed choice; checks the learned denoiser's weights file first (a clear error
+  /// naming it before a long render, not after).
+  DenoiserChoice choice() const;
+  DenoiserChoice unchecked_choice() const;
+};
+
+/// Adds --denoiser and --denoiser-weights to a command, in `group`.
+void add_denoiser_options(CLI::App& cmd, DenoiserFlags* flags, const std::string& group = "");
+
 /// Denoises `input`; returns nothing when `stop` was set meanwhile.
-std::optional<Image> run_denoiser(const DenoiseInput& input,
+std::optional<Image> run_denoiser(const DenoiseInput& input, const DenoiserChoice& choice,
                                   const std::atomic<bool>* stop = nullptr);
 
 /// `aovs` plus the layers a denoised EXR always keeps beside the raw image (albedo,

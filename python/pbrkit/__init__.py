@@ -70,8 +70,8 @@ def _env_arg(env):
 def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=None,
            env="builtin", env_rotation=0.0, env_intensity=1.0, camera=None,
            model="reference", multiscatter=None, max_bounces=None, time=None,
-           noise_threshold=None, threads=None, denoise=None, aovs=None, light_sampler=None,
-           progress=None):
+           noise_threshold=None, threads=None, denoise=None, denoiser=None, aovs=None,
+           light_sampler=None, progress=None):
     """Renders ``scene`` (a Scene, a file path or a built-in name) and returns the linear
     RGB image as a float32 (H, W, 3) array; with ``aovs`` (any of "albedo", "normal",
     "depth", "samples", "noise") returns ``(image, {name: array})``.
@@ -86,15 +86,16 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
     command line): ``spp`` (1024), ``seed`` (0), ``max_bounces`` (24), ``time`` (seconds,
     0: no limit), ``noise_threshold`` (adaptive sampling, 0.02; 0 turns it off),
     ``threads`` (0: all cores), ``light_sampler`` ("bvh", the light BVH, or "power"),
-    ``denoise`` and ``aovs`` (with ``denoise``, the raw image
-    is the AOV "raw").
+    ``denoise``, ``denoiser`` ("classic", the default: the feature-guided filter of
+    docs/DENOISER.md; or "learned", the trained network of docs/LEARNED_DENOISER.md) and
+    ``aovs`` (with ``denoise``, the raw image is the AOV "raw").
     """
     if not isinstance(scene, Scene):
         scene = load(scene)
     path = _pbrkit._PathArgs()
     for name, value in (("spp", spp), ("seed", seed), ("max_bounces", max_bounces),
                         ("time", time), ("noise_threshold", noise_threshold),
-                        ("threads", threads), ("denoise", denoise),
+                        ("threads", threads), ("denoise", denoise), ("denoiser", denoiser),
                         ("light_sampler", light_sampler)):
         if value is not None:
             setattr(path, name, value)
@@ -104,8 +105,10 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
                            float(env_intensity), camera, model, multiscatter, progress, path)
 
 
-def denoise(color, albedo, normal, depth, *, progress=None):
-    """Denoises a render from its two interleaved half buffers (docs/DENOISER.md).
+def denoise(color, albedo, normal, depth, *, denoiser=None, progress=None):
+    """Denoises a render from its two interleaved half buffers with ``denoiser``:
+    "classic" (None: the default; docs/DENOISER.md) or "learned"
+    (docs/LEARNED_DENOISER.md).
 
     Each argument is a pair ``(even, odd)``: the mean of the even-indexed and of the
     odd-indexed samples of each pixel, for the colour (H, W, 3), the first-hit albedo
@@ -121,7 +124,7 @@ def denoise(color, albedo, normal, depth, *, progress=None):
         if not isinstance(pair, (tuple, list)) or len(pair) != 2:
             raise TypeError(f"{name}: expected a pair (even half, odd half) of arrays")
         halves.extend(pair)
-    return _pbrkit._denoise(halves, progress)
+    return _pbrkit._denoise(halves, denoiser, progress)
 
 
 def bake(env="builtin", *, rotation=0.0, intensity=1.0, face_size=256, samples=1024,

@@ -65,7 +65,8 @@ def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path
            model: Literal["reference", "classic"] = "reference",
            multiscatter: bool | None = None, max_bounces: int | None = None,
            time: float | None = None, noise_threshold: float | None = None,
-           threads: int | None = None, denoise: bool | None = None, aovs: None = None,
+           threads: int | None = None, denoise: bool | None = None,
+           denoiser: Literal["learned", "classic"] | None = None, aovs: None = None,
            light_sampler: Literal["bvh", "power"] | None = None,
            progress: Progress | None = None) -> FloatArray: ...
 @overload
@@ -77,12 +78,14 @@ def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path
            multiscatter: bool | None = None, max_bounces: int | None = None,
            time: float | None = None, noise_threshold: float | None = None,
            threads: int | None = None, denoise: bool | None = None,
+           denoiser: Literal["learned", "classic"] | None = None,
            aovs: Union[str, Sequence[str]] = ...,
            light_sampler: Literal["bvh", "power"] | None = None,
            progress: Progress | None = None) -> Tuple[FloatArray, dict[str, FloatArray]]: ...
 
 def denoise(color: Tuple[FloatArray, FloatArray], albedo: Tuple[FloatArray, FloatArray],
             normal: Tuple[FloatArray, FloatArray], depth: Tuple[FloatArray, FloatArray], *,
+            denoiser: Literal["learned", "classic"] | None = None,
             progress: Progress | None = None) -> FloatArray: ...
 def bake(env: Env = "builtin", *, rotation: float = 0.0, intensity: float = 1.0,
          face_size: int = 256, samples: int = 1024, irradiance_size: int = 32,

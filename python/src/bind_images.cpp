@@ -9,7 +9,7 @@
 #include "bindings.h"
 #include "interrupt.h"
 #include "pbrkit/core/color.h"
-#include "pbrkit/denoise/denoiser.h"
+#include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/image/compare.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image_io.h"
@@ -33,6 +33,15 @@ void check_readable(const std::string& path) {
 }
 
 }  // namespace
+
+DenoiserChoice denoiser_choice(const std::optional<std::string>& name) {
+  DenoiserChoice choice;
+  if (!name) return choice;
+  if (*name != "learned" && *name != "classic")
+    throw py::value_error("denoiser must be 'learned' or 'classic', got '" + *name + "'");
+  choice.kind = *name == "learned" ? DenoiserKind::kLearned : DenoiserKind::kClassic;
+  return choice;
+}
 
 void bind_images(py::module_& m) {
   m.def(
@@ -132,7 +141,8 @@ void bind_images(py::module_& m) {
   m.def("tonemappers", &tone_mapper_names, "The tone mappers tonemap() knows.");
   m.def(
       "_denoise",
-      [](const std::vector<py::object>& halves, const py::object& progress) {
+      [](const std::vector<py::object>& halves, const std::optional<std::string>& denoiser,
+         const py::object& progress) {
         DenoiseInput in;
         const char* names[4] = {"color", "albedo", "normal", "depth"};
         Image* slots[4] = {in.color, in.albedo, in.normal, in.depth};
@@ -142,12 +152,16 @@ void bind_images(py::module_& m) {
                 halves[std::size_t(2 * k + h)], std::string(names[k]) + (h ? "[1]" : "[0]"),
                 k == 3 ? ArrayRequirements{1, 1} : ArrayRequirements{3, 3});
         validate_denoise_input(in);
+        const DenoiserChoice choice = denoiser_choice(denoiser);
         Image out;
-        run_interruptible([&](WorkControl& control) { out = denoise(in, {}, control.callback()); },
-                          progress);
+        run_interruptible(
+            [&](WorkControl& control) {
+              out = denoise_render(in, choice, control.callback()).image;
+            },
+            progress);
         return array_from_image(std::move(out));
       },
-      py::arg("halves"), py::arg("progress"));
+      py::arg("halves"), py::arg("denoiser"), py::arg("progress"));
 }
 
 }  // namespace pbrkit::python

@@ -13,7 +13,7 @@
 #include "bindings.h"
 #include "interrupt.h"
 #include "pbrkit/core/brdf.h"
-#include "pbrkit/denoise/denoiser.h"
+#include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/ibl_maps.h"
@@ -95,6 +95,7 @@ struct PathArgs {
   std::optional<float> noise_threshold;
   std::optional<int> threads;
   std::optional<bool> denoise;
+  std::optional<std::string> denoiser;
   std::optional<std::vector<std::string>> aovs;
   std::optional<std::string> light_sampler;
   std::vector<std::string> given() const {
@@ -106,6 +107,7 @@ struct PathArgs {
     if (noise_threshold) names.push_back("noise_threshold");
     if (threads) names.push_back("threads");
     if (denoise) names.push_back("denoise");
+    if (denoiser) names.push_back("denoiser");
     if (aovs) names.push_back("aovs");
     if (light_sampler) names.push_back("light_sampler");
     return names;
@@ -162,6 +164,7 @@ py::object render_path_tracer(const Scene& scene, const std::optional<Environmen
       throw py::value_error("aovs: unknown '" + name +
                             "' (known: albedo, normal, depth, samples, noise)");
   const bool denoising = a.denoise.value_or(false);
+  const DenoiserChoice choice = denoiser_choice(a.denoiser);
 
   std::optional<PathTracerResult> result;
   std::optional<Image> denoised;
@@ -171,9 +174,8 @@ py::object render_path_tracer(const Scene& scene, const std::optional<Environmen
         result = render_path(scene, env ? &*env : nullptr, view.camera, s, control.callback());
         if (denoising && !control.stop.load()) {
           // Stopped while denoising: the raw image, as a stopped render returns its samples.
-          DenoiseStats stats;
-          denoised = denoise(denoise_input(result->film), {}, control.callback(), &stats);
-          if (stats.interrupted) denoised.reset();
+          DenoiseRun run = denoise_render(denoise_input(result->film), choice, control.callback());
+          if (!run.interrupted) denoised = std::move(run.image);
         }
       },
       progress);
@@ -269,6 +271,7 @@ void bind_render(py::module_& m) {
       .def_readwrite("noise_threshold", &PathArgs::noise_threshold)
       .def_readwrite("threads", &PathArgs::threads)
       .def_readwrite("denoise", &PathArgs::denoise)
+      .def_readwrite("denoiser", &PathArgs::denoiser)
       .def_readwrite("aovs", &PathArgs::aovs)
       .def_readwrite("light_sampler", &PathArgs::light_sampler);
 }

@@ -3,6 +3,11 @@
 // own file, all called from module.cpp.
 #include <pybind11/pybind11.h>
 
+#include <optional>
+#include <string>
+
+#include "pbrkit/denoise/denoiser_choice.h"
+
 namespace pbrkit::python {
 
 void bind_scene(pybind11::module_& m);   ///< load(), Scene, Camera, look_at()
@@ -10,5 +15,9 @@ void bind_render(pybind11::module_& m);  ///< render()
 void bind_images(pybind11::module_& m);  ///< read/write_image, compare, tonemap, denoise
 void bind_bake(pybind11::module_& m);    ///< bake()
 void bind_brdf(pybind11::module_& m);    ///< D, G, F, albedo
+
+/// The `denoiser=` argument of render() and denoise(): None (kDefaultDenoiser),
+/// "learned" or "classic"; anything else a ValueError.
+DenoiserChoice denoiser_choice(const std::optional<std::string>& name);
 
 }  // namespace pbrkit::python

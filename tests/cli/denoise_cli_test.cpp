@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <string>
 
+#include "pbrkit/denoise/learned_denoiser.h"
 #include "pbrkit/image/image_io.h"
 #include "support/test_paths.h"
 
@@ -184,6 +185,74 @@ TEST(DenoiseCli, AdaptiveDenoisedCheckpointResumesToTheSameImage) {
                        &log),
             1);
   EXPECT_NE(log.find("--adaptive denoised"), std::string::npos) << log;
+}
+
+// --denoiser learned: the network (docs/LEARNED_DENOISER.md) from the shipped or a given
+// weights file; a bad file is refused, naming it, before the render starts, and the
+// classic denoiser needs no file.
+TEST(DenoiseCli, LearnedDenoiserAndItsWeightsFile) {
+  const fs::path dir = test::scratch_dir();
+  std::string log;
+  ASSERT_EQ(pbrkit_cli(kRender + "--denoise --denoiser learned --float -o " +
+                           (dir / "learned.exr").string(),
+                       &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("denoise (learned)"), std::string::npos) << log;
+  ASSERT_EQ(pbrkit_cli(kRender + "--denoise --denoiser classic --float -o " +
+                           (dir / "classic.exr").string(),
+                       &log),
+            0)
+      << log;
+  const auto learned = read_exr_layers(dir / "learned.exr");
+  const auto classic = read_exr_layers(dir / "classic.exr");
+  ASSERT_NE(layer(learned, ""), nullptr);
+  ASSERT_NE(layer(classic, ""), nullptr);
+  // The same samples (the raw layers equal), two denoisers (the images differ).
+  EXPECT_EQ(layer(learned, "raw")->data, layer(classic, "raw")->data);
+  EXPECT_NE(layer(learned, "")->data, layer(classic, "")->data);
+  // `pbrkit denoise --denoiser learned` on the half buffers gives what render gave.
+  ASSERT_EQ(pbrkit_cli(kRender + "--aov denoise --float -o " + (dir / "halves.exr").string(), &log),
+            0)
+      << log;
+  ASSERT_EQ(pbrkit_cli("denoise " + (dir / "halves.exr").string() +
+                           " --denoiser learned --float -o " + (dir / "again.exr").string(),
+                       &log),
+            0)
+      << log;
+  EXPECT_EQ(layer(read_exr_layers(dir / "again.exr"), "")->data, layer(learned, "")->data);
+
+  // A missing file and a truncated one: exit 1, the file named, nothing written.
+  const fs::path truncated = dir / "truncated.pbnn";
+  {
+    const fs::path shipped = default_learned_denoiser_weights();
+    fs::copy_file(shipped, truncated);
+    fs::resize_file(truncated, fs::file_size(shipped) / 2);
+  }
+  for (const fs::path& bad : {dir / "missing.pbnn", truncated}) {
+    const fs::path out = dir / ("bad_" + bad.stem().string() + ".png");
+    EXPECT_EQ(pbrkit_cli(kRender + "--denoise --denoiser learned --denoiser-weights " +
+                             bad.string() + " -o " + out.string(),
+                         &log),
+              1)
+        << log;
+    EXPECT_NE(log.find(bad.string()), std::string::npos) << log;
+    EXPECT_EQ(log.find("path tracing"), std::string::npos) << "checked after the render: " << log;
+    EXPECT_FALSE(fs::exists(out));
+    EXPECT_EQ(pbrkit_cli("denoise " + (dir / "halves.exr").string() +
+                             " --denoiser learned --denoiser-weights " + bad.string() + " -o " +
+                             out.string(),
+                         &log),
+              1)
+        << log;
+    EXPECT_NE(log.find(bad.string()), std::string::npos) << log;
+  }
+  // The classic denoiser reads no weights file.
+  EXPECT_EQ(pbrkit_cli(kRender + "--denoise --denoiser classic --denoiser-weights " +
+                           (dir / "missing.pbnn").string() + " -o " + (dir / "c2.png").string(),
+                       &log),
+            0)
+      << log;
 }
 
 }  // namespace

@@ -106,6 +106,8 @@ const std::map<std::string, std::string> kValidValues = {
     {"--resume", ""},  // an existing file: set below
     {"--aov", "albedo"},
     {"--denoise", ""},
+    {"--denoiser", "classic"},
+    {"--denoiser-weights", ""},  // a file: set below
     {"--filter", "box"},
     {"--light-sampler", "power"},
     {"--irradiance", "cube"},
@@ -148,7 +150,8 @@ TEST(OptionChecks, RenderRefusesTheOtherRenderersOptions) {
     for (const std::string& name : names) {
       const auto it = kValidValues.find(name);
       ASSERT_NE(it, kValidValues.end()) << name << ": add a valid value to kValidValues";
-      const std::string value = name == "--resume" ? existing.string() : it->second;
+      const std::string value =
+          name == "--resume" || name == "--denoiser-weights" ? existing.string() : it->second;
       std::string log;
       const int code =
           run("render furnace --renderer " + std::string(g.other) + " --width 8 --height 8 " +

@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "pbrkit/denoise/denoiser.h"
+#include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/scene/camera.h"
@@ -44,31 +45,38 @@ void wait(PathDenoiser& d) {
 
 TEST(PathDenoiser, DenoisesEachFinalImageOnce) {
   PathDenoiser d;
+  DenoiserChoice learned;
+  learned.kind = DenoiserKind::kLearned;
   ProgressiveSnapshot running = finished(1);
   running.complete = false;
   running.film.reset();
-  d.request(running);
+  d.request(running, learned);
   EXPECT_FALSE(d.busy());  // nothing to denoise before the target
 
   const ProgressiveSnapshot snap = finished(2);
-  d.request(snap);
+  d.request(snap, learned);
   EXPECT_TRUE(d.busy());
   wait(d);
   ASSERT_NE(d.result(2), nullptr);
   EXPECT_FALSE(d.error());
-  // The project's denoiser on the film's half buffers, bit for bit (it is deterministic).
-  EXPECT_EQ(d.result(2)->data, denoise(denoise_input(*snap.film)).data);
+  // The chosen denoiser on the film's half buffers, bit for bit (it is deterministic).
+  EXPECT_EQ(d.result(2)->data, denoise_render(denoise_input(*snap.film), learned).image.data);
   EXPECT_EQ(d.result(1), nullptr);
 
-  d.request(snap);  // the same image again: nothing recomputed
+  d.request(snap, learned);  // the same image again: nothing recomputed
   EXPECT_FALSE(d.busy());
   ProgressiveSnapshot next = snap;
   next.serial = 3;  // the accumulation advanced to another final image
-  d.request(next);
+  DenoiserChoice classic;
+  classic.kind = DenoiserKind::kClassic;
+  d.request(next, classic);
   EXPECT_TRUE(d.busy());
   wait(d);
-  EXPECT_NE(d.result(3), nullptr);
+  ASSERT_NE(d.result(3), nullptr);
   EXPECT_EQ(d.result(2), nullptr);  // only the newest is kept
+  // The classic denoiser when it is chosen (the two differ on a noisy film).
+  EXPECT_EQ(d.result(3)->data, denoise(denoise_input(*snap.film)).data);
+  EXPECT_NE(d.result(3)->data, denoise_render(denoise_input(*snap.film), learned).image.data);
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/cross_filter.cpp
   ${CMAKE_CURRENT_LIST_DIR}/denoiser.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/denoiser_choice.cpp
   ${CMAKE_CURRENT_LIST_DIR}/denoiser_driven_sampling.cpp
   ${CMAKE_CURRENT_LIST_DIR}/energy.cpp
   ${CMAKE_CURRENT_LIST_DIR}/feature_prefilter.cpp

@@ -40,7 +40,7 @@ void update_path_view(ViewerState& s, bool truth, int fb_w, int fb_h) {
     s.path_display_dirty = true;
   // The denoised colour: asked for when the toggle is on and the render is final, taken
   // when the denoiser's thread has it.
-  if (s.denoise && s.snapshot) s.denoiser.request(*s.snapshot);
+  if (s.denoise && s.snapshot) s.denoiser.request(*s.snapshot, s.denoiser_choice);
   if (s.denoiser.poll()) s.path_display_dirty = true;
   if (truth && s.snapshot && s.path_display_dirty) {
     s.path_texture.upload(path_display(s));

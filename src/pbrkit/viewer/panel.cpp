@@ -102,6 +102,8 @@ bool draw_truth_panel(ViewerState& s) {
     if (s.path_channel == PathChannel::kColor) {
       if (ImGui::Checkbox("denoise (D)", &s.denoise)) s.path_display_dirty = true;
       if (s.denoise) {
+        ImGui::SameLine();
+        ImGui::TextUnformatted(denoiser_name(s.denoiser_choice.kind));
         const bool shown = s.snapshot && s.denoiser.result(s.snapshot->serial);
         ImGui::TextUnformatted(shown                                ? "showing the denoised image"
                                : s.denoiser.busy()                  ? "denoising..."

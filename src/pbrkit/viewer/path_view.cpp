@@ -5,7 +5,7 @@
 #include <chrono>
 #include <exception>
 
-#include "pbrkit/denoise/denoiser.h"
+#include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/util/error.h"
 
@@ -60,12 +60,13 @@ PathDenoiser::~PathDenoiser() {
   if (running_.valid()) running_.wait();
 }
 
-void PathDenoiser::request(const ProgressiveSnapshot& snapshot) {
+void PathDenoiser::request(const ProgressiveSnapshot& snapshot, const DenoiserChoice& choice) {
   if (!snapshot.complete || !snapshot.film || running_.valid()) return;
   if (snapshot.serial == done_serial_) return;
   running_serial_ = snapshot.serial;
-  running_ = std::async(std::launch::async,
-                        [film = snapshot.film] { return denoise(denoise_input(*film)); });
+  running_ = std::async(std::launch::async, [film = snapshot.film, choice] {
+    return denoise_render(denoise_input(*film), choice).image;
+  });
 }
 
 bool PathDenoiser::poll() {

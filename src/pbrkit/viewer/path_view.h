@@ -1,13 +1,14 @@
 #pragma once
 // The path view's images, private to the viewer: the path tracer's colour or one of its
 // film's first-hit features, linear (what the EXR screenshot holds) and for display, and
-// the colour denoised by the project's denoiser (denoise/denoiser.h) on a worker thread,
-// once per finished render.
+// the colour denoised by the chosen denoiser (denoise/denoiser_choice.h) on a worker
+// thread, once per finished render.
 #include <cstdint>
 #include <future>
 #include <optional>
 #include <string>
 
+#include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image.h"
 #include "pbrkit/pt/progressive_render.h"
@@ -39,7 +40,7 @@ class PathDenoiser {
 
   /// Starts denoising `snapshot` unless it is not complete, has no film, or is the one
   /// denoised or being denoised (one at a time: a newer one waits for the next call).
-  void request(const ProgressiveSnapshot& snapshot);
+  void request(const ProgressiveSnapshot& snapshot, const DenoiserChoice& choice);
   /// Takes a finished result; true when a new denoised image (or an error) arrived.
   bool poll();
   /// The denoised colour of the snapshot numbered `serial`, once done; null otherwise.

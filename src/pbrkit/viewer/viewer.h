@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pbrkit/core/brdf.h"
+#include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/image/display.h"
 
@@ -61,9 +62,11 @@ struct ViewerOptions {
   /// sRGB encoding of the values, the EXR the values).
   gl::DebugChannel channel = gl::DebugChannel::kNone;
   PathChannel path_channel = PathChannel::kColor;  ///< the path view's
-  /// The path view's colour denoised (denoise/denoiser.h) once the path tracer has reached
-  /// `spp` (the panel's toggle); the accumulated image until then.
+  /// The path view's colour denoised once the path tracer has reached `spp` (the panel's
+  /// toggle); the accumulated image until then.
   bool denoise = false;
+  /// Which denoiser (denoise/denoiser_choice.h): the learned one by default.
+  DenoiserChoice denoiser;
   /// Automation: once the mode's image is final (the path tracer at `spp`; the raster view
   /// after `frames` frames, at least 2), save `screenshot` and quit.
   bool exit_when_done = false;

@@ -78,6 +78,7 @@ void init_state(ViewerState& s, const ViewerOptions& options) {
   s.channel = options.channel;
   s.path_channel = options.path_channel;
   s.denoise = options.denoise;
+  s.denoiser_choice = options.denoiser;
   s.split = std::clamp(options.split, 0.0f, 1.0f);
 }
 

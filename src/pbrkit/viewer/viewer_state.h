@@ -110,6 +110,7 @@ struct ViewerState {
   PathChannel path_channel = PathChannel::kColor;
   gl::DebugChannel channel = gl::DebugChannel::kNone;  // the raster view's
   bool denoise = false;  // the path view's colour denoised once complete
+  DenoiserChoice denoiser_choice;
   PathDenoiser denoiser;
   DisplayTexture path_texture, error_texture;
   bool path_display_dirty = false;
