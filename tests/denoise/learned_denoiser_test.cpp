@@ -407,17 +407,25 @@ TEST(LearnedDenoiser, StopsWhenAskedWithTheInputUndenoised) {
   const LearnedDenoiser denoiser = denoiser_with(random_params(81), 64);
   Inputs in = random_inputs(160, 100, 82);
   in.color.set_rgb(3, 3, glm::vec3(-1.0f));
-  int calls = 0;
-  LearnedDenoiseStats stats;
-  const Image out = denoiser.denoise(
-      in.color, in.albedo, in.normal, [&](double, const std::string&) { return ++calls < 2; },
-      &stats);
-  EXPECT_TRUE(stats.interrupted);
-  EXPECT_EQ(stats.tiles, 1);
-  for (int y = 0; y < 100; ++y)
-    for (int x = 0; x < 160; ++x)
-      for (int c = 0; c < 3; ++c)
-        ASSERT_EQ(out.pixel(x, y)[c], std::max(in.color.pixel(x, y)[c], 0.0f));
+  // Asked to stop once the second tile begins, and within the first tile (the callback
+  // is asked before each layer, so a stop is seen within one convolution).
+  for (const bool within_first : {false, true}) {
+    int calls = 0;
+    LearnedDenoiseStats stats;
+    const Image out = denoiser.denoise(
+        in.color, in.albedo, in.normal,
+        [&](double, const std::string& detail) {
+          ++calls;
+          return within_first ? calls < 3 : detail.rfind("tile 2/", 0) != 0;
+        },
+        &stats);
+    EXPECT_TRUE(stats.interrupted);
+    EXPECT_EQ(stats.tiles, within_first ? 0 : 1);
+    for (int y = 0; y < 100; ++y)
+      for (int x = 0; x < 160; ++x)
+        for (int c = 0; c < 3; ++c)
+          ASSERT_EQ(out.pixel(x, y)[c], std::max(in.color.pixel(x, y)[c], 0.0f));
+  }
 }
 
 TEST(LearnedDenoiser, RefusesImagesOfAnotherSizeOrTooFewChannels) {

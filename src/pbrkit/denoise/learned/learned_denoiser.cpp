@@ -44,7 +44,8 @@ inline float finite_non_negative(float v) {
 // One tile, through the network and the kernels: r0 at the tile's (padded) size.
 RgbBuffer denoise_tile(const learned::Network& network, learned::NetworkWorkspace& workspace,
                        const learned::Tile& tile, const Image& color, const Image& albedo,
-                       const Image& normal, double exposure, int threads) {
+                       const Image& normal, double exposure, int threads,
+                       const std::function<bool(learned::Layer)>& keep_going, bool* stopped) {
   const int w = tile.width(), h = tile.height();
   RgbBuffer c0(w, h);
   // Past the image, its last column and row repeated (docs/LEARNED_DENOISER.md, "Padding").
@@ -59,7 +60,10 @@ RgbBuffer denoise_tile(const learned::Network& network, learned::NetworkWorkspac
       }
     });
   };
-  const learned::NetworkHeads heads = network.run(workspace, w, h, write_input, threads);
+  const learned::NetworkHeads heads =
+      network.run(workspace, w, h, write_input, threads, keep_going);
+  *stopped = heads.stopped;
+  if (heads.stopped) return {};
   const HeadView head0{heads.head0, learned::kKernelTaps + 1};
   const HeadView head1{heads.head1, learned::kKernelTaps + 1};
   const HeadView head2{heads.head2, learned::kKernelTaps};
@@ -131,8 +135,20 @@ Image LearnedDenoiser::denoise(const Image& color, const Image& albedo, const Im
         return;
       }
       const learned::Tile& tile = tiles[i];
+      // Asked again before each layer: a stop is seen within one convolution.
+      const auto keep_going = [&](learned::Layer layer) {
+        return !progress ||
+               progress((double(i) + double(int(layer)) / double(int(learned::kLayerCount))) /
+                            double(tiles.size()),
+                        fmt::format("tile {}/{}", i + 1, tiles.size()));
+      };
+      bool stopped = false;
       const RgbBuffer r0 = denoise_tile(impl_->network, workspace, tile, color, albedo, normal,
-                                        st.exposure, impl_->threads);
+                                        st.exposure, impl_->threads, keep_going, &stopped);
+      if (stopped) {
+        st.interrupted = true;
+        return;
+      }
       pbrkit::parallel_for(tile.y0, tile.y1, [&](int y) {
         for (int x = tile.x0; x < tile.x1; ++x) {
           const float* r = r0.at(x - tile.ex0, y - tile.ey0);

@@ -205,13 +205,18 @@ struct Network::Impl {
     const Impl& net;
     Arena& arena;
     dnnl::stream* stream = nullptr;
+    const std::function<bool(Layer)>* keep_going = nullptr;
+    bool stopped = false;
 
-    // relu(conv(src)) (no relu for a head), into a new tensor.
+    // relu(conv(src)) (no relu for a head), into a new tensor. Once keep_going has said
+    // no, the remaining layers are planned but not computed.
     Tensor conv(Layer layer, const Tensor& src) {
       const LayerSpec& spec = kLayers[layer];
       assert(src.channels == spec.in);
       Tensor dst(arena, spec.out, src.height, src.width);
       if (!stream) return dst;
+      if (!stopped && keep_going && *keep_going && !(*keep_going)(layer)) stopped = true;
+      if (stopped) return dst;
       const memory::desc any_weights({spec.out, spec.in, 3, 3}, kF32, Tag::any);
       const memory::desc bias({spec.out}, kF32, Tag::x);
       const dnnl::convolution_forward::desc desc(
@@ -324,6 +329,7 @@ struct Network::Impl {
       d = conv(kDec0b, t);
       t.reset();
       heads.head0 = conv(kHead0, d).keep();
+      heads.stopped = stopped;
       return heads;
     }
   };
@@ -337,7 +343,8 @@ Network::Network(Network&&) noexcept = default;
 Network& Network::operator=(Network&&) noexcept = default;
 
 NetworkHeads Network::run(NetworkWorkspace& workspace, int width, int height,
-                          const std::function<void(float* input)>& write_input, int threads) const {
+                          const std::function<void(float* input)>& write_input, int threads,
+                          const std::function<bool(Layer)>& keep_going) const {
   assert(width % kAlignment == 0 && height % kAlignment == 0);
   Arena arena;
   Impl::Pass{*impl_, arena}.forward(width, height, write_input);
@@ -350,7 +357,7 @@ NetworkHeads Network::run(NetworkWorkspace& workspace, int width, int height,
   const OmpThreads omp(threads);
   try {
     dnnl::stream stream(impl_->engine);
-    return Impl::Pass{*impl_, arena, &stream}.forward(width, height, write_input);
+    return Impl::Pass{*impl_, arena, &stream, &keep_going}.forward(width, height, write_input);
   } catch (const dnnl::error& e) {
     fail("learned denoiser: oneDNN failed on a {}x{} tile: {}", width, height, e.what());
   }

@@ -62,6 +62,8 @@ struct NetworkHeads {
   const float* head0 = nullptr;
   const float* head1 = nullptr;
   const float* head2 = nullptr;
+  /// keep_going said no: the heads were not computed.
+  bool stopped = false;
 };
 
 class Network {
@@ -75,10 +77,13 @@ class Network {
 
   /// Runs the network on a width x height input (multiples of 16) that `write_input`
   /// writes into the pointer it gets (9 floats per pixel, nhwc: network_input_pixel's
-  /// order). `threads` > 0 sets the OpenMP team's size for this call. Throws pbrkit::Error
-  /// when oneDNN fails (out of memory).
+  /// order). `threads` > 0 sets the OpenMP team's size for this call. `keep_going`, if
+  /// set, is asked before each convolution (a 1080p tile's layers take up to a few hundred
+  /// ms each, so a stop is seen promptly); once it returns false the rest is skipped and
+  /// NetworkHeads::stopped is set. Throws pbrkit::Error when oneDNN fails (out of memory).
   NetworkHeads run(NetworkWorkspace& workspace, int width, int height,
-                   const std::function<void(float* input)>& write_input, int threads = 0) const;
+                   const std::function<void(float* input)>& write_input, int threads = 0,
+                   const std::function<bool(Layer)>& keep_going = {}) const;
 
  private:
   struct Impl;
