@@ -41,8 +41,8 @@ def autoexposure(color: np.ndarray) -> float:
     """0.18 over the geometric mean of the 16x16 blocks' mean luminance (the contract's
     'Autoexposure'); color is (H, W, 3), linear, already made finite and non-negative."""
     h, w, _ = color.shape
-    lum = (0.2126 * color[..., 0].astype(np.float64) + 0.7152 * color[..., 1] +
-           0.0722 * color[..., 2])
+    c = color.astype(np.float64)
+    lum = 0.2126 * c[..., 0] + 0.7152 * c[..., 1] + 0.0722 * c[..., 2]
     logs = []
     for y in range(0, h, 16):
         for x in range(0, w, 16):
