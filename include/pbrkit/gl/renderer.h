@@ -9,8 +9,9 @@
 // renderer.cpp is the frame: what is drawn in which order with which state. Its parts
 // have files of their own: what a frame shows (render_settings.h), the IBL maps
 // (ibl_maps.h), and, private to the renderer, the scene on the GPU (gpu_scene.h), the
-// shader permutations (shader_permutations.h), the framebuffers (render_targets.h) and
-// the GPU timer (gpu_timer.h).
+// shader permutations (shader_permutations.h), the framebuffers (render_targets.h), the
+// environment light's shadows (occluder_pass.h), the software rasteriser's draw queue
+// (draw_queue.h) and the GPU timer (gpu_timer.h).
 #include <memory>
 
 #include "pbrkit/core/color.h"

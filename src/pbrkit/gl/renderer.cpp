@@ -13,11 +13,12 @@
 
 #include "pbrkit/core/math.h"
 #include "pbrkit/gl/context.h"
+#include "pbrkit/gl/draw_queue.h"
 #include "pbrkit/gl/energy_texture.h"
 #include "pbrkit/gl/gpu_scene.h"
 #include "pbrkit/gl/gpu_timer.h"
 #include "pbrkit/gl/light_clusters.h"
-#include "pbrkit/gl/occluders.h"
+#include "pbrkit/gl/occluder_pass.h"
 #include "pbrkit/gl/render_targets.h"
 #include "pbrkit/gl/shader_permutations.h"
 #include "pbrkit/gl/surface_bindings.h"
@@ -132,38 +133,16 @@ bool refracts_thick(const Material& m, bool closed) {
   return f.transmission && f.volume;
 }
 
-// `instances` instances of the bound vertex array's first `triangles` triangles, from the
-// instance slot its program's uInstanceBase names. With `limit` > 0 (a software rasteriser:
-// Renderer::State::queue_limit) a mesh of more triangles is drawn in index ranges of at most
-// `limit`, and the frame waits for the rasteriser (glFinish) once `queued` reaches `limit`.
-// Each triangle is rasterised from the same vertices and in the same order as in one draw,
-// so the image is the same (the invariance rules, OpenGL 4.5 core profile, appendix A).
-void draw_triangles(std::size_t triangles, std::size_t instances, std::size_t limit,
-                    std::size_t& queued) {
-  const std::size_t range = limit > 0 ? limit : triangles;
-  for (std::size_t first = 0; first < triangles; first += range) {
-    const std::size_t n = std::min(range, triangles - first);
-    glDrawElementsInstanced(GL_TRIANGLES, GLsizei(3 * n), GL_UNSIGNED_INT,
-                            reinterpret_cast<const void*>(3 * first * sizeof(std::uint32_t)),
-                            GLsizei(instances));
-    if (limit > 0 && (queued += n * instances) >= limit) {
-      glFinish();
-      queued = 0;
-    }
-  }
-}
-
 // The back-face pass of thick refraction (Wyman 2005; thick_refraction.glsl): instance
 // `index`'s back faces alone (front faces culled, the nearest back face kept) into the
 // back-face target over the object's screen rectangle `lo`..`hi` (NDC), cleared first;
 // then the frame's target is bound again. Binds the target's textures for the surface
 // shader and returns the rectangle in texture coordinates: the shader reads back faces only
 // inside it (outside, the target holds other objects'). `program` is made on first use;
-// `limit` and `queued` as draw_triangles'.
+// the draw goes through `queue` (the software rasteriser's waits).
 glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuScene& scene,
                           std::size_t index, glm::vec2 lo, glm::vec2 hi,
-                          const glm::mat4& view_projection, std::size_t limit,
-                          std::size_t& queued) {
+                          const glm::mat4& view_projection, DrawQueue& queue) {
   const glm::vec2 size(float(targets.width), float(targets.height));
   // Whole pixels covering the rectangle, one more each side for rounding (clamped as floats:
   // a corner just in front of the camera projects far outside any int).
@@ -184,7 +163,7 @@ glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuSce
   glCullFace(GL_FRONT);
   glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
   glBindVertexArray(mesh.vao);
-  draw_triangles(std::size_t(mesh.index_count / 3), 1, limit, queued);
+  queue.draw_triangles(std::size_t(mesh.index_count / 3), 1);
   glDisable(GL_SCISSOR_TEST);
   glBindFramebuffer(GL_FRAMEBUFFER, targets.msaa_fbo);
   glBindTextureUnit(kBackPositionUnit, targets.back_position);
@@ -239,29 +218,15 @@ struct Renderer::State {
   RenderTargets targets;
   GpuTimer timer;
   GpuLightBuffers light_buffers;
-  // The proxies (occluders.h) of the kinds of objects the settings ask for, made when the
-  // scene, its materials or those kinds change.
-  std::vector<Occluder> occluders;
-  OccluderKinds occluder_kinds;
-  std::vector<Occluder> selected_occluders;  // select_occluders' of them
-  bool occluders_changed = true;             // since they were last selected and uploaded
-  bool occluder_limit_warned = false;        // more than kMaxOccluders of a kind (warned once)
-  glm::ivec2 occluder_counts{0};             // the selection's spheres and parallelepipeds
-  GpuOccluderBuffer occluder_buffer;
+  OccluderPass occluders;  // the environment light's shadows (occluder_pass.h)
   // Whether a frame has needed more than kMaxTransmissionCaptures captures (warned once per
   // renderer: the viewer draws the same scene every frame).
   bool capture_limit_warned = false;
   // The back-face pass's program (pbr_vertex.glsl, back_face_fragment.glsl), made on the
   // first frame with a thick transmissive object.
   Program back_faces;
-  // Whether the context is a software rasteriser's, and the triangles this frame has drawn
-  // since it began or last waited for its queue (RenderSettings::software_queue_triangles).
-  bool software = false;
-  std::size_t queued_triangles = 0;
-  // The most triangles a draw may hold and be followed by no wait (0: no limit).
-  std::size_t queue_limit(const Frame& f) const {
-    return software ? f.settings->software_queue_triangles : 0;
-  }
+  // Every draw goes through it: on a software rasteriser it bounds the queue (draw_queue.h).
+  DrawQueue queue;
 
   // render()'s steps, in the order it takes them.
   Frame begin_frame(const Camera& camera, int width, int height, const RenderSettings& settings);
@@ -272,7 +237,7 @@ struct Renderer::State {
   // Sets the frame's uniforms on `p` the first time the frame uses it.
   void prepare(Frame& f, const Program& p);
   // Instance `index` and the `count` - 1 after it in slot order (one run: the same mesh and
-  // winding), in one glDrawElementsInstanced (in chunks on a software rasteriser: queue_limit).
+  // winding), in one glDrawElementsInstanced (in chunks on a software rasteriser: DrawQueue).
   // `cull`: the faces to cull (GL_BACK, GL_FRONT), or 0 for the material's choice.
   void draw(Frame& f, std::size_t index, GLenum cull = 0, std::size_t count = 1);
 };
@@ -293,7 +258,7 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
   f.view_projection = f.projection * f.view;
 
   timer.begin();
-  queued_triangles = 0;
+  queue.begin_frame(settings.software_queue_triangles);
   glBindFramebuffer(GL_FRAMEBUFFER, targets.msaa_fbo);
   glViewport(0, 0, width, height);
   glDisable(GL_BLEND);
@@ -322,33 +287,8 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
   // the cluster lookup.
   f.clustered = settings.clustered_lights && !f.lights.empty() && !f.clusters.indices.empty();
   light_buffers.upload(f.lights, f.clustered ? &f.clusters : nullptr);
-  const OccluderKinds kinds{settings.transmissive_shadows, settings.opaque_shadows};
-  if (kinds != occluder_kinds) {
-    occluder_kinds = kinds;
-    occluders = ibl_occluders(scene, kinds);
-    occluders_changed = true;
-  }
-  if (!occluders.empty()) {
-    if (occluders_changed) {
-      selected_occluders = select_occluders(occluders, occluder_counts);
-      if (selected_occluders.size() < occluders.size() &&
-          !std::exchange(occluder_limit_warned, true))
-        warn(
-            "OpenGL renderer: {} objects shadow the environment light, more than a frame takes "
-            "({} spheres and {} boxes at most); the {} largest do ({} spheres, {} boxes), the "
-            "other {} do not",
-            occluders.size(), kMaxOccluders, kMaxOccluders, selected_occluders.size(),
-            occluder_counts.x, occluder_counts.y, occluders.size() - selected_occluders.size());
-      occluder_buffer.upload(selected_occluders);
-      programs.set_occluder_geometry(occluder_geometry_define(selected_occluders));
-      occluders_changed = false;
-    }
-    occluder_buffer.bind();
-    f.features.sphere_occluders = occluder_counts.x;
-    f.features.box_occluders = occluder_counts.y;
-    f.features.occluder_bounce = std::any_of(selected_occluders.begin(), selected_occluders.end(),
-                                             [](const Occluder& o) { return o.opaque; });
-  }
+  occluders.begin_frame(scene, {settings.transmissive_shadows, settings.opaque_shadows}, programs,
+                        f.features);
   // Minus the view matrix's third row (view space looks down -Z).
   f.view_depth = -glm::vec4(f.view[0][2], f.view[1][2], f.view[2][2], f.view[3][2]);
   const GeometryModel direct = direct_geometry(settings.brdf.model);
@@ -472,17 +412,17 @@ void Renderer::State::draw(Frame& f, std::size_t index, GLenum cull, std::size_t
   }
   glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
   glBindVertexArray(mesh.vao);
-  // One instanced draw; on a software rasteriser chunks of at most queue_limit's triangles
-  // (at least one instance each, a larger mesh in index ranges: draw_triangles), the frame
-  // waiting for the rasteriser's queue once that many have been drawn.
-  const std::size_t limit = queue_limit(f);
+  // One instanced draw; on a software rasteriser chunks of at most the queue's limit of
+  // triangles (at least one instance each, a larger mesh in index ranges), the frame waiting
+  // for the rasteriser's queue once that many have been drawn (draw_queue.h).
+  const std::size_t limit = queue.limit();
   const std::size_t triangles = std::size_t(mesh.index_count / 3);
   const std::size_t chunk =
       limit > 0 ? std::max<std::size_t>(1, limit / std::max<std::size_t>(1, triangles)) : count;
   for (std::size_t k = 0; k < count; k += chunk) {
     const std::size_t n = std::min(chunk, count - k);
     if (k > 0) p.set("uInstanceBase", GLint(scene.slot_of[index] + k));
-    draw_triangles(triangles, n, limit, queued_triangles);
+    queue.draw_triangles(triangles, n);
   }
 }
 
@@ -594,7 +534,7 @@ void Renderer::State::draw_transmissive(Frame& f, QueuedDraws& queued) {
     f.back_faces_drawn = refracts_thick(scene.material_of(mesh), mesh.closed);
     if (f.back_faces_drawn)
       f.back_face_rect = draw_back_faces(back_faces, targets, scene, t.index, t.lo, t.hi,
-                                         f.view_projection, queue_limit(f), queued_triangles);
+                                         f.view_projection, queue);
     draw(f, t.index);
     f.back_faces_drawn = false;
   }
@@ -642,7 +582,7 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {
     fail("OpenGL: {} fragment texture units, the surface shader needs {}", units,
          kLastSurfaceUnit + 1);
   glEnable(GL_TEXTURE_CUBE_MAP_SEAMLESS);
-  s.software = is_software_renderer(current_renderer());
+  s.queue = DrawQueue(is_software_renderer(current_renderer()));
 }
 
 Renderer::~Renderer() {
@@ -656,8 +596,7 @@ Renderer::~Renderer() {
 
 void Renderer::set_scene(const Scene& scene) {
   state_->scene.upload(scene);
-  state_->occluders = ibl_occluders(state_->scene, state_->occluder_kinds);
-  state_->occluders_changed = true;
+  state_->occluders.scene_changed(state_->scene);
 }
 
 void Renderer::set_materials(const std::vector<Material>& materials) {
@@ -666,8 +605,7 @@ void Renderer::set_materials(const std::vector<Material>& materials) {
     fail("OpenGL: set_materials with {} materials for a scene of {}", materials.size(),
          current.size());
   current = materials;
-  state_->occluders = ibl_occluders(state_->scene, state_->occluder_kinds);
-  state_->occluders_changed = true;
+  state_->occluders.scene_changed(state_->scene);
 }
 
 void Renderer::set_environment(const Environment* env) {

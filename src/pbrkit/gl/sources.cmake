@@ -22,6 +22,8 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/gpu_scene.cpp
   ${_pbrkit_gl_dir}/light_clusters.cpp
   ${_pbrkit_gl_dir}/occluders.cpp
+  ${_pbrkit_gl_dir}/occluder_pass.cpp
+  ${_pbrkit_gl_dir}/draw_queue.cpp
   ${_pbrkit_gl_dir}/surface_bindings.cpp
   ${_pbrkit_gl_dir}/shader_permutations.cpp
   ${_pbrkit_gl_dir}/render_targets.cpp
