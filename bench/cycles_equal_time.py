@@ -5,7 +5,8 @@ bounces, 2 threads. Cycles renders 256 spp; its render call's wall time T is the
 pbrkit gets T for its whole process (start-up, render, denoise, write): `pbrkit render
 --denoise --time t` with t = T less its measured overhead. Each image is compared with its
 own renderer's reference, rendered twice with different seeds (r1, r2), with the
-reference's own variance subtracted (../shared/peers/README.md):
+reference's own variance subtracted ((r1 - r2)^2 / 4 estimates the variance of r, the mean
+of two independent renders):
 
     relMSE = mean(((x - r)^2 - (r1 - r2)^2 / 4) / (r^2 + 0.01)),  r = (r1 + r2) / 2
 

@@ -1,5 +1,7 @@
 # Every dependency comes from Debian 12 packages installed by scripts/setup.
-# See ../shared/PLATFORM.md for why each line looks the way it does.
+# Each line's comment names the imported target as Debian packages it: embree's has no
+# namespace, TinyGLTF is Debian's prebuilt libtinygltf.so (so no TINYGLTF_IMPLEMENTATION
+# here), and stb's implementations are compiled into Debian's libstb.so.
 find_package(embree 3 CONFIG REQUIRED)           # target: embree (no namespace)
 find_package(TBB CONFIG REQUIRED)                # TBB::tbb
 find_package(OpenEXR 3 CONFIG REQUIRED)          # OpenEXR::OpenEXR

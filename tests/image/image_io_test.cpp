@@ -348,7 +348,7 @@ TEST(ImageIo, ReadsDwabHdriAndClampsItsNegativeSamples) {
     }
   EXPECT_EQ(max_r, raw_max_r);
   EXPECT_EQ(max_r, 24.765625f);  // oiiotool --stats: max R = 24.765625
-  // shared/assets/README.md (measured with OpenImageIO): max luminance 15.49.
+  // tests/data/assets/README.md (measured with OpenImageIO): max luminance 15.49.
   EXPECT_NEAR(max_y, 15.49f, 0.01f);
 }
 

@@ -7,8 +7,8 @@ namespace pbrkit::test {
 
 /// tests/data/<name>
 std::filesystem::path test_data(const std::string& name);
-/// tests/data/assets/<name>: the project's copy of ../shared/assets (HDRIs and glTF
-/// models, with their licences in tests/data/assets/LICENSES.md)
+/// tests/data/assets/<name>: the project's copy of its shared third-party assets (HDRIs
+/// and glTF models, with their licences in tests/data/assets/LICENSES.md)
 std::filesystem::path shared_asset(const std::string& name);
 /// The built pbrkit executable.
 std::filesystem::path cli_path();

@@ -196,8 +196,10 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
   rtcSetDeviceMemoryMonitorFunction(device_, &Monitor::callback, monitor_.get());
   rtc_scene_ = rtcNewScene(device_);
   rtcSetSceneFlags(rtc_scene_, scene_flags);
-  // MEDIUM: about half the build time of HIGH (../shared/PLATFORM.md section 4) for
-  // a few percent of trace speed; renders here are short enough for build time to matter.
+  // MEDIUM: about half the build time of HIGH for a few percent of trace speed (`spheres`:
+  // HIGH traced at most 2% faster and doubled the build, 0.25 -> 0.52 CPU s;
+  // docs/benchmarks_archive.md, "The remaining levers"); renders here are short enough for
+  // build time to matter.
   rtcSetSceneBuildQuality(rtc_scene_, RTC_BUILD_QUALITY_MEDIUM);
 
   const Plan p = plan(scene, options);

@@ -1,4 +1,4 @@
-// The material model of shared/spec/MODEL.md in GLSL, mirroring src/pbrkit/core/microfacet.cpp
+// The material model of docs/MODEL.md in GLSL, mirroring src/pbrkit/core/microfacet.cpp
 // and src/pbrkit/core/brdf.cpp line by line (same names, same order of operations), so
 // the OpenGL renderer and the path tracer evaluate one BRDF. tests/gl/brdf_glsl_test.cpp
 // checks Brdf::eval against brdf_eval below to 1e-4 relative.
