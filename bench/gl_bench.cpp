@@ -61,10 +61,8 @@ void time_frames(benchmark::State& state, const Scene& scene, int width, int hei
                  const gl::RenderSettings& settings) {
   gl::Renderer renderer;
   const Environment env = load_environment_or_default("", 0.0f, 1.0f);
-  const gl::IblMaps maps = gl::ibl_maps_from_bake(bake_environment(env, viewer_bake()), env);
   renderer.set_scene(scene);
-  renderer.set_environment(&env);
-  renderer.set_ibl(&maps);
+  renderer.set_environment_light(&env, viewer_bake());
   const Camera camera = select_camera(scene, std::nullopt, float(width) / float(height));
   renderer.render(camera, width, height, settings);
   glFinish();
@@ -122,10 +120,8 @@ void BM_GlFrameBreakdown(benchmark::State& state) {
       mesh.material = material;
     }
   const Environment env = load_environment_or_default("", 0.0f, 1.0f);
-  const gl::IblMaps maps = gl::ibl_maps_from_bake(bake_environment(env, viewer_bake()), env);
   renderer.set_scene(scene);
-  renderer.set_environment(&env);
-  renderer.set_ibl(&maps);
+  renderer.set_environment_light(&env, viewer_bake());
   gl::RenderSettings settings;
   settings.msaa = 1;
   const bool unlit = variant == 5 || variant == 7;
@@ -281,10 +277,9 @@ void BM_GlTimeToFirstImage(benchmark::State& state) {
   const Scene scene = spheres_with_two_lights();
   for (auto _ : state) {
     const Environment env = load_environment_or_default("", 0.0f, 1.0f);
-    const gl::IblMaps maps = gl::ibl_maps_from_bake(bake_environment(env, viewer_bake()), env);
     const Camera camera = select_camera(scene, std::nullopt, 1280.0f / 720.0f);
     benchmark::DoNotOptimize(
-        gl::render_headless(scene, camera, 1280, 720, &env, &maps, gl::RenderSettings{}));
+        gl::render_headless(scene, camera, 1280, 720, &env, viewer_bake(), gl::RenderSettings{}));
   }
 }
 BENCHMARK(BM_GlTimeToFirstImage)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);

@@ -45,11 +45,8 @@ int main(int argc, char** argv) {
     pbrkit::gl::Renderer renderer;
     pbrkit::gl::RenderSettings gl;
     gl.msaa = 1;
-    const pbrkit::gl::IblMaps ibl = pbrkit::gl::ibl_maps_from_bake(
-        pbrkit::bake_environment(env, pbrkit::gl::realtime_bake_options()), env);
     renderer.set_scene(scene);
-    renderer.set_environment(&env);
-    renderer.set_ibl(&ibl);
+    renderer.set_environment_light(&env);  // the background and the IBL baked from it
     renderer.render(view.camera, view.size.width, view.size.height, gl);
     const pbrkit::Image frame = pbrkit::rgb_channels(renderer.read_back());
     pbrkit::write_exr(out / "gl.exr", frame, pbrkit::ExrPixelType::kFloat);

@@ -13,6 +13,7 @@
 // environment light's shadows (occluder_pass.h), the software rasteriser's draw queue
 // (draw_queue.h) and the GPU timer (gpu_timer.h).
 #include <memory>
+#include <optional>
 
 #include "pbrkit/core/color.h"
 #include "pbrkit/gl/ibl_maps.h"
@@ -40,6 +41,16 @@ class Renderer {
   void set_environment(const Environment* env);
   /// The IBL maps (nullptr: no image-based lighting).
   void set_ibl(const IblMaps* maps);
+  /// The environment light in one call, what every caller (the command, the Python module,
+  /// the viewer, the benchmarks) gives a renderer: `env` as the sharp background and, with
+  /// `bake`, its image-based lighting baked now (bake_environment, ibl/bake.h, with those
+  /// options; ibl_maps_from_bake) and uploaded, the maps not kept. `env` nullptr: no
+  /// environment (a black background, no IBL); `bake` std::nullopt: the background alone.
+  /// `progress` is the bake's; false when it stopped the bake, which leaves no IBL.
+  /// set_environment() and set_ibl() remain for maps made otherwise (tests, a bake read back).
+  bool set_environment_light(const Environment* env,
+                             const std::optional<BakeOptions>& bake = realtime_bake_options(),
+                             const ProgressCallback& progress = {});
 
   /// Renders a frame of `width` x `height` into the renderer's float framebuffer.
   void render(const Camera& camera, int width, int height, const RenderSettings& settings);
@@ -62,9 +73,14 @@ class Renderer {
   std::unique_ptr<State> state_;
 };
 
-/// A complete headless render (context, upload, optional bake, frame, readback): what
-/// `pbrkit render --renderer gl` runs. `env` may be null (no environment light).
+/// A complete headless render (context, upload, frame, readback) with IBL maps made
+/// beforehand (nullptr: none). `env` may be null (no environment light).
 Image render_headless(const Scene& scene, const Camera& camera, int width, int height,
                       const Environment* env, const IblMaps* ibl, const RenderSettings& settings);
+/// The same with the environment light given as Renderer::set_environment_light gives it:
+/// `env`'s maps baked with `bake` (std::nullopt: the background alone, no IBL).
+Image render_headless(const Scene& scene, const Camera& camera, int width, int height,
+                      const Environment* env, const std::optional<BakeOptions>& bake,
+                      const RenderSettings& settings);
 
 }  // namespace pbrkit::gl

@@ -616,6 +616,23 @@ void Renderer::set_ibl(const IblMaps* maps) {
   state_->environment.set_ibl(maps);
 }
 
+bool Renderer::set_environment_light(const Environment* env, const std::optional<BakeOptions>& bake,
+                                     const ProgressCallback& progress) {
+  set_environment(env);
+  if (!env || !bake) {
+    set_ibl(nullptr);
+    return true;
+  }
+  BakeResult baked = bake_environment(*env, *bake, progress);
+  if (baked.interrupted) {
+    set_ibl(nullptr);
+    return false;
+  }
+  const IblMaps maps = ibl_maps_from_bake(std::move(baked), *env);
+  set_ibl(&maps);
+  return true;
+}
+
 void Renderer::render(const Camera& camera, int width, int height, const RenderSettings& settings) {
   State& s = *state_;
   if (width < 1 || height < 1) fail("OpenGL: image size {}x{} is empty", width, height);
@@ -670,6 +687,17 @@ Image render_headless(const Scene& scene, const Camera& camera, int width, int h
   renderer.set_scene(scene);
   renderer.set_environment(env);
   renderer.set_ibl(ibl);
+  renderer.render(camera, width, height, settings);
+  return renderer.read_back();
+}
+
+Image render_headless(const Scene& scene, const Camera& camera, int width, int height,
+                      const Environment* env, const std::optional<BakeOptions>& bake,
+                      const RenderSettings& settings) {
+  HeadlessContext context;
+  Renderer renderer;
+  renderer.set_scene(scene);
+  renderer.set_environment_light(env, bake);
   renderer.render(camera, width, height, settings);
   return renderer.read_back();
 }
