@@ -190,37 +190,33 @@ TEST(DenoiseCli, AdaptiveDenoisedCheckpointResumesToTheSameImage) {
 // --denoiser learned: the network (docs/LEARNED_DENOISER.md) from the shipped or a given
 // weights file; a bad file is refused, naming it, before the render starts, and the
 // classic denoiser needs no file.
+// Runs the command with `-o exr` and returns the EXR's layers.
+std::vector<std::pair<std::string, Image>> run_to_exr(const std::string& args,
+                                                      const fs::path& exr) {
+  std::string log;
+  EXPECT_EQ(pbrkit_cli(args + " -o " + exr.string(), &log), 0) << log;
+  return read_exr_layers(exr);
+}
+
 TEST(DenoiseCli, LearnedDenoiserAndItsWeightsFile) {
   const fs::path dir = test::scratch_dir();
   std::string log;
-  ASSERT_EQ(pbrkit_cli(kRender + "--denoise --denoiser learned --float -o " +
-                           (dir / "learned.exr").string(),
-                       &log),
-            0)
-      << log;
-  EXPECT_NE(log.find("denoise (learned)"), std::string::npos) << log;
-  ASSERT_EQ(pbrkit_cli(kRender + "--denoise --denoiser classic --float -o " +
-                           (dir / "classic.exr").string(),
-                       &log),
-            0)
-      << log;
-  const auto learned = read_exr_layers(dir / "learned.exr");
-  const auto classic = read_exr_layers(dir / "classic.exr");
+  const auto learned =
+      run_to_exr(kRender + "--denoise --denoiser learned --float", dir / "learned.exr");
+  const auto classic =
+      run_to_exr(kRender + "--denoise --denoiser classic --float", dir / "classic.exr");
   ASSERT_NE(layer(learned, ""), nullptr);
   ASSERT_NE(layer(classic, ""), nullptr);
   // The same samples (the raw layers equal), two denoisers (the images differ).
   EXPECT_EQ(layer(learned, "raw")->data, layer(classic, "raw")->data);
   EXPECT_NE(layer(learned, "")->data, layer(classic, "")->data);
   // `pbrkit denoise --denoiser learned` on the half buffers gives what render gave.
-  ASSERT_EQ(pbrkit_cli(kRender + "--aov denoise --float -o " + (dir / "halves.exr").string(), &log),
-            0)
-      << log;
-  ASSERT_EQ(pbrkit_cli("denoise " + (dir / "halves.exr").string() +
-                           " --denoiser learned --float -o " + (dir / "again.exr").string(),
-                       &log),
-            0)
-      << log;
-  EXPECT_EQ(layer(read_exr_layers(dir / "again.exr"), "")->data, layer(learned, "")->data);
+  run_to_exr(kRender + "--aov denoise --float", dir / "halves.exr");
+  const auto again =
+      run_to_exr("denoise " + (dir / "halves.exr").string() + " --denoiser learned --float",
+                 dir / "again.exr");
+  ASSERT_NE(layer(again, ""), nullptr);
+  EXPECT_EQ(layer(again, "")->data, layer(learned, "")->data);
 
   // A missing file and a truncated one: exit 1, the file named, nothing written.
   const fs::path truncated = dir / "truncated.pbnn";
