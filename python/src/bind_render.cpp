@@ -16,7 +16,6 @@
 #include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/gl/context.h"
-#include "pbrkit/gl/ibl_maps.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/image/display.h"
@@ -210,17 +209,12 @@ py::object render_gl(const Scene& scene, const std::optional<Environment>& env,
   Image frame;
   run_interruptible(
       [&](WorkControl&) {
-        std::optional<gl::IblMaps> ibl;
-        if (env) {
-          BakeOptions bake = gl::realtime_bake_options();
-          bake.model = brdf.model;
-          ibl = gl::ibl_maps_from_bake(bake_environment(*env, bake), *env);
-        }
+        BakeOptions bake = gl::realtime_bake_options();
+        bake.model = brdf.model;
         gl::HeadlessContext context;
         gl::Renderer renderer;
         renderer.set_scene(scene);
-        renderer.set_environment(env ? &*env : nullptr);
-        renderer.set_ibl(ibl ? &*ibl : nullptr);
+        renderer.set_environment_light(env ? &*env : nullptr, bake);
         renderer.render(view.camera, view.size.width, view.size.height, settings);
         frame = rgb_channels(renderer.read_back());
       },

@@ -7,7 +7,6 @@
 #include <epoxy/gl.h>
 
 #include "pbrkit/gl/context.h"
-#include "pbrkit/ibl/bake.h"
 #include "pbrkit/scene/load.h"
 #include "pbrkit/scene/material_schema.h"
 #include "pbrkit/util/data_dir.h"
@@ -101,14 +100,11 @@ std::vector<Material> overridden_materials(const ViewerState& s) {
 
 void load_environment(ViewerState& s, gl::Renderer& renderer) {
   s.env.reset();
-  s.ibl.reset();
-  if (!s.options.no_env) {
+  if (!s.options.no_env)
     s.env = load_environment_or_default(s.env_choices[std::size_t(s.env_choice)], 0.0f, 1.0f);
-    const BakeOptions bake = gl::realtime_bake_options(s.options.bake_size, s.options.bake_samples);
-    s.ibl = gl::ibl_maps_from_bake(bake_environment(*s.env, bake), *s.env);
-  }
-  renderer.set_environment(s.env ? &*s.env : nullptr);
-  renderer.set_ibl(s.ibl ? &*s.ibl : nullptr);
+  renderer.set_environment_light(
+      s.env ? &*s.env : nullptr,
+      gl::realtime_bake_options(s.options.bake_size, s.options.bake_samples));
 }
 
 void load_scene_into(ViewerState& s, gl::Renderer& renderer) {

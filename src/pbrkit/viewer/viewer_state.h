@@ -78,7 +78,6 @@ struct ViewerState {
   ViewerOptions options;
   Scene scene;
   std::optional<Environment> env;
-  std::optional<gl::IblMaps> ibl;
   std::vector<std::string> env_choices;  // "" = the built-in default
   int env_choice = 0;
   gl::RenderSettings settings;
