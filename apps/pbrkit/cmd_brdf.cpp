@@ -1,6 +1,6 @@
 // pbrkit brdf: the BRDF's building blocks in LearnOpenGL's form (de Vries, "PBR: Theory")
 // as CSV tables and gnuplot PNGs (data from
-// pbrkit/core/brdf_plots.h, i.e. from the very functions the renderers call).
+// brdf_plots.h, i.e. from the very functions the renderers call).
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "brdf_plots.h"
 #include "commands.h"
-#include "pbrkit/core/brdf_plots.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/util/atomic_file.h"
 #include "pbrkit/util/error.h"

@@ -9,4 +9,3 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/dispersion.cpp
   ${CMAKE_CURRENT_LIST_DIR}/color.cpp
   ${CMAKE_CURRENT_LIST_DIR}/iridescence.cpp)
-target_sources(pbrkit PRIVATE ${CMAKE_CURRENT_LIST_DIR}/brdf_plots.cpp)

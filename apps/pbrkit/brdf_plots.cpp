@@ -1,4 +1,4 @@
-#include "pbrkit/core/brdf_plots.h"
+#include "brdf_plots.h"
 
 #include <fmt/format.h>
 
@@ -10,7 +10,7 @@
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/sampling.h"
 
-namespace pbrkit {
+namespace pbrkit::cli {
 
 std::string PlotTable::to_csv() const {
   std::string out;
@@ -149,4 +149,4 @@ PlotTable albedo_plot_table(int mu_points, int samples) {
   return t;
 }
 
-}  // namespace pbrkit
+}  // namespace pbrkit::cli

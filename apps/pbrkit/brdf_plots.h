@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-namespace pbrkit {
+namespace pbrkit::cli {
 
 /// A table of curves: column 0 is the abscissa, each further column one curve.
 struct PlotTable {
@@ -52,4 +52,4 @@ PlotTable fresnel_plot_table(int points = 201);
 /// mu from 0.02 to 1.
 PlotTable albedo_plot_table(int mu_points = 50, int samples = 4096);
 
-}  // namespace pbrkit
+}  // namespace pbrkit::cli
