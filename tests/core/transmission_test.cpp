@@ -484,34 +484,6 @@ TEST(DielectricEnergyTable, BakedEntriesMatchTheirQuadrature) {
   }
 }
 
-// Regenerates src/pbrkit/core/dielectric_energy_data.inc (about 20 s on 2 cores), run as
-//   PBRKIT_WRITE_TABLE=src/pbrkit/core/dielectric_energy_data.inc core_tests
-//   --gtest_also_run_disabled_tests --gtest_filter='*WriteBakedTable'
-TEST(DielectricEnergyTable, DISABLED_WriteBakedTable) {
-  const char* path = std::getenv("PBRKIT_WRITE_TABLE");
-  ASSERT_NE(path, nullptr) << "set PBRKIT_WRITE_TABLE to the output path";
-  std::vector<float> E, R_avg;
-  DielectricEnergyTable::compute(DielectricEnergyTable::kSamples, E, R_avg);
-  std::FILE* f = std::fopen(path, "w");
-  ASSERT_NE(f, nullptr) << path;
-  std::fprintf(
-      f,
-      "// The directional albedo of the rough dielectric interface, baked by "
-      "DielectricEnergyTable::compute\n// (%d VNDF points an entry), written by "
-      "DielectricEnergyTable.DISABLED_WriteBakedTable\n// (tests/core/transmission_test.cpp)"
-      ". Layout: core/energy.h. Do not edit.\n",
-      DielectricEnergyTable::kSamples);
-  auto write = [&](const char* name, const std::vector<float>& v) {
-    std::fprintf(f, "constexpr float %s[] = {\n", name);
-    for (std::size_t k = 0; k < v.size(); ++k)
-      std::fprintf(f, "%#.7gf,%s", double(v[k]), k % 8 == 7 ? "\n" : " ");
-    std::fprintf(f, "};\n");
-  };
-  write("kBakedE", E);
-  write("kBakedRavg", R_avg);
-  std::fclose(f);
-}
-
 TEST(DielectricBsdf, DegenerateInputsGiveFiniteValues) {
   Pcg32 rng(13);
   const float inf = std::numeric_limits<float>::infinity();

@@ -117,27 +117,5 @@ TEST(AnisotropicAlbedo, TableFollowsTheFunction) {
   EXPECT_LT(largest, 0.015f);
 }
 
-// Regenerates src/pbrkit/ibl/anisotropic_albedo_data.inc (about 1 s on 2 cores), run as
-//   PBRKIT_WRITE_TABLE=src/pbrkit/ibl/anisotropic_albedo_data.inc ibl_tests
-//   --gtest_also_run_disabled_tests --gtest_filter='*WriteBakedTable'
-TEST(AnisotropicAlbedo, DISABLED_WriteBakedTable) {
-  const char* path = std::getenv("PBRKIT_WRITE_TABLE");
-  ASSERT_NE(path, nullptr) << "set PBRKIT_WRITE_TABLE to the output path";
-  const std::vector<float> values = AnisotropicAlbedoTable::compute();
-  std::FILE* f = std::fopen(path, "w");
-  ASSERT_NE(f, nullptr) << path;
-  std::fprintf(f,
-               "// The anisotropic GGX lobe's albedo at the table's nodes, baked by "
-               "AnisotropicAlbedoTable::compute\n// (a 32 x 64 lattice an entry), written by "
-               "AnisotropicAlbedo.DISABLED_WriteBakedTable\n// "
-               "(tests/ibl/anisotropic_albedo_test.cpp). Layout: ibl/anisotropic_albedo.h. Do "
-               "not edit.\n");
-  std::fprintf(f, "constexpr float kBakedAlbedo[] = {\n");
-  for (std::size_t k = 0; k < values.size(); ++k)
-    std::fprintf(f, "%#.7gf,%s", double(values[k]), k % 8 == 7 ? "\n" : " ");
-  std::fprintf(f, "};\n");
-  std::fclose(f);
-}
-
 }  // namespace
 }  // namespace pbrkit

@@ -70,7 +70,7 @@ class EnergyTable {
 /// (1 / eta). The values are baked (dielectric_energy_data.inc, 4096 Hammersley VNDF points an
 /// entry: the denser side's TIR ridge needs that many for 1e-3, which would take seconds at
 /// start-up); DielectricEnergyTable.BakedEntriesMatchTheirQuadrature checks them and
-/// DISABLED_WriteBakedTable (tests/core/transmission_test.cpp) regenerates them.
+/// tools/tables/write_baked_table regenerates them.
 class DielectricEnergyTable {
  public:
   static constexpr int kMuSize = 32;         ///< mu nodes, i / (kMuSize - 1)

@@ -37,7 +37,8 @@ class AnisotropicAlbedoTable {
   static constexpr int kMu = 16, kPhi = 8, kR = 16, kS = 8;  ///< nodes per coordinate
 
   /// The process's table: compute()'s nodes, baked into the library
-  /// (anisotropic_albedo_data.inc; about 1 s of CPU time to make).
+  /// (anisotropic_albedo_data.inc, written by tools/tables/write_baked_table; about 1 s of
+  /// CPU time to make).
   static const AnisotropicAlbedoTable& get();
 
   /// Every node's anisotropic_albedo, in values()'s order.
