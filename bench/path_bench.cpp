@@ -22,6 +22,7 @@
 
 #include "pbrkit/image/environment.h"
 #include "pbrkit/pt/geometry.h"
+#include "pbrkit/pt/observed_render.h"
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
@@ -243,9 +244,7 @@ void BM_EmbreeReplay(benchmark::State& state) {
     render_rays += double(r.stats.rays);
     render_seconds += r.stats.render_seconds;
     RayRecorder recorder;
-    pbrkit::PathTracerSettings recorded = s;
-    recorded.ray_observer = &recorder;
-    pbrkit::render_path(scene, &env, camera, recorded);
+    pbrkit::render_path_observed(scene, &env, camera, s, &recorder);
     const std::vector<RayRecorder::Query> queries = recorder.all();
     const pbrkit::SceneGeometry geometry(scene);
     replay(geometry, queries, threads);  // warm-up

@@ -9,6 +9,7 @@
 
 #include "pbrkit/pt/film.h"
 #include "pbrkit/pt/geometry.h"
+#include "pbrkit/pt/observed_render.h"
 #include "pt/pt_test_util.h"
 #include "support/test_paths.h"
 
@@ -113,8 +114,7 @@ TEST(PathTracerDeterminism, RayObserverSeesEveryRayAndChangesNothing) {
   PathTracerSettings s = settings(2);
   s.height = 32;  // whole 4x4 packets: every lane is a pixel, so every lane counts as a ray
   const PathTracerResult plain = render_path(scene, &env, test_camera(), s);
-  s.ray_observer = &counter;
-  const PathTracerResult watched = render_path(scene, &env, test_camera(), s);
+  const PathTracerResult watched = render_path_observed(scene, &env, test_camera(), s, &counter);
   expect_identical(plain.film, watched.film);
   EXPECT_EQ(counter.packets.load(), std::uint64_t(40 * 32 / 16) * s.spp);
   EXPECT_GT(counter.closest_hits.load(), 0u);

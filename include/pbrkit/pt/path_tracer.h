@@ -25,8 +25,6 @@
 
 namespace pbrkit {
 
-class RayObserver;  // pt/geometry.h
-
 /// How the path tracer combines its two strategies for area and environment lights.
 /// kMis is the renderer; the other two exist so tests can check that all three converge
 /// to the same image (and that MIS has the lowest variance).
@@ -115,8 +113,6 @@ struct PathTracerSettings {
   /// Continue from this state (a checkpoint of the same scene and settings) instead of
   /// starting empty; the final result equals an uninterrupted render.
   const Film* resume = nullptr;
-  /// Benchmarks only: sees every ray query of the render (pt/geometry.h).
-  RayObserver* ray_observer = nullptr;
 };
 
 struct PathTracerStats {

@@ -4,6 +4,7 @@
 // checkpoints between passes. What a sample is worth is the integrator's
 // (integrator.h); where it lands in the pixel, the pixel filter's (pixel_filter.h).
 #include "pbrkit/pt/path_tracer.h"
+#include "pbrkit/pt/observed_render.h"
 
 #include <algorithm>
 #include <atomic>
@@ -66,14 +67,14 @@ struct RenderSetup {
   std::unique_ptr<LightSet> lights;
 };
 RenderSetup build_setup(const Scene& scene, const Environment* env,
-                        const PathTracerSettings& settings, tbb::task_arena& arena,
-                        PathTracerStats& stats) {
+                        const PathTracerSettings& settings, RayObserver* observer,
+                        tbb::task_arena& arena, PathTracerStats& stats) {
   RenderSetup setup;
   const auto build_start = Clock::now();
   arena.execute([&] {
     set_ftz_daz();
     setup.geometry = std::make_unique<SceneGeometry>(scene);
-    setup.geometry->observe(settings.ray_observer);
+    setup.geometry->observe(observer);
     stats.bvh_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
     setup.lights = std::make_unique<LightSet>(scene, *setup.geometry, env, settings.light_sampler);
     // The BRDF's albedo tables are computed once per process on first use (about 0.15 s);
@@ -399,8 +400,9 @@ void SampleLoop::finish(PathTracerStats& stats) {
 
 }  // namespace
 
-PathTracerResult render_path(const Scene& scene, const Environment* env, const Camera& camera,
-                             const PathTracerSettings& settings, const ProgressCallback& progress) {
+PathTracerResult render_path_observed(const Scene& scene, const Environment* env,
+                                      const Camera& camera, const PathTracerSettings& settings,
+                                      RayObserver* observer, const ProgressCallback& progress) {
   if (settings.width <= 0 || settings.height <= 0)
     fail("render: image size {}x{} is not positive", settings.width, settings.height);
   const std::uint32_t begin = settings.sample_begin;
@@ -409,7 +411,7 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
 
   PathTracerResult result;
   tbb::task_arena arena(settings.threads > 0 ? settings.threads : tbb::task_arena::automatic);
-  const RenderSetup setup = build_setup(scene, env, settings, arena, result.stats);
+  const RenderSetup setup = build_setup(scene, env, settings, observer, arena, result.stats);
   note_memory(scene, *setup.geometry);
   start_film(result.film, settings, begin);
   SampleLoop loop(scene, setup, camera, settings, progress, arena, result.film, begin, end - begin);
@@ -420,6 +422,11 @@ PathTracerResult render_path(const Scene& scene, const Environment* env, const C
   result.stats.noise = mean_pixel_noise(result.film);
   result.color = result.film.color();
   return result;
+}
+
+PathTracerResult render_path(const Scene& scene, const Environment* env, const Camera& camera,
+                             const PathTracerSettings& settings, const ProgressCallback& progress) {
+  return render_path_observed(scene, env, camera, settings, nullptr, progress);
 }
 
 }  // namespace pbrkit
