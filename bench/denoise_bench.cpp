@@ -2,11 +2,16 @@
 // sections: relative MSE of the raw and the denoised image against converged references,
 // at 16 and 64 spp and at equal time, for the built-in spheres and cornell and for two
 // shared models under two shared HDRIs; the mean of every 1/8 x 1/8 block against the
-// reference; the time to denoise 512x512. Also writes a grid of crops (raw, denoised,
-// reference) as a PNG.
+// reference; the time to denoise 512x512. Also writes a grid of crops (raw, each
+// denoiser's image, reference) as a PNG. Each row names its denoiser: the classic
+// feature-guided filter (denoise/denoiser.h) or the learned network
+// (denoise/learned_denoiser.h, docs/LEARNED_DENOISER.md).
 //
 // Usage: denoise_bench [--size N] [--ref-spp N] [--cache DIR] [--crops PNG] [--threads N]
 //                      [--only NAME] [--spp-count 1|2] [--skip-timing 1] [--debug 1]
+//                      [--denoiser classic|learned|both (default both)] [--weights FILE]
+//                      [--set main|heldout (heldout: the environments and models the
+//                       learned denoiser's training left out, tools/denoiser/scenes.py)]
 //                      [--noise-threshold X (adaptive sampling of the raw renders, as
 //                       `pbrkit render`'s default 0.02; default 0: off)]
 //                      [DenoiseOptions: --radius --variance-radius --error-radius
@@ -34,6 +39,7 @@
 #include <ctime>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +48,7 @@
 #include "pbrkit/denoise/denoiser.h"
 #include "pbrkit/denoise/energy.h"
 #include "pbrkit/denoise/inputs.h"
+#include "pbrkit/denoise/learned_denoiser.h"
 #include "pbrkit/image/compare.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/environment.h"
@@ -251,6 +258,8 @@ int main(int argc, char** argv) {
   int spp_count = 2;
   std::string only;
   std::uint32_t ref_spp = 4096;
+  std::string which = "both", set = "main";
+  fs::path weights;
   fs::path cache = "build/denoise_refs", crops_path;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string a = argv[i], v = argv[i + 1];
@@ -260,6 +269,12 @@ int main(int argc, char** argv) {
       ref_spp = std::uint32_t(std::stoul(v));
     else if (a == "--cache")
       cache = v;
+    else if (a == "--denoiser")
+      which = v;
+    else if (a == "--weights")
+      weights = v;
+    else if (a == "--set")
+      set = v;
     else if (a == "--crops")
       crops_path = v;
     else if (a == "--threads")
@@ -350,7 +365,35 @@ int main(int argc, char** argv) {
   }
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, std::size_t(threads));
   const std::string assets = PBRKIT_ASSETS_DIR;
-  const std::vector<BenchScene> scenes = {
+  if (which != "classic" && which != "learned" && which != "both") {
+    std::fprintf(stderr, "--denoiser: classic, learned or both\n");
+    return 2;
+  }
+  const bool use_classic = which != "learned", use_learned = which != "classic";
+  std::optional<LearnedDenoiser> learned;
+  if (use_learned) {
+    LearnedDenoiserOptions lo;
+    lo.weights = weights;
+    lo.threads = threads;
+    learned.emplace(lo);
+    const LearnedWeightsInfo& info = learned->info();
+    std::printf("learned denoiser: %s, %s, trained %lld steps on %s (commit %s)\n",
+                info.file.string().c_str(), info.network.c_str(), (long long)info.steps,
+                info.dataset.c_str(), info.commit.c_str());
+  }
+  // The held-out set: environments and models tools/denoiser/scenes.py keeps out of the
+  // learned denoiser's training (HELD_OUT_ENVS, HELD_OUT_MODELS).
+  const std::vector<BenchScene> heldout_scenes = {
+      {"suzi / forest", assets + "/models/suzi_uncompressed.glb", assets + "/hdri/forest.exr"},
+      {"suzi / city", assets + "/models/suzi_uncompressed.glb", assets + "/hdri/city.exr"},
+      {"engine / forest", assets + "/models/2CylinderEngine/2CylinderEngine.glb",
+       assets + "/hdri/forest.exr"},
+      {"engine / city", assets + "/models/2CylinderEngine/2CylinderEngine.glb",
+       assets + "/hdri/city.exr"},
+      {"spheres / forest", "spheres", assets + "/hdri/forest.exr"},
+      {"spheres / city", "spheres", assets + "/hdri/city.exr"},
+  };
+  const std::vector<BenchScene> main_scenes = {
       {"spheres", "spheres", ""},
       {"cornell", "cornell", ""},
       {"suzi / studio", assets + "/models/suzi.glb", assets + "/hdri/studio.exr"},
@@ -364,18 +407,20 @@ int main(int argc, char** argv) {
       // energy) in the same rough metals.
       {"spheres / night", "spheres", assets + "/hdri/night.exr"},
   };
+  const std::vector<BenchScene>& scenes = set == "heldout" ? heldout_scenes : main_scenes;
   fs::create_directories(cache);
   std::printf("%dx%d, references %u spp, %d threads, raw renders' noise threshold %g%s\n\n", size,
               size, ref_spp, threads, double(noise_threshold),
               noise_threshold > 0.0f ? " (adaptive sampling, min 16 spp)" : " (off)");
   std::printf(
-      "| scene | spp | raw relMSE | denoised relMSE | ratio | raw at equal time (spp) | "
+      "| scene | denoiser | spp | raw relMSE | denoised relMSE | ratio | raw at equal time (spp) | "
       "its relMSE | ratio | worst block mean, raw | denoised | worst object mean, raw | "
       "denoised | objects within 1%%, raw | denoised | frame mean vs raw (SE) | worst block "
       "(SE) | worst object (SE) | denoise s |\n");
-  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   std::vector<Image> crop_rows;
-  double log_ratio[2] = {0.0, 0.0};
+  // Per denoiser (classic, learned) and spp (16, 64): the sum of log(raw / denoised).
+  double log_ratio[2][2] = {{0.0, 0.0}, {0.0, 0.0}};
   int scenes_run = 0;
   for (const BenchScene& bs : scenes) {
     if (!only.empty() && bs.name.find(only) == std::string::npos) continue;
@@ -408,145 +453,185 @@ int main(int argc, char** argv) {
       const std::uint32_t spp = k == 0 ? 16 : 64;
       const PathTracerResult noisy = r.render(spp, 1);
       const Image raw = noisy.film.color();
-      DenoiseStats stats;
       const DenoiseInput input = denoise_input(noisy.film);
-      const Image denoised = denoise(input, options, {}, &stats);
-      const EnergyReport energy = measure_energy(input, denoised, energy_block, &ids);
-      const double e_raw = rel_mse(raw, reference), e_dn = rel_mse(denoised, reference);
-      // Equal time: the raw render given the render and the denoising time.
-      const double t = noisy.stats.render_seconds;
-      const auto equal_spp = std::uint32_t(std::lround(spp * (t + stats.seconds) / t));
-      const Image equal = r.render(equal_spp, 2).film.color();
-      const double e_equal = rel_mse(equal, reference);
-      log_ratio[k] += std::log(e_raw / e_dn);
-      if (debug) {
-        std::vector<std::pair<double, std::size_t>> worst;
-        for (std::size_t i = 0; i < raw.pixel_count(); ++i) {
-          double e = 0.0;
-          for (int c = 0; c < 3; ++c) {
-            const double d = double(denoised.data[i * 3 + c]) - reference.data[i * 3 + c];
-            e += d * d / (double(reference.data[i * 3 + c]) * reference.data[i * 3 + c] + 0.01);
-          }
-          worst.push_back({e, i});
+      std::vector<Image> row_images;
+      for (int d = 0; d < 2; ++d) {
+        if ((d == 0 && !use_classic) || (d == 1 && !use_learned)) continue;
+        DenoiseStats stats;
+        Image denoised;
+        if (d == 0) {
+          denoised = denoise(input, options, {}, &stats);
+        } else {
+          LearnedDenoiseStats ls;
+          denoised =
+              learned->denoise(raw, noisy.film.albedo_image(), noisy.film.normal_image(), {}, &ls);
+          stats.seconds = ls.seconds;
         }
-        {
-          Image heat(size, size, 3);
+        const char* denoiser_name = d == 0 ? "classic" : "learned";
+        const EnergyReport energy = measure_energy(input, denoised, energy_block, &ids);
+        const double e_raw = rel_mse(raw, reference), e_dn = rel_mse(denoised, reference);
+        // Equal time: the raw render given the render and the denoising time.
+        const double t = noisy.stats.render_seconds;
+        const auto equal_spp = std::uint32_t(std::lround(spp * (t + stats.seconds) / t));
+        const Image equal = r.render(equal_spp, 2).film.color();
+        const double e_equal = rel_mse(equal, reference);
+        log_ratio[d][k] += std::log(e_raw / e_dn);
+        if (debug) {
+          std::vector<std::pair<double, std::size_t>> worst;
           for (std::size_t i = 0; i < raw.pixel_count(); ++i) {
-            double er = 0.0;
+            double e = 0.0;
             for (int c = 0; c < 3; ++c) {
-              const double d = double(raw.data[i * 3 + c]) - reference.data[i * 3 + c];
-              er += d * d / (double(reference.data[i * 3 + c]) * reference.data[i * 3 + c] + 0.01);
+              const double d = double(denoised.data[i * 3 + c]) - reference.data[i * 3 + c];
+              e += d * d / (double(reference.data[i * 3 + c]) * reference.data[i * 3 + c] + 0.01);
             }
-            heat.data[i * 3] = float(worst[i].first * 20.0);
-            heat.data[i * 3 + 1] = float(er * 20.0);
+            worst.push_back({e, i});
           }
-          write_display_png(cache / ("heat_" + key + "_" + std::to_string(spp) + ".png"), heat, {});
-        }
-        std::sort(worst.rbegin(), worst.rend());
-        double total = 0.0;
-        for (const auto& [e, i] : worst) total += e;
-        double top = 0.0;
-        for (std::size_t j = 0; j < worst.size() / 20; ++j) top += worst[j].first;
-        std::fprintf(stderr,
-                     "  top 5%% of pixels hold %.0f%% of the error; shares:", 100 * top / total);
-        for (double sh : stats.candidate_share) std::fprintf(stderr, " %.2f", sh);
-        std::fprintf(stderr, "; outliers %d", stats.outliers);
-        double m[3] = {0, 0, 0};
-        for (std::size_t i = 0; i < raw.data.size(); ++i) {
-          m[0] += raw.data[i];
-          m[1] += denoised.data[i];
-          m[2] += reference.data[i];
-        }
-        std::fprintf(stderr, "; means raw %.4f dn %.4f ref %.4f\n", m[0] / double(raw.data.size()),
-                     m[1] / double(raw.data.size()), m[2] / double(raw.data.size()));
-        for (int j = 0; j < 8; ++j) {
-          const std::size_t i = worst[std::size_t(j)].second;
-          std::fprintf(stderr, "  (%zu,%zu) err %.3f raw %.3f dn %.3f ref %.3f\n",
-                       i % std::size_t(size), i / std::size_t(size), worst[std::size_t(j)].first,
-                       raw.data[i * 3], denoised.data[i * 3], reference.data[i * 3]);
-        }
-      }
-      const ObjectMeans om_raw = object_mean_errors(raw, reference, ids);
-      const ObjectMeans om_dn = object_mean_errors(denoised, reference, ids);
-      if (debug) {
-        // Each object's signed deviation from the reference, raw and denoised: a bias
-        // shows as one sign for most objects.
-        int count = 0;
-        for (int id : ids) count = std::max(count, id + 1);
-        const auto objects = std::size_t(count);
-        std::vector<double> sum_raw(objects, 0.0), sum_dn(objects, 0.0), sum_ref(objects, 0.0);
-        std::vector<int> pixels(objects, 0);
-        for (std::size_t i = 0; i < ids.size(); ++i) {
-          if (ids[i] < 0) continue;
-          const auto k = std::size_t(ids[i]);
-          for (std::size_t ch = 0; ch < 3; ++ch) {
-            sum_raw[k] += raw.data[i * 3 + ch];
-            sum_dn[k] += denoised.data[i * 3 + ch];
-            sum_ref[k] += reference.data[i * 3 + ch];
+          {
+            Image heat(size, size, 3);
+            for (std::size_t i = 0; i < raw.pixel_count(); ++i) {
+              double er = 0.0;
+              for (int c = 0; c < 3; ++c) {
+                const double d = double(raw.data[i * 3 + c]) - reference.data[i * 3 + c];
+                er +=
+                    d * d / (double(reference.data[i * 3 + c]) * reference.data[i * 3 + c] + 0.01);
+              }
+              heat.data[i * 3] = float(worst[i].first * 20.0);
+              heat.data[i * 3 + 1] = float(er * 20.0);
+            }
+            write_display_png(cache / ("heat_" + key + "_" + std::to_string(spp) + ".png"), heat,
+                              {});
           }
-          ++pixels[k];
+          std::sort(worst.rbegin(), worst.rend());
+          double total = 0.0;
+          for (const auto& [e, i] : worst) total += e;
+          double top = 0.0;
+          for (std::size_t j = 0; j < worst.size() / 20; ++j) top += worst[j].first;
+          std::fprintf(stderr,
+                       "  top 5%% of pixels hold %.0f%% of the error; shares:", 100 * top / total);
+          for (double sh : stats.candidate_share) std::fprintf(stderr, " %.2f", sh);
+          std::fprintf(stderr, "; outliers %d", stats.outliers);
+          double m[3] = {0, 0, 0};
+          for (std::size_t i = 0; i < raw.data.size(); ++i) {
+            m[0] += raw.data[i];
+            m[1] += denoised.data[i];
+            m[2] += reference.data[i];
+          }
+          std::fprintf(stderr, "; means raw %.4f dn %.4f ref %.4f\n",
+                       m[0] / double(raw.data.size()), m[1] / double(raw.data.size()),
+                       m[2] / double(raw.data.size()));
+          for (int j = 0; j < 8; ++j) {
+            const std::size_t i = worst[std::size_t(j)].second;
+            std::fprintf(stderr, "  (%zu,%zu) err %.3f raw %.3f dn %.3f ref %.3f\n",
+                         i % std::size_t(size), i / std::size_t(size), worst[std::size_t(j)].first,
+                         raw.data[i * 3], denoised.data[i * 3], reference.data[i * 3]);
+          }
         }
-        for (std::size_t k = 0; k < objects; ++k)
-          if (pixels[k] >= 16 && sum_ref[k] > 0.0)
-            std::fprintf(stderr, "  object %zu: %d px, raw %+.2f%%, denoised %+.2f%%\n", k,
-                         pixels[k], 100.0 * (sum_raw[k] / sum_ref[k] - 1.0),
-                         100.0 * (sum_dn[k] / sum_ref[k] - 1.0));
+        const ObjectMeans om_raw = object_mean_errors(raw, reference, ids);
+        const ObjectMeans om_dn = object_mean_errors(denoised, reference, ids);
+        if (debug) {
+          // Each object's signed deviation from the reference, raw and denoised: a bias
+          // shows as one sign for most objects.
+          int count = 0;
+          for (int id : ids) count = std::max(count, id + 1);
+          const auto objects = std::size_t(count);
+          std::vector<double> sum_raw(objects, 0.0), sum_dn(objects, 0.0), sum_ref(objects, 0.0);
+          std::vector<int> pixels(objects, 0);
+          for (std::size_t i = 0; i < ids.size(); ++i) {
+            if (ids[i] < 0) continue;
+            const auto k = std::size_t(ids[i]);
+            for (std::size_t ch = 0; ch < 3; ++ch) {
+              sum_raw[k] += raw.data[i * 3 + ch];
+              sum_dn[k] += denoised.data[i * 3 + ch];
+              sum_ref[k] += reference.data[i * 3 + ch];
+            }
+            ++pixels[k];
+          }
+          for (std::size_t k = 0; k < objects; ++k)
+            if (pixels[k] >= 16 && sum_ref[k] > 0.0)
+              std::fprintf(stderr, "  object %zu: %d px, raw %+.2f%%, denoised %+.2f%%\n", k,
+                           pixels[k], 100.0 * (sum_raw[k] / sum_ref[k] - 1.0),
+                           100.0 * (sum_dn[k] / sum_ref[k] - 1.0));
+        }
+        std::printf(
+            "| %s | %s | %u | %.4g | %.4g | %.1fx | %u | %.4g | %.1fx | %.2f%% | %.2f%% | %.2f%% | "
+            "%.2f%% | %d/%d | %d/%d | %+.2f | %+.2f | %+.2f | %.3f |\n",
+            bs.name.c_str(), denoiser_name, spp, e_raw, e_dn, e_raw / e_dn, equal_spp, e_equal,
+            e_equal / e_dn, 100.0 * worst_block_mean_error(raw, reference),
+            100.0 * worst_block_mean_error(denoised, reference), 100.0 * om_raw.worst,
+            100.0 * om_dn.worst, om_raw.within, om_raw.objects, om_dn.within, om_dn.objects,
+            energy.frame.z, energy.worst_block.z, energy.worst_object.z, stats.seconds);
+        std::fflush(stdout);
+        row_images.push_back(std::move(denoised));
       }
-      std::printf(
-          "| %s | %u | %.4g | %.4g | %.1fx | %u | %.4g | %.1fx | %.2f%% | %.2f%% | %.2f%% | "
-          "%.2f%% | %d/%d | %d/%d | %+.2f | %+.2f | %+.2f | %.3f |\n",
-          bs.name.c_str(), spp, e_raw, e_dn, e_raw / e_dn, equal_spp, e_equal, e_equal / e_dn,
-          100.0 * worst_block_mean_error(raw, reference),
-          100.0 * worst_block_mean_error(denoised, reference), 100.0 * om_raw.worst,
-          100.0 * om_dn.worst, om_raw.within, om_raw.objects, om_dn.within, om_dn.objects,
-          energy.frame.z, energy.worst_block.z, energy.worst_object.z, stats.seconds);
-      std::fflush(stdout);
       if (k == 0 && !crops_path.empty()) {
         const int cs = std::min(64, size), x0 = (size - cs) / 2, y0 = (size - cs) / 2;
-        Image row(3 * cs * 2 + 8, cs * 2, 3);
+        const int columns = int(row_images.size()) + 2;
+        Image row(columns * (cs * 2 + 4) - 4, cs * 2, 3);
         paste(row, crop(raw, x0, y0, cs), 0, 0, 2);
-        paste(row, crop(denoised, x0, y0, cs), cs * 2 + 4, 0, 2);
-        paste(row, crop(reference, x0, y0, cs), cs * 4 + 8, 0, 2);
+        int at = 1;
+        for (const Image& im : row_images)
+          paste(row, crop(im, x0, y0, cs), (at++) * (cs * 2 + 4), 0, 2);
+        paste(row, crop(reference, x0, y0, cs), at * (cs * 2 + 4), 0, 2);
         crop_rows.push_back(std::move(row));
       }
     }
   }
   const double n = double(std::max(1, scenes_run));
-  std::printf("\ngeometric mean of raw / denoised relMSE: 16 spp %.1fx, 64 spp %.1fx\n",
-              std::exp(log_ratio[0] / n), std::exp(log_ratio[1] / n));
+  for (int d = 0; d < 2; ++d)
+    if ((d == 0 && use_classic) || (d == 1 && use_learned))
+      std::printf("\n%s: geometric mean of raw / denoised relMSE: 16 spp %.1fx, 64 spp %.1fx\n",
+                  d == 0 ? "classic" : "learned", std::exp(log_ratio[d][0] / n),
+                  std::exp(log_ratio[d][1] / n));
   if (!crop_rows.empty()) {
     const int w = crop_rows.front().width, h = crop_rows.front().height;
     Image grid(w, int(crop_rows.size()) * (h + 4), 3);
     for (std::size_t i = 0; i < crop_rows.size(); ++i)
       paste(grid, crop_rows[i], 0, int(i) * (h + 4), 1);
     write_display_png(crops_path, grid, {});
-    std::printf("wrote %s (per row: raw 16 spp, denoised, reference)\n",
-                crops_path.string().c_str());
+    std::printf("wrote %s (per row: raw 16 spp, %s, reference)\n", crops_path.string().c_str(),
+                which == "both" ? "classic, learned" : which.c_str());
   }
-  // The time of 512x512: a cornell film at 16 spp, denoised three times.
+  // The time to denoise: a cornell film at 16 spp, denoised three times, at 512x512 by
+  // each denoiser and at 256x256 and 1920x1080 by the learned one (its peak memory is
+  // `pbrkit denoise --denoiser learned` under /usr/bin/time -v, bench/run denoise).
   if (!skip_timing) {
-    Renderer r;
-    r.scene = load_scene("cornell");
-    r.env = load_environment_or_default("", 0.0f, 1.0f);
-    r.view = select_view(r.scene, std::nullopt, 512, 512);
-    r.threads = threads;
-    const DenoiseInput in = denoise_input(r.render(16, 1).film);
-    std::vector<double> times, cpu;
-    for (int i = 0; i < 3; ++i) {
-      const auto t0 = std::chrono::steady_clock::now();
-      const std::clock_t c0 = std::clock();
-      const Image out = denoise(in, options);
-      cpu.push_back(double(std::clock() - c0) / CLOCKS_PER_SEC);
-      times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    struct Size {
+      int w, h;
+    };
+    for (const Size sz : {Size{256, 256}, Size{512, 512}, Size{1920, 1080}}) {
+      const bool classic_here = use_classic && sz.w == 512;
+      if (!classic_here && !use_learned) continue;
+      Renderer r;
+      r.scene = load_scene("cornell");
+      r.env = load_environment_or_default("", 0.0f, 1.0f);
+      r.view = select_view(r.scene, std::nullopt, sz.w, sz.h);
+      r.threads = threads;
+      const PathTracerResult noisy = r.render(16, 1);
+      const DenoiseInput in = denoise_input(noisy.film);
+      const Image color = noisy.film.color(), albedo = noisy.film.albedo_image(),
+                  normal = noisy.film.normal_image();
+      for (int d = 0; d < 2; ++d) {
+        if ((d == 0 && !classic_here) || (d == 1 && !use_learned)) continue;
+        std::vector<double> times, cpu;
+        for (int i = 0; i < 3; ++i) {
+          const auto t0 = std::chrono::steady_clock::now();
+          const std::clock_t c0 = std::clock();
+          const Image out = d == 0 ? denoise(in, options) : learned->denoise(color, albedo, normal);
+          cpu.push_back(double(std::clock() - c0) / CLOCKS_PER_SEC);
+          times.push_back(
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        }
+        std::sort(times.begin(), times.end());
+        std::sort(cpu.begin(), cpu.end());
+        // CPU time (all threads) is what the cores spent; on a machine shared with other
+        // work, wall time / (CPU time / threads) says how much of them the run got.
+        std::printf(
+            "%dx%d %s denoise on %d threads: wall min %.3f s, median %.3f s, max %.3f s; CPU "
+            "time min %.3f s, median %.3f s (3 runs)\n",
+            sz.w, sz.h, d == 0 ? "classic" : "learned", threads, times[0], times[1], times[2],
+            cpu[0], cpu[1]);
+      }
     }
-    std::sort(times.begin(), times.end());
-    std::sort(cpu.begin(), cpu.end());
-    // CPU time (all threads) is what the cores spent; on a machine shared with other
-    // work, wall time / (CPU time / threads) says how much of them the run got.
-    std::printf(
-        "512x512 denoise on %d threads: wall min %.3f s, median %.3f s; CPU time min "
-        "%.3f s, median %.3f s (3 runs)\n",
-        threads, times[0], times[1], cpu[0], cpu[1]);
   }
   return 0;
 }
