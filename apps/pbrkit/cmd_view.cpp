@@ -14,7 +14,7 @@
 #include "pbrkit/core/color.h"
 #include "pbrkit/image/output_paths.h"
 #include "pbrkit/util/error.h"
-#include "pbrkit/viewer/viewer.h"
+#include "viewer/viewer.h"
 
 namespace pbrkit::cli {
 

@@ -2,7 +2,8 @@
 // (image/output_paths.h): -o a.exr or b.png, in any case, writes the EXR and the PNG, the
 // other beside it with the same stem, and says so; any other name is an error that names
 // it, before any work, and writes nothing. What was written is checked by the files' own
-// signatures. The viewer's --screenshot follows the same rule: tests/gl/viewer_screenshot_test.cpp.
+// signatures. The viewer's --screenshot follows the same rule:
+// tests/viewer/viewer_screenshot_test.cpp.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -3,7 +3,7 @@
 // platform (EGL_MESA_platform_surfaceless) first, then the EGL device platform
 // (EGL_EXT_platform_device; on a machine with a GPU this picks the GPU's EGL). Rendering
 // goes into the renderer's own framebuffer objects; there is no default framebuffer.
-// The windowed path (GLFW) is the viewer (pbrkit/viewer/viewer.cpp, its own library);
+// The windowed path (GLFW) is the viewer (apps/viewer/viewer.cpp, a library of its own);
 // both drive the same Renderer.
 #include <memory>
 #include <string>

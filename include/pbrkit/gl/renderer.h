@@ -3,7 +3,7 @@
 // shaders/brdf.glsl (the C++ Brdf's twin), KHR_lights_punctual lights and split-sum IBL
 // from the baker's maps (ibl/bake.h), rendered into a float framebuffer with MSAA and read
 // back as linear RGB. Works in any current GL 4.5 core context: the headless EGL one
-// (context.h) or a GLFW window's (pbrkit/viewer/viewer.h). Output conventions (camera,
+// (context.h) or a GLFW window's (apps/viewer/viewer.h). Output conventions (camera,
 // environment orientation, exposure and tone mapping after readback) are the path tracer's.
 //
 // renderer.cpp is the frame: what is drawn in which order with which state. Its parts

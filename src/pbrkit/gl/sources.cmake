@@ -1,5 +1,5 @@
 # The OpenGL renderer (headless through EGL, or in any current context such as the
-# viewer's window: src/pbrkit/viewer). Its shaders are the
+# viewer's window: apps/viewer). Its shaders are the
 # .glsl files in shaders/, embedded into the library at build time by embed_shaders.cmake
 # (one generated .cpp holding every file's bytes), so the binary needs no data files.
 set(_pbrkit_gl_dir ${CMAKE_CURRENT_SOURCE_DIR}/pbrkit/gl)

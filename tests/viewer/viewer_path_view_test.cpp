@@ -13,7 +13,7 @@
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
-#include "pbrkit/viewer/path_view.h"
+#include "viewer/path_view.h"
 
 namespace pbrkit {
 namespace {

@@ -12,7 +12,7 @@
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image.h"
 #include "pbrkit/pt/progressive_render.h"
-#include "pbrkit/viewer/viewer.h"
+#include "viewer/viewer.h"
 
 namespace pbrkit {
 

@@ -11,9 +11,9 @@
 #include <string>
 
 #include "pbrkit/util/error.h"
-#include "pbrkit/viewer/viewer.h"
 #include "support/image_files.h"
 #include "support/test_paths.h"
+#include "viewer/viewer.h"
 
 namespace pbrkit {
 namespace {

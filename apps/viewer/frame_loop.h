@@ -3,7 +3,7 @@
 // progress, raster frame, truth views and screenshot, until the window closes or
 // automation is done.
 #include "pbrkit/gl/renderer.h"
-#include "pbrkit/viewer/viewer.h"
+#include "viewer/viewer.h"
 #include "viewer_state.h"
 
 struct GLFWwindow;

@@ -1,4 +1,4 @@
-#include "pbrkit/viewer/viewer.h"
+#include "viewer/viewer.h"
 
 #include <epoxy/gl.h>
 // GLFW after epoxy (epoxy provides the GL declarations).

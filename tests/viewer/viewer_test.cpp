@@ -19,8 +19,8 @@
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/image/image_io.h"
 #include "pbrkit/scene/load.h"
-#include "pbrkit/viewer/viewer.h"
 #include "support/test_paths.h"
+#include "viewer/viewer.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image.h"
-#include "pbrkit/viewer/viewer.h"
+#include "viewer/viewer.h"
 
 namespace pbrkit {
 

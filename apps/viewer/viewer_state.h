@@ -21,8 +21,8 @@
 #include "pbrkit/pt/progressive_render.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/scene.h"
-#include "pbrkit/viewer/viewer.h"
 #include "truth_view.h"
+#include "viewer/viewer.h"
 
 namespace pbrkit::viewer {
 
