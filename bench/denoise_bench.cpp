@@ -46,6 +46,7 @@
 #include <tbb/global_control.h>
 
 #include "pbrkit/denoise/denoiser.h"
+#include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/denoise/energy.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/denoise/learned_denoiser.h"
@@ -462,10 +463,15 @@ int main(int argc, char** argv) {
         if (d == 0) {
           denoised = denoise(input, options, {}, &stats);
         } else {
-          LearnedDenoiseStats ls;
-          denoised =
-              learned->denoise(raw, noisy.film.albedo_image(), noisy.film.normal_image(), {}, &ls);
-          stats.seconds = ls.seconds;
+          // As the product runs it (denoise/denoiser_choice.h): the halves' mean, and the
+          // pixels that saw only the environment passed through.
+          DenoiserChoice choice;
+          choice.kind = DenoiserKind::kLearned;
+          choice.weights = learned->info().file;
+          choice.threads = threads;
+          DenoiseRun run = denoise_render(input, choice);
+          denoised = std::move(run.image);
+          stats.seconds = run.seconds;
         }
         const char* denoiser_name = d == 0 ? "classic" : "learned";
         const EnergyReport energy = measure_energy(input, denoised, energy_block, &ids);

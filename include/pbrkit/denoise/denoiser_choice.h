@@ -47,7 +47,9 @@ void check_denoiser(const DenoiserChoice& choice);
 
 /// Denoises a render's half buffers with the chosen denoiser. The learned denoiser reads
 /// the halves' mean colour, albedo and normal (the same as the film's own images but for
-/// the odd half's one sample fewer); the classic one reads the halves themselves. Throws
+/// the odd half's one sample fewer), and passes through, as the classic one does, the
+/// pixels whose every sample saw the environment directly (depth 0 in both halves); the
+/// classic one reads the halves themselves. Throws
 /// pbrkit::Error (naming the file) when the learned denoiser's weights cannot be read.
 DenoiseRun denoise_render(const DenoiseInput& input, const DenoiserChoice& choice,
                           const ProgressCallback& progress = {});

@@ -1,5 +1,8 @@
 #include "pbrkit/denoise/denoiser_choice.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "pbrkit/denoise/learned_denoiser.h"
 
 namespace pbrkit {
@@ -42,10 +45,22 @@ DenoiseRun denoise_render(const DenoiseInput& input, const DenoiserChoice& choic
   const LearnedDenoiser denoiser(options);
   validate_denoise_input(input);
   LearnedDenoiseStats stats;
-  run.image = denoiser.denoise(mean_of_halves(input.color), mean_of_halves(input.albedo),
-                               mean_of_halves(input.normal), progress, &stats);
+  const Image color = mean_of_halves(input.color);
+  run.image = denoiser.denoise(color, mean_of_halves(input.albedo), mean_of_halves(input.normal),
+                               progress, &stats);
   run.interrupted = stats.interrupted;
   run.seconds = stats.seconds;
+  // As the classic denoiser does (DenoiseOptions::keep_direct_environment): a pixel whose
+  // every sample saw the environment directly (depth 0 in both halves) is a lookup of the
+  // environment, noise-free but for the pixel filter's sampling of its detail; the
+  // network's kernels would average the scene into it (worst 32x32 blocks 50 to 180 raw
+  // standard errors off on the shared models under studio and sunset, BENCHMARKS.md).
+  if (!run.interrupted)
+    for (std::size_t i = 0; i < color.pixel_count(); ++i)
+      if (input.depth[0].data[i] == 0.0f && input.depth[1].data[i] == 0.0f)
+        for (std::size_t c = 0; c < 3; ++c)
+          run.image.data[i * 3 + c] =
+              std::isfinite(color.data[i * 3 + c]) ? std::max(color.data[i * 3 + c], 0.0f) : 0.0f;
   return run;
 }
 
