@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/denoise/learned/layers.h"
 #include "pbrkit/denoise/learned/tiles.h"
 #include "pbrkit/denoise/learned_denoiser.h"
@@ -426,6 +427,41 @@ TEST(LearnedDenoiser, StopsWhenAskedWithTheInputUndenoised) {
         for (int c = 0; c < 3; ++c)
           ASSERT_EQ(out.pixel(x, y)[c], std::max(in.color.pixel(x, y)[c], 0.0f));
   }
+}
+
+// denoise_render's learned path (denoise/denoiser_choice.h): the network on the halves'
+// mean, and the pixels whose every sample saw the environment (depth 0 in both halves)
+// passed through as that mean, as the classic denoiser keeps them.
+TEST(LearnedDenoiser, RenderPathDenoisesTheHalvesMeanAndKeepsTheDirectEnvironment) {
+  const Params params = random_params(95);
+  DenoiserChoice choice;
+  choice.kind = DenoiserKind::kLearned;
+  choice.weights = write_file(test::scratch_dir() / "render_path.pbnn", pbnn_bytes(params));
+  const int w = 70, h = 50;
+  const Inputs a = random_inputs(w, h, 96), b = random_inputs(w, h, 97);
+  DenoiseInput input;
+  input.color[0] = a.color, input.color[1] = b.color;
+  input.albedo[0] = input.albedo[1] = a.albedo;
+  input.normal[0] = input.normal[1] = a.normal;
+  for (Image& d : input.depth) d = Image(w, h, 1, 3.0f);
+  // The left third saw only the environment in both halves; one more pixel in one half only.
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w / 3; ++x)
+      input.depth[0].pixel(x, y)[0] = input.depth[1].pixel(x, y)[0] = 0;
+  input.depth[0].pixel(50, 20)[0] = 0.0f;
+  const DenoiseRun run = denoise_render(input, choice);
+  ASSERT_FALSE(run.interrupted);
+  Image mean(w, h, 3);
+  for (std::size_t i = 0; i < mean.data.size(); ++i)
+    mean.data[i] = 0.5f * (a.color.data[i] + b.color.data[i]);
+  const Image direct =
+      LearnedDenoiser(LearnedDenoiserOptions{choice.weights}).denoise(mean, a.albedo, a.normal);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(run.image.pixel(x, y)[c], x < w / 3 ? mean.pixel(x, y)[c] : direct.pixel(x, y)[c])
+            << x << "," << y;
+  EXPECT_NE(direct.pixel(5, 5)[0], mean.pixel(5, 5)[0]);  // the pass-through is not a no-op
 }
 
 TEST(LearnedDenoiser, RefusesImagesOfAnotherSizeOrTooFewChannels) {

@@ -53,7 +53,7 @@ DenoiseRun denoise_render(const DenoiseInput& input, const DenoiserChoice& choic
   // As the classic denoiser does (DenoiseOptions::keep_direct_environment): a pixel whose
   // every sample saw the environment directly (depth 0 in both halves) is a lookup of the
   // environment, noise-free but for the pixel filter's sampling of its detail; the
-  // network's kernels would average the scene into it (worst 32x32 blocks 50 to 180 raw
+  // network's kernels would average the scene into it (worst 32x32 blocks 20 to 180 raw
   // standard errors off on the shared models under studio and sunset, BENCHMARKS.md).
   if (!run.interrupted)
     for (std::size_t i = 0; i < color.pixel_count(); ++i)
