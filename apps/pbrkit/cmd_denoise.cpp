@@ -26,12 +26,6 @@ struct DenoiseCommandOptions {
   DenoiserFlags denoiser;
 };
 
-Image mean_of(const Image& a, const Image& b) {
-  Image m = a;
-  for (std::size_t i = 0; i < m.data.size(); ++i) m.data[i] = 0.5f * (a.data[i] + b.data[i]);
-  return m;
-}
-
 // The library names the missing layers; the command adds the flag that writes them.
 DenoiseInput read_input(const std::string& path) {
   try {
@@ -68,10 +62,10 @@ void register_denoise_command(CLI::App& app) {
     const std::optional<Image> denoised = run_denoiser(input, choice);
     create_output_directory(outputs);
     const auto type = o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;
-    const Image raw = mean_of(input.color[0], input.color[1]);
-    const Image albedo = mean_of(input.albedo[0], input.albedo[1]);
-    const Image normal = mean_of(input.normal[0], input.normal[1]);
-    const Image depth = mean_of(input.depth[0], input.depth[1]);
+    const Image raw = mean_of_halves(input.color);
+    const Image albedo = mean_of_halves(input.albedo);
+    const Image normal = mean_of_halves(input.normal);
+    const Image depth = mean_of_halves(input.depth);
     write_exr_layers(outputs.exr, {{"", {"R", "G", "B"}, &*denoised, type},
                                    {"raw", {"R", "G", "B"}, &raw, type},
                                    {"albedo", {"R", "G", "B"}, &albedo, type},

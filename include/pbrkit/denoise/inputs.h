@@ -15,6 +15,10 @@ namespace pbrkit {
 /// The film's two half buffers of colour, albedo, normal and depth.
 DenoiseInput denoise_input(const Film& film);
 
+/// The mean of a DenoiseInput's two half buffers of one quantity (colour, albedo, normal
+/// or depth): the render's own image but for the odd half's one sample fewer.
+Image mean_of_halves(const Image (&halves)[2]);
+
 /// An EXR without some of the layers the denoiser reads: what() names the file and every
 /// missing layer; `layers` lists them, so that a front end can say how it writes them.
 class MissingDenoiseLayers : public Error {

@@ -1,8 +1,7 @@
 #include "pbrkit/denoise/denoiser_choice.h"
 
-#include <algorithm>
-#include <cmath>
-
+#include "pbrkit/denoise/inputs.h"
+#include "pbrkit/denoise/learned/input_transform.h"
 #include "pbrkit/denoise/learned_denoiser.h"
 
 namespace pbrkit {
@@ -10,17 +9,6 @@ namespace pbrkit {
 const char* denoiser_name(DenoiserKind kind) {
   return kind == DenoiserKind::kLearned ? "learned" : "classic";
 }
-
-namespace {
-
-Image mean_of_halves(const Image (&halves)[2]) {
-  Image out(halves[0].width, halves[0].height, halves[0].channels);
-  for (std::size_t i = 0; i < out.data.size(); ++i)
-    out.data[i] = 0.5f * (halves[0].data[i] + halves[1].data[i]);
-  return out;
-}
-
-}  // namespace
 
 void check_denoiser(const DenoiserChoice& choice) {
   if (choice.kind != DenoiserKind::kLearned) return;
@@ -59,8 +47,7 @@ DenoiseRun denoise_render(const DenoiseInput& input, const DenoiserChoice& choic
     for (std::size_t i = 0; i < color.pixel_count(); ++i)
       if (input.depth[0].data[i] == 0.0f && input.depth[1].data[i] == 0.0f)
         for (std::size_t c = 0; c < 3; ++c)
-          run.image.data[i * 3 + c] =
-              std::isfinite(color.data[i * 3 + c]) ? std::max(color.data[i * 3 + c], 0.0f) : 0.0f;
+          run.image.data[i * 3 + c] = learned::sanitize_color(color.data[i * 3 + c]);
   return run;
 }
 

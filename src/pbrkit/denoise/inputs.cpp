@@ -18,6 +18,13 @@ DenoiseInput denoise_input(const Film& film) {
   return in;
 }
 
+Image mean_of_halves(const Image (&halves)[2]) {
+  Image out = halves[0];
+  for (std::size_t i = 0; i < out.data.size(); ++i)
+    out.data[i] = 0.5f * (halves[0].data[i] + halves[1].data[i]);
+  return out;
+}
+
 DenoiseInput read_denoise_input(const std::filesystem::path& path) {
   auto layers = read_exr_layers(path);
   auto take = [&](const std::string& name) -> Image {
