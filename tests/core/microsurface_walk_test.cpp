@@ -325,6 +325,71 @@ TEST(EnergyGroundTruth, AnisotropicLobeAgainstTheWalk) {
   }
 }
 
+// The walk's reflected albedo and elongation with a standard error for the elongation: the
+// walks split into `batches` independent streams, the error the spread of the batches'
+// elongations over sqrt(batches) (the moments are ratios of sums, so no closed form).
+struct WalkFigures {
+  double albedo, elongation, elongation_error;
+};
+WalkFigures walk_figures(const Microsurface& s, glm::dvec3 wo, std::uint64_t paths, int batches) {
+  double albedo = 0.0, xx = 0.0, yy = 0.0, sum = 0.0, sum2 = 0.0;
+  for (int b = 0; b < batches; ++b) {
+    const WalkResult w = microsurface_walk(s, wo, paths / batches, 101 + b);
+    albedo += w.reflected / batches;
+    xx += w.xx * w.reflected;
+    yy += w.yy * w.reflected;
+    sum += w.elongation();
+    sum2 += w.elongation() * w.elongation();
+  }
+  const double mean = sum / batches;
+  const double var = std::max(sum2 / batches - mean * mean, 0.0) * batches / (batches - 1);
+  return {albedo, std::sqrt(xx / yy), std::sqrt(var / batches)};
+}
+
+// The acceptance test of an anisotropic multiple-scattering compensation: a white metal's
+// compensated lobe against the walk (all orders) at KHR_materials_anisotropy strength 0.5 and
+// 1, roughness 0.3, 0.4 and 0.6, viewed along the anisotropy direction at mu 1, 0.5 and 0.15.
+// Its directional albedo within 1% of the walk's (1 for white: every walk carries weight 1)
+// and its reflected lobe's elongation sqrt(<x^2> / <y^2>) within 5%, the latter widened by 3
+// standard errors of the walk's elongation (0.1-0.4% of it at 200 000 walks). Today's
+// isotropic Kulla-Conty lobe fails both: albedo 0.65-1.02 (0.65 at roughness 0.3, strength 1,
+// normal incidence) and elongation 1-41% low. No compensation measured so far meets it with
+// a reciprocal lobe (docs/MODEL.md, "Energy: the ground truth", lists the candidates and
+// their figures), so the test is disabled until one does: run it with
+// --gtest_also_run_disabled_tests.
+TEST(EnergyGroundTruth, DISABLED_AnisotropicCompensationKeepsTheWalksShape) {
+  const std::uint64_t n = 200000;
+  std::printf(
+      "compensated anisotropic white metal: roughness strength mu | albedo KC walk | "
+      "elongation off KC walk (+- se) | KC/walk - 1\n");
+  for (float roughness : {0.3f, 0.4f, 0.6f})
+    for (float strength : {0.5f, 1.0f}) {
+      const float alpha = roughness * roughness;
+      const float ax = alpha + (1.0f - alpha) * strength * strength;
+      for (double mu : {1.0, 0.5, 0.15}) {
+        Microsurface s;
+        s.alpha_x = ax;
+        s.alpha_y = alpha;
+        const WalkFigures w = walk_figures(s, dir(mu, 0.0), n, 8);
+        BaseLayer layer;
+        layer.base_color = glm::vec3(1.0f);
+        layer.metallic = 1.0f;
+        layer.roughness = roughness;
+        layer.anisotropy = strength;
+        const glm::vec3 wo(dir(mu, 0.0));
+        const Moments off = brdf_moments(Brdf(layer, {BrdfModel::kReference, false}), wo);
+        const Moments kc = brdf_moments(Brdf(layer, {BrdfModel::kReference, true}), wo);
+        std::printf("  %.1f %.1f %.2f | %.4f %.4f | %.3f %.3f %.3f (+- %.3f) | %+.3f\n", roughness,
+                    strength, mu, kc.albedo, w.albedo, off.elongation(), kc.elongation(),
+                    w.elongation, w.elongation_error, kc.elongation() / w.elongation - 1.0);
+        EXPECT_NEAR(kc.albedo, w.albedo, 0.01 * w.albedo)
+            << "roughness " << roughness << " strength " << strength << " mu " << mu;
+        EXPECT_NEAR(kc.elongation(), w.elongation, 0.05 * w.elongation + 3.0 * w.elongation_error)
+            << "roughness " << roughness << " strength " << strength << " mu " << mu;
+      }
+    }
+}
+
 TEST(EnergyGroundTruth, NoSingleIsotropicAlphaGivesTheAnisotropicAlbedo) {
   // Turquin's scaling needs E of the anisotropic lobe. Looked up in the isotropic table
   // (what the renderers have) at one effective alpha, each candidate is far off somewhere on
