@@ -247,6 +247,14 @@ struct Material {
   std::array<const TextureRef*, kTextureSlotCount> textures() const;
 };
 
+/// KHR_materials_variants: the material a primitive takes while a variant is active
+/// (scene/variants.h switches them).
+struct VariantMaterial {
+  int variant = -1;    ///< index into Scene::variants; -1: no variant (the file's material)
+  int material = -1;   ///< index into Scene::materials, -1: the glTF default material
+  bool closed = true;  ///< Mesh::closed with this material on (decided at load)
+};
+
 /// One glTF primitive as an indexed triangle list (strips and fans converted), with
 /// attributes in object space. Optional attributes are empty when absent.
 struct Mesh {
@@ -264,6 +272,11 @@ struct Mesh {
   /// Computed (scene/mesh_closure.h) for meshes whose material has a volume with
   /// thicknessFactor > 0, by the loader and the built-in scenes; left true for the others.
   bool closed = true;
+  /// KHR_materials_variants: empty when no mapping names the primitive; otherwise the file's
+  /// own material first (variant -1), then one entry per variant that changes the material
+  /// or the closure (a mapped variant, or one that changes the shell the primitive closes
+  /// with its mesh's other primitives), by variant.
+  std::vector<VariantMaterial> variant_materials;
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
 
@@ -334,6 +347,10 @@ struct Scene {
   std::size_t node_count = 0;
   std::vector<std::string> extensions_used;
   std::vector<std::string> extensions_required;
+  /// KHR_materials_variants: the variants' names (the root's `variants`, in order) and the
+  /// one whose materials the meshes hold (-1: none, each primitive's own material).
+  std::vector<std::string> variants;
+  int active_variant = -1;
 
   /// World-space bounding box of all instances.
   Bounds world_bounds() const;

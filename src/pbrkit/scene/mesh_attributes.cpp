@@ -79,4 +79,14 @@ void generate_tangents(Mesh& mesh, int texcoord_set) {
   }
 }
 
+void ensure_tangents(Mesh& mesh, const Material& mat) {
+  if (!mesh.tangents.empty()) return;
+  const TextureRef* uv_source = mat.normal_texture.valid() ? &mat.normal_texture : nullptr;
+  if (!uv_source && mat.clearcoat && mat.clearcoat->normal_texture.valid())
+    uv_source = &mat.clearcoat->normal_texture;
+  if (!uv_source && mat.anisotropy && mat.anisotropy->texture.valid())
+    uv_source = &mat.anisotropy->texture;
+  if (uv_source || mat.anisotropy) generate_tangents(mesh, uv_source ? uv_source->texcoord : 0);
+}
+
 }  // namespace pbrkit

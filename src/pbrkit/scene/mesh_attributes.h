@@ -17,4 +17,9 @@ void generate_flat_normals(Mesh& mesh);
 /// are degenerate) an arbitrary tangent perpendicular to the normal is used.
 void generate_tangents(Mesh& mesh, int texcoord_set = 0);
 
+/// Generates tangents when the mesh has none and `material` needs a tangent frame: for its
+/// normal maps (base and clearcoat) and for anisotropy, whose README requires one
+/// (computed as for normal maps when TANGENT is absent).
+void ensure_tangents(Mesh& mesh, const Material& material);
+
 }  // namespace pbrkit

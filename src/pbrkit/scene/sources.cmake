@@ -22,6 +22,8 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/gltf/nodes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/textures.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/validation.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/variants.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/visibility.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_container.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf_writer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/load.cpp
@@ -30,4 +32,5 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/mesh_closure.cpp
   ${CMAKE_CURRENT_LIST_DIR}/primitives.cpp
   ${CMAKE_CURRENT_LIST_DIR}/scene.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/texture.cpp)
+  ${CMAKE_CURRENT_LIST_DIR}/texture.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/variants.cpp)

@@ -88,9 +88,15 @@ class Loader {
   void build_primitive(int mesh_index, int prim_index, const std::vector<double>& weights,
                        std::vector<int>& out);
   // Mesh::closed for the primitives (scene meshes) built from one glTF mesh;
-  // gltf_primitive[i] is the index in the glTF mesh of primitives[i].
+  // gltf_primitive[i] is the index in the glTF mesh of primitives[i]; `when` ends the
+  // warning of an open volume (the variant active, for variants.cpp).
   void decide_closure(int mesh_index, const std::vector<int>& primitives,
-                      const std::vector<int>& gltf_primitive);
+                      const std::vector<int>& gltf_primitive, const std::string& when = "");
+  // variants.cpp: KHR_materials_variants, the root's variants and every primitive's
+  // mappings checked; then Mesh::variant_materials for the primitives of one glTF mesh.
+  void read_variants(const json& root);
+  void add_variant_materials(int mesh_index, const std::vector<int>& primitives,
+                             const std::vector<int>& gltf_primitive);
 
   // materials.cpp: materials and their texture references.
   void build_materials();
@@ -123,6 +129,8 @@ class Loader {
 
   // nodes.cpp: the hierarchy, its transforms and mesh instances.
   void build_nodes();
+  // visibility.cpp: KHR_node_visibility's `visible: false` into node_hidden_.
+  void read_node_visibility(const json& root);
   glm::mat4 local_transform(int node) const;
   // instancing.cpp: EXT_mesh_gpu_instancing, one Instance per mesh primitive and per row
   // of the node's instance attributes.
@@ -144,6 +152,11 @@ class Loader {
   Scene scene_;
   std::vector<json> material_extensions_;  // materials[i].extensions (or {}), from check_json
   std::map<int, json> node_instancing_;    // node -> its EXT_mesh_gpu_instancing, from check_json
+  // KHR_materials_variants: (mesh, primitive) -> its mappings, by variant (closed unset).
+  std::map<std::pair<int, int>, std::vector<VariantMaterial>> variant_mappings_;
+  // KHR_node_visibility: nodes not drawn (their own `visible: false`; build_nodes hands it
+  // down to the children as it walks).
+  std::vector<char> node_hidden_;
   std::map<std::pair<int, bool>, int> texture_cache_;
   std::size_t texture_bytes_ = 0;
   std::size_t triangles_ = 0;

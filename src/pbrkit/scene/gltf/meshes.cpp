@@ -197,16 +197,7 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
   }
   const Material& mat =
       mesh.material >= 0 ? scene_.materials[std::size_t(mesh.material)] : Scene::default_material();
-  // A tangent frame for the normal maps (base and clearcoat) and for anisotropy, whose
-  // README requires one (computed as for normal maps when TANGENT is absent).
-  if (mesh.tangents.empty()) {
-    const TextureRef* uv_source = mat.normal_texture.valid() ? &mat.normal_texture : nullptr;
-    if (!uv_source && mat.clearcoat && mat.clearcoat->normal_texture.valid())
-      uv_source = &mat.clearcoat->normal_texture;
-    if (!uv_source && mat.anisotropy && mat.anisotropy->texture.valid())
-      uv_source = &mat.anisotropy->texture;
-    if (uv_source || mat.anisotropy) generate_tangents(mesh, uv_source ? uv_source->texcoord : 0);
-  }
+  ensure_tangents(mesh, mat);  // for the normal maps and anisotropy
   scene_.meshes.push_back(std::move(mesh));
   out.push_back(int(scene_.meshes.size()) - 1);
 }
@@ -220,11 +211,12 @@ std::vector<int> Loader::build_mesh(int mesh_index, const std::vector<double>& w
     gltf_primitive.resize(out.size(), int(p));
   }
   decide_closure(mesh_index, out, gltf_primitive);
+  add_variant_materials(mesh_index, out, gltf_primitive);  // variants.cpp
   return out;
 }
 
 void Loader::decide_closure(int mesh_index, const std::vector<int>& primitives,
-                            const std::vector<int>& gltf_primitive) {
+                            const std::vector<int>& gltf_primitive, const std::string& when) {
   // KHR_materials_volume, "Extending Materials": a thickness above 0 makes "the mesh to
   // which the material is attached" a volume boundary, which "requires a manifold/closed
   // mesh". A glTF mesh may split one shell across primitives (an exporter splits where the
@@ -251,8 +243,8 @@ void Loader::decide_closure(int mesh_index, const std::vector<int>& primitives,
       warning(fmt::format(
           "meshes[{}].primitives[{}]: the material (materials[{}]) has KHR_materials_volume, but "
           "the primitive is not closed, alone or with the mesh's other primitives of that "
-          "material ({} edges not shared by exactly two triangles); it is rendered thin-walled",
-          mesh_index, gltf_primitive[i], mesh.material, own.unpaired));
+          "material ({} edges not shared by exactly two triangles); it is rendered thin-walled{}",
+          mesh_index, gltf_primitive[i], mesh.material, own.unpaired, when));
   }
 }
 

@@ -140,7 +140,8 @@ void Loader::build_nodes() {
       error(fmt::format("nodes[{}]", node), "accumulated transform overflows");
     const std::string where = fmt::format("nodes[{}]", node);
     const auto instancing = node_instancing_.find(node);
-    if (n.mesh >= 0) {
+    const bool hidden = node_hidden_[std::size_t(node)];  // KHR_node_visibility
+    if (n.mesh >= 0 && !hidden) {
       if (std::size_t(n.mesh) >= model_.meshes.size())
         error(where + ".mesh", fmt::format("mesh {} does not exist", n.mesh));
       const auto& gmesh = model_.meshes[std::size_t(n.mesh)];
@@ -163,16 +164,20 @@ void Loader::build_nodes() {
       } else {
         for (int m : *meshes) scene_.instances.push_back({m, world, node});
       }
-    } else if (instancing != node_instancing_.end()) {
+    } else if (n.mesh < 0 && instancing != node_instancing_.end()) {
       warning(
           fmt::format("{}: EXT_mesh_gpu_instancing on a node without a mesh has no defined "
                       "meaning (README); ignored",
                       where));
     }
     if (n.camera >= 0) add_camera(n.camera, world, where);  // cameras.cpp
-    if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end())
+    if (const auto it = n.extensions.find("KHR_lights_punctual");
+        !hidden && it != n.extensions.end())
       add_light(it->second, world, where);  // lights.cpp
-    for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) stack.push_back({*c, world});
+    for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) {
+      if (hidden) node_hidden_[std::size_t(*c)] = 1;
+      stack.push_back({*c, world});
+    }
   }
 }
 
