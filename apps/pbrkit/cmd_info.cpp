@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "pbrkit/scene/load.h"
 #include "pbrkit/scene/material_schema.h"
+#include "pbrkit/scene/variants.h"
 
 namespace pbrkit::cli {
 
@@ -182,6 +183,11 @@ nlohmann::json summary_json(const SceneSummary& s) {
   for (std::size_t i = 0; i < scene.materials.size(); ++i)
     j["material_list"].push_back(material_json(scene.materials[i], s.material_uses[i]));
   j["default_material_meshes"] = s.default_material_uses;
+  // KHR_materials_variants: each variant and how many meshes it gives another material.
+  j["variants"] = nlohmann::json::array();
+  for (std::size_t i = 0; i < scene.variants.size(); ++i)
+    j["variants"].push_back(
+        {{"name", scene.variants[i]}, {"meshes", variant_mesh_count(scene, int(i))}});
   j["textures"] = nlohmann::json::array();
   for (const Texture& t : scene.textures)
     j["textures"].push_back({{"name", t.name},
@@ -249,6 +255,15 @@ void print_summary(const SceneSummary& s) {
                                       : "");
   for (std::size_t i = 0; i < scene.materials.size(); ++i)
     print_material(scene.materials[i], i, s.material_uses[i]);
+  if (!scene.variants.empty()) {
+    std::printf("  variants     %zu (KHR_materials_variants; pbrkit render --variant)\n",
+                scene.variants.size());
+    for (std::size_t i = 0; i < scene.variants.size(); ++i) {
+      const std::size_t meshes = variant_mesh_count(scene, int(i));
+      std::printf("    %zu %-28s changes %zu mesh%s\n", i,
+                  fmt::format("'{}'", scene.variants[i]).c_str(), meshes, meshes == 1 ? "" : "es");
+    }
+  }
   std::printf("  textures     %zu\n", scene.textures.size());
   for (const Texture& t : scene.textures)
     std::printf("    %-30s %5d x %-5d %s, %zu mips, %zu bytes\n", t.name.c_str(), t.width(),

@@ -6,11 +6,24 @@
 #include "commands.h"
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/scene/variants.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 #include "render_options.h"
 
 namespace pbrkit::cli {
+
+Scene load_render_scene(const RenderCommandOptions& o) {
+  Scene scene = load_scene_showing_progress(o.scene);
+  if (!o.variant.empty()) {
+    try {
+      apply_variant(scene, find_variant(scene, o.variant));
+    } catch (const Error& e) {
+      fail("--variant: {}", e.what());
+    }
+  }
+  return scene;
+}
 
 RenderView select_render_view(const Scene& scene, const RenderCommandOptions& o) {
   const RenderView view = select_view(scene, o.camera, o.width, o.height);
@@ -59,6 +72,9 @@ void register_render_command(CLI::App& app) {
   cmd->add_option("--camera", options->camera,
                   "glTF camera index (default: the first camera, "
                   "or automatic framing when the file has none)");
+  cmd->add_option("--variant", options->variant,
+                  "a material variant of the file (KHR_materials_variants), by name or index "
+                  "(`pbrkit info` lists them); default: none, each primitive's own material");
   cmd->add_option("--width", options->width,
                   "image width in pixels (default: 512 along the longer side at the camera's "
                   "aspect ratio; with only --height, from the aspect ratio)")

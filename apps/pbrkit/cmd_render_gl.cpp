@@ -127,7 +127,7 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     const bool raw = settings.debug_channel != gl::DebugChannel::kNone;
     const ToneMapper tone_mapper = raw ? ToneMapper::kNone : parse_tone_mapper(o.tonemap);
 
-    const Scene scene = load_scene_showing_progress(o.scene);
+    const Scene scene = load_render_scene(o);
     std::optional<Environment> env;
     if (!o.no_env) env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
     std::optional<BakeOptions> bake;

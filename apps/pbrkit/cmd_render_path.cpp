@@ -207,7 +207,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
 
   return [p, noise_threshold_option](const RenderCommandOptions& o) {
     const PathOptions& po = *p;
-    const Scene scene = load_scene_showing_progress(o.scene);
+    const Scene scene = load_render_scene(o);
     std::optional<Environment> env;
     if (!o.no_env) env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
     const RenderView view = select_render_view(scene, o);

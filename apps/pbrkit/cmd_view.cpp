@@ -68,6 +68,9 @@ void register_view_command(CLI::App& app) {
   cmd->add_option("--env", o->env, "environment map (.exr/.hdr); default: the built-in city.exr");
   cmd->add_flag("--no-env", o->no_env, "no environment light");
   cmd->add_option("--camera", o->camera, "initial glTF camera index");
+  cmd->add_option("--variant", o->variant,
+                  "initial material variant (KHR_materials_variants), by name or index; the "
+                  "panel switches them");
   cmd->add_option("--width", o->width, "window width")
       ->check(CLI::Range(64, 8192))
       ->capture_default_str();

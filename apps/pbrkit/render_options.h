@@ -30,6 +30,8 @@ struct RenderCommandOptions {
   /// --float / --half: the EXR's pixel type; unset: the renderer's default (half for the
   /// path tracer, float for the OpenGL renderer).
   std::optional<bool> exr_float;
+  /// --variant: a KHR_materials_variants name or index; empty: each primitive's own material.
+  std::string variant;
   std::string output;        ///< -o: a .png or .exr path (or empty: out/<scene>_<renderer>.png)
   ImageOutputPaths outputs;  ///< resolved from `output` before rendering
 };
@@ -48,6 +50,9 @@ using RenderRunner = std::function<void(const RenderCommandOptions&)>;
 /// the function that runs it.
 RenderRunner add_path_render_options(CLI::App& render);
 RenderRunner add_gl_render_options(CLI::App& render);
+
+/// The scene of a render, loaded with a progress bar, the --variant applied.
+Scene load_render_scene(const RenderCommandOptions& o);
 
 /// The camera and image size of a render (scene/camera.h select_view), with a note when
 /// the image's aspect differs from the one the glTF camera was authored for.

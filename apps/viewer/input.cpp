@@ -21,16 +21,18 @@ void handle_drops(ViewerState& s, gl::Renderer& renderer, float aspect) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".gltf" || ext == ".glb") {
-      const std::string previous = s.options.scene;
+      const std::string previous = s.options.scene, previous_variant = s.options.variant;
       try {
         s.options.scene = path;
         s.options.camera.reset();
+        s.options.variant.clear();  // another file's variants
         load_scene_into(s, renderer);
         reset_orbit(s, aspect);
         s.orbit_moved = false;
         s.message.clear();
       } catch (const Error& e) {
         s.options.scene = previous;
+        s.options.variant = previous_variant;
         s.message = std::string("not loaded: ") + e.what();
       }
     } else if (ext == ".hdr" || ext == ".exr") {

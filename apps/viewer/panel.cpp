@@ -208,6 +208,16 @@ bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
     }
     if (lights > 8) ImGui::TreePop();
   }
+  // KHR_materials_variants: "none" (each primitive's own material), then the file's.
+  if (!s.scene.variants.empty()) {
+    std::vector<std::string> variants = {"none"};
+    variants.insert(variants.end(), s.scene.variants.begin(), s.scene.variants.end());
+    int choice = s.scene.active_variant + 1;
+    if (name_combo("variant", choice, variants)) {
+      set_variant(s, renderer, choice - 1);
+      changed = true;
+    }
+  }
   ImGui::Separator();
   changed |= ImGui::Checkbox("override metallic", &s.override_metallic);
   if (s.override_metallic) changed |= ImGui::SliderFloat("metallic", &s.metallic, 0.0f, 1.0f);

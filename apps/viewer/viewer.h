@@ -40,6 +40,9 @@ struct ViewerOptions {
   std::string env;                ///< empty: the built-in default environment
   bool no_env = false;
   std::optional<int> camera;  ///< initial glTF camera
+  /// A KHR_materials_variants variant by name or index (the panel switches them); empty:
+  /// each primitive's own material.
+  std::string variant;
   /// The window asked for; every frame is rendered at the framebuffer's size, and the
   /// projection and the first view's framing take its aspect.
   int width = 1280, height = 720;

@@ -9,6 +9,7 @@
 #include "pbrkit/gl/context.h"
 #include "pbrkit/scene/load.h"
 #include "pbrkit/scene/material_schema.h"
+#include "pbrkit/scene/variants.h"
 #include "pbrkit/util/data_dir.h"
 #include "pbrkit/util/log.h"
 
@@ -109,10 +110,21 @@ void load_environment(ViewerState& s, gl::Renderer& renderer) {
 
 void load_scene_into(ViewerState& s, gl::Renderer& renderer) {
   Scene scene = load_scene(s.options.scene);
+  if (!s.options.variant.empty()) apply_variant(scene, find_variant(scene, s.options.variant));
   renderer.set_scene(scene);  // a scene too large is refused here, the previous one kept
   s.scene = std::move(scene);
   renderer.set_materials(overridden_materials(s));  // the panel's overrides survive a reload
   s.settings.light_enabled.assign(s.scene.lights.size(), true);
+  s.path_scene_dirty = true;
+}
+
+void set_variant(ViewerState& s, gl::Renderer& renderer, int variant) {
+  apply_variant(s.scene, variant);
+  // The meshes' material indices are in the uploaded draw runs (opaque, masked, blended):
+  // the scene is uploaded again, then the panel's overrides.
+  renderer.set_scene(s.scene);
+  renderer.set_materials(overridden_materials(s));
+  s.options.variant = variant < 0 ? "" : s.scene.variants[std::size_t(variant)];
   s.path_scene_dirty = true;
 }
 

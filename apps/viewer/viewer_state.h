@@ -136,6 +136,10 @@ void load_environment(ViewerState& s, gl::Renderer& renderer);
 /// The options' scene into the state and the renderer, the panel's overrides applied.
 void load_scene_into(ViewerState& s, gl::Renderer& renderer);
 
+/// Switches the scene to material variant `variant` (-1: none; scene/variants.h), uploads
+/// the meshes' new materials with the panel's overrides and keeps the choice for reloads.
+void set_variant(ViewerState& s, gl::Renderer& renderer, int variant);
+
 /// The initial view: the chosen glTF camera's, or the automatic framing, which fits the
 /// scene into the narrower of the two fields of view of a frame of `aspect`.
 void reset_orbit(ViewerState& s, float aspect);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,8 @@
 #include "pbrkit/image/image.h"
 
 namespace pbrkit {
+
+struct SceneMotion;  // scene/pose.h
 
 enum class WrapMode { kRepeat, kClampToEdge, kMirroredRepeat };
 enum class FilterMode { kNearest, kLinear };
@@ -347,6 +350,9 @@ struct Scene {
   std::size_t node_count = 0;
   std::vector<std::string> extensions_used;
   std::vector<std::string> extensions_required;
+  /// The hierarchy, skins, morph targets and animations that pose this scene
+  /// (scene/pose.h); null for a scene that cannot move (no animations, no skins).
+  std::shared_ptr<const SceneMotion> motion;
   /// KHR_materials_variants: the variants' names (the root's `variants`, in order) and the
   /// one whose materials the meshes hold (-1: none, each primitive's own material).
   std::vector<std::string> variants;

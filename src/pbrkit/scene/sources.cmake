@@ -1,4 +1,5 @@
 target_sources(pbrkit PRIVATE
+  ${CMAKE_CURRENT_LIST_DIR}/animation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/asset_uri.cpp
   ${CMAKE_CURRENT_LIST_DIR}/builtin/classic.cpp
   ${CMAKE_CURRENT_LIST_DIR}/builtin/extension_rows.cpp
@@ -9,6 +10,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/camera.cpp
   ${CMAKE_CURRENT_LIST_DIR}/coincident_faces.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/accessors.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/animations.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/cameras.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/draco.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/file_access.cpp
@@ -20,6 +22,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/gltf/meshes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/meshopt.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/nodes.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/skins.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/textures.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/validation.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/variants.cpp
@@ -30,6 +33,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/material_schema.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_attributes.cpp
   ${CMAKE_CURRENT_LIST_DIR}/mesh_closure.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/pose.cpp
   ${CMAKE_CURRENT_LIST_DIR}/primitives.cpp
   ${CMAKE_CURRENT_LIST_DIR}/scene.cpp
   ${CMAKE_CURRENT_LIST_DIR}/texture.cpp

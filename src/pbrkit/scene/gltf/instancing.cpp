@@ -141,7 +141,11 @@ void Loader::add_gpu_instances(int node, const json& extension, const glm::mat4&
     const glm::vec4 origin = instance_world[3];
     if (!std::isfinite(det + origin.x + origin.y + origin.z))
       error(where, fmt::format("instance {}'s world transform is not finite", i));
-    for (const int m : meshes) scene_.instances.push_back({m, instance_world, node});
+    for (const int m : meshes) {
+      if (keep_motion_)  // the row moves with its node (scene/pose.h)
+        motion_.placements.push_back({int(scene_.instances.size()), node, local});
+      scene_.instances.push_back({m, instance_world, node});
+    }
   }
 }
 

@@ -5,6 +5,8 @@
 // This file is the order of the work; each step lives in the file named beside it.
 #include "pbrkit/scene/gltf/load_gltf.h"
 
+#include <memory>
+
 #include "pbrkit/scene/gltf/loader.h"
 #include "pbrkit/util/log.h"
 
@@ -20,8 +22,8 @@ Scene Loader::load() {
   // The JSON, checked with nlohmann: types, version, extensions, URIs and their sizes.
   json root = parse_json();  // validation.cpp
   check_json(root);
-  read_variants(root);         // variants.cpp
-  read_node_visibility(root);  // visibility.cpp
+  read_variants(root);                              // variants.cpp
+  read_node_visibility(root);                       // visibility.cpp
   bool modified = prepare_meshopt_fallbacks(root);  // meshopt.cpp
   check_uris(root);
   modified = drop_draco_indices(root) || modified;  // draco.cpp
@@ -41,17 +43,26 @@ Scene Loader::load() {
   decode_meshopt_views();     // meshopt.cpp
   decode_draco_primitives();  // draco.cpp
 
-  // What is not rendered is said, not refused.
-  if (!model_.animations.empty())
-    note("{}: {} animation(s) ignored (the scene is shown at rest)", file_,
-         model_.animations.size());
-  if (!model_.skins.empty()) note("{}: {} skin(s) shown in bind pose", file_, model_.skins.size());
+  // What poses the scene: skins and animations, checked before the nodes use them.
+  keep_motion_ = !model_.animations.empty() || !model_.skins.empty();
+  weights_animated_.assign(model_.nodes.size(), 0);
+  if (keep_motion_) {
+    read_skins();       // skins.cpp
+    read_animations();  // animations.cpp
+  }
 
   // The scene: materials (with their textures) first, since meshes generate tangents
   // for normal-mapped materials; then the nodes, which build meshes, cameras and lights.
   build_materials();  // materials.cpp, textures.cpp
   build_nodes();  // nodes.cpp, instancing.cpp, meshes.cpp, accessors.cpp, cameras.cpp, lights.cpp
   scene_.node_count = model_.nodes.size();
+  if (keep_motion_) {
+    const bool deforms = !motion_.deforming.empty();
+    scene_.motion = std::make_shared<const SceneMotion>(std::move(motion_));
+    // The rest pose skins the skinned meshes and morphs the morphing ones by their
+    // default weights (pose.cpp); the other nodes are where the walk put them.
+    if (deforms) pose_scene(scene_, PoseTime{});
+  }
   report_progress(
       1.0, fmt::format("{} nodes, {} instances", model_.nodes.size(), scene_.instances.size()));
   return std::move(scene_);

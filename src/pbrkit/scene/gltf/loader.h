@@ -17,6 +17,7 @@
 
 #include "pbrkit/scene/load.h"
 #include "pbrkit/scene/material_schema.h"
+#include "pbrkit/scene/pose.h"
 
 namespace pbrkit::gltf {
 
@@ -85,8 +86,12 @@ class Loader {
 
   // meshes.cpp: one Mesh per primitive.
   std::vector<int> build_mesh(int mesh_index, const std::vector<double>& weights);
+  // With `deform`, the primitive is a deforming mesh's: built at rest (no morph applied),
+  // its morph targets and joint influences read into `deform` (skins.cpp).
   void build_primitive(int mesh_index, int prim_index, const std::vector<double>& weights,
-                       std::vector<int>& out);
+                       std::vector<int>& out, DeformingMesh* deform = nullptr, int skin = -1);
+  // A skinned or morph-animated node's own meshes, one DeformingMesh each.
+  std::vector<int> build_deforming_mesh(int mesh_index, int node, int skin);
   // Mesh::closed for the primitives (scene meshes) built from one glTF mesh;
   // gltf_primitive[i] is the index in the glTF mesh of primitives[i]; `when` ends the
   // warning of an open volume (the variant active, for variants.cpp).
@@ -127,8 +132,19 @@ class Loader {
   // textures.cpp: images decoded once per colour space, with their samplers.
   int texture_for(int texture_index, bool srgb, const std::string& where);
 
+  // animations.cpp: every animation's samplers and channels, checked, into motion_.
+  void read_animations();
+  // skins.cpp: skins (joints, inverse bind matrices) into motion_; a deforming primitive's
+  // morph targets and joint influences (`vertices` as the file has them).
+  void read_skins();
+  void read_deformation(const tinygltf::Primitive& prim,
+                        const std::map<std::string, int>& attributes, const std::string& where,
+                        std::size_t vertices, int skin, DeformingMesh& d);
+
   // nodes.cpp: the hierarchy, its transforms and mesh instances.
   void build_nodes();
+  // The nodes' rest transforms and an order with parents first, into motion_.
+  void keep_rest_pose(const std::vector<int>& parent);
   // visibility.cpp: KHR_node_visibility's `visible: false` into node_hidden_.
   void read_node_visibility(const json& root);
   glm::mat4 local_transform(int node) const;
@@ -157,6 +173,10 @@ class Loader {
   // KHR_node_visibility: nodes not drawn (their own `visible: false`; build_nodes hands it
   // down to the children as it walks).
   std::vector<char> node_hidden_;
+  // What poses the scene (scene/pose.h), kept when the file has animations or skins.
+  bool keep_motion_ = false;
+  SceneMotion motion_;
+  std::vector<char> weights_animated_;  // per node: an animation drives its morph weights
   std::map<std::pair<int, bool>, int> texture_cache_;
   std::size_t texture_bytes_ = 0;
   std::size_t triangles_ = 0;

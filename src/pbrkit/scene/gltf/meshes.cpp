@@ -11,7 +11,7 @@
 namespace pbrkit::gltf {
 
 void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<double>& weights,
-                             std::vector<int>& out) {
+                             std::vector<int>& out, DeformingMesh* deform, int skin) {
   const auto& gmesh = model_.meshes[std::size_t(mesh_index)];
   const auto& prim = gmesh.primitives[std::size_t(prim_index)];
   const std::string where = fmt::format("meshes[{}].primitives[{}]", mesh_index, prim_index);
@@ -82,6 +82,8 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
   check_count("TEXCOORD_1", mesh.texcoords1.size());
   check_count("COLOR_0", mesh.colors0.size());
 
+  // A deforming mesh keeps its targets and joints to pose it (scene/pose.h).
+  if (deform) read_deformation(prim, attributes, where, n, skin, *deform);  // skins.cpp
   // Morph targets at the given weights (glTF 2.0 section 3.7.2.2).
   for (std::size_t t = 0; t < prim.targets.size() && t < weights.size(); ++t) {
     const float w = float(weights[t]);
@@ -185,9 +187,30 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
     mesh.tangents.clear();
   }
   if (!normals_ok) {
+    const std::vector<std::uint32_t> corners = mesh.indices;  // vertex of each corner
     mesh.normals.clear();
     mesh.tangents.clear();  // the frame changes with the normals
     generate_flat_normals(mesh);
+    if (deform) {
+      // One vertex per corner now: the per-vertex deformation follows its corners.
+      auto expand = [&](auto& values) {
+        if (values.empty()) return;
+        const std::size_t per = values.size() / n;
+        std::remove_reference_t<decltype(values)> out_values;
+        out_values.reserve(corners.size() * per);
+        for (const std::uint32_t c : corners)
+          for (std::size_t e = 0; e < per; ++e) out_values.push_back(values[c * per + e]);
+        values.swap(out_values);
+      };
+      for (MorphTarget& t : deform->targets) {
+        expand(t.positions);
+        expand(t.normals);
+        t.tangents.clear();  // the generated frame replaces the file's
+      }
+      expand(deform->joints);
+      expand(deform->weights);
+      deform->flat_normals = true;
+    }
   }
 
   if (prim.material >= 0) {
@@ -198,6 +221,12 @@ void Loader::build_primitive(int mesh_index, int prim_index, const std::vector<d
   const Material& mat =
       mesh.material >= 0 ? scene_.materials[std::size_t(mesh.material)] : Scene::default_material();
   ensure_tangents(mesh, mat);  // for the normal maps and anisotropy
+  if (deform) {
+    deform->mesh = int(scene_.meshes.size());
+    deform->positions = mesh.positions;
+    deform->normals = mesh.normals;
+    deform->tangents = mesh.tangents;
+  }
   scene_.meshes.push_back(std::move(mesh));
   out.push_back(int(scene_.meshes.size()) - 1);
 }
@@ -208,6 +237,24 @@ std::vector<int> Loader::build_mesh(int mesh_index, const std::vector<double>& w
   std::vector<int> gltf_primitive;  // out[i] was built from primitives[gltf_primitive[i]]
   for (std::size_t p = 0; p < gmesh.primitives.size(); ++p) {
     build_primitive(mesh_index, int(p), weights, out);
+    gltf_primitive.resize(out.size(), int(p));
+  }
+  decide_closure(mesh_index, out, gltf_primitive);
+  add_variant_materials(mesh_index, out, gltf_primitive);  // variants.cpp
+  return out;
+}
+
+std::vector<int> Loader::build_deforming_mesh(int mesh_index, int node, int skin) {
+  std::vector<int> out;
+  const auto& gmesh = model_.meshes[std::size_t(mesh_index)];
+  std::vector<int> gltf_primitive;
+  for (std::size_t p = 0; p < gmesh.primitives.size(); ++p) {
+    DeformingMesh d;
+    d.node = node;
+    d.skin = skin;
+    const std::size_t before = out.size();
+    build_primitive(mesh_index, int(p), {}, out, &d, skin);  // at rest: no morph applied
+    if (out.size() > before) motion_.deforming.push_back(std::move(d));
     gltf_primitive.resize(out.size(), int(p));
   }
   decide_closure(mesh_index, out, gltf_primitive);

@@ -89,6 +89,8 @@ void Loader::build_nodes() {
     for (std::size_t k : chain) state[k] = 2;
   }
 
+  if (keep_motion_) keep_rest_pose(parent);
+
   std::vector<int> roots;
   std::vector<char> listed(count, 0);  // a flag per node, not a search: scenes list 10^5 roots
   if (!model_.scenes.empty()) {
@@ -146,7 +148,21 @@ void Loader::build_nodes() {
         error(where + ".mesh", fmt::format("mesh {} does not exist", n.mesh));
       const auto& gmesh = model_.meshes[std::size_t(n.mesh)];
       const std::vector<int>* meshes = nullptr;
-      if (!n.weights.empty() && n.weights != gmesh.weights) {
+      if (n.skin >= 0 && std::size_t(n.skin) >= model_.skins.size())
+        error(where + ".skin", fmt::format("skin {} does not exist", n.skin));
+      const bool deforms = keep_motion_ && (n.skin >= 0 || weights_animated_[std::size_t(node)]);
+      if (deforms) {
+        // A skinned or morph-animated mesh is its own geometry (scene/pose.h).
+        const std::size_t first = motion_.deforming.size();
+        morphed = build_deforming_mesh(n.mesh, node, n.skin);
+        for (std::size_t d = first; d < motion_.deforming.size(); ++d)
+          motion_.deforming[d].instance = int(scene_.instances.size() + (d - first));
+        meshes = &morphed;
+        if (instancing != node_instancing_.end())
+          warning(fmt::format("{}: EXT_mesh_gpu_instancing on a skinned or morph-animated node is "
+                              "not supported; one instance drawn",
+                              where));
+      } else if (!n.weights.empty() && n.weights != gmesh.weights) {
         morphed = build_mesh(n.mesh, n.weights);
         meshes = &morphed;
       } else {
@@ -157,27 +173,88 @@ void Loader::build_nodes() {
       }
       // Instances share their mesh: what they cost is the renderer's to estimate (the path
       // tracer checks its geometry's memory before building, pt/geometry.h).
-      if (instancing != node_instancing_.end()) {
+      const std::size_t first_instance = scene_.instances.size();
+      if (instancing != node_instancing_.end() && !deforms) {
         // "When instancing is used on the node, the non-instanced version of the mesh
         // should not be rendered" (EXT_mesh_gpu_instancing README).
         add_gpu_instances(node, instancing->second, world, *meshes);  // instancing.cpp
       } else {
         for (int m : *meshes) scene_.instances.push_back({m, world, node});
       }
+      // (add_gpu_instances places its own rows; a deforming mesh is placed by its pose.)
+      if (keep_motion_ && !deforms && instancing == node_instancing_.end())
+        for (std::size_t i = first_instance; i < scene_.instances.size(); ++i)
+          motion_.placements.push_back({int(i), node, glm::mat4(1.0f)});
     } else if (n.mesh < 0 && instancing != node_instancing_.end()) {
       warning(
           fmt::format("{}: EXT_mesh_gpu_instancing on a node without a mesh has no defined "
                       "meaning (README); ignored",
                       where));
     }
-    if (n.camera >= 0) add_camera(n.camera, world, where);  // cameras.cpp
+    if (n.camera >= 0) {
+      add_camera(n.camera, world, where);  // cameras.cpp
+      if (keep_motion_) motion_.camera_nodes.push_back(node);
+    }
     if (const auto it = n.extensions.find("KHR_lights_punctual");
         !hidden && it != n.extensions.end())
+    {
       add_light(it->second, world, where);  // lights.cpp
+      if (keep_motion_) motion_.light_nodes.push_back(node);
+    }
     for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) {
       if (hidden) node_hidden_[std::size_t(*c)] = 1;
       stack.push_back({*c, world});
     }
+  }
+}
+
+void Loader::keep_rest_pose(const std::vector<int>& parent) {
+  const std::size_t count = model_.nodes.size();
+  motion_.nodes.resize(count);
+  std::vector<std::vector<int>> children(count);
+  std::vector<int> roots;
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto& n = model_.nodes[i];
+    const std::string where = fmt::format("nodes[{}]", i);
+    NodeRest& rest = motion_.nodes[i];
+    rest.parent = parent[i];
+    // Every node, in the scene or not: a skin's joints need not be under its roots.
+    const glm::mat4 m = local_transform(int(i));  // checks the numbers
+    if (n.matrix.size() == 16) {
+      rest.has_matrix = true;
+      rest.matrix = m;
+    } else {
+      if (n.translation.size() == 3)
+        rest.translation = {float(n.translation[0]), float(n.translation[1]),
+                            float(n.translation[2])};
+      if (n.rotation.size() == 4) {
+        const glm::quat r(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]),
+                          float(n.rotation[2]));
+        const float len = glm::length(r);
+        if (std::isfinite(len) && len > 0.0f) rest.rotation = r / len;
+      }
+      if (n.scale.size() == 3)
+        rest.scale = {float(n.scale[0]), float(n.scale[1]), float(n.scale[2])};
+    }
+    const std::vector<double>* w = &n.weights;
+    if (w->empty() && n.mesh >= 0 && std::size_t(n.mesh) < model_.meshes.size())
+      w = &model_.meshes[std::size_t(n.mesh)].weights;
+    for (std::size_t k = 0; k < w->size(); ++k) {
+      if (!std::isfinite((*w)[k]))
+        error(fmt::format("{}.weights[{}]", where, k), "is not finite");
+      rest.weights.push_back(float((*w)[k]));
+    }
+    if (parent[i] < 0) roots.push_back(int(i));
+    else children[std::size_t(parent[i])].push_back(int(i));
+  }
+  // Parents before children (build_nodes checked that the hierarchy is a forest).
+  std::vector<int> stack(roots.rbegin(), roots.rend());
+  while (!stack.empty()) {
+    const int node = stack.back();
+    stack.pop_back();
+    motion_.order.push_back(node);
+    for (auto c = children[std::size_t(node)].rbegin(); c != children[std::size_t(node)].rend(); ++c)
+      stack.push_back(*c);
   }
 }
 

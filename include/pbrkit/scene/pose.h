@@ -1,0 +1,110 @@
+#pragma once
+// A scene in motion: what a glTF file's node hierarchy, skins, morph targets and
+// animations need to pose the flattened Scene at any time, and the posing itself.
+// The loader keeps it (Scene::motion) only for files with animations or skins; posing
+// rewrites the scene's instance transforms, the vertices of its deforming meshes, and its
+// cameras and lights, exactly as the loader placed them at rest, so that both renderers
+// draw the same pose from the same Scene.
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "pbrkit/scene/animation.h"
+
+namespace pbrkit {
+
+struct Scene;
+struct Bounds;
+
+/// A node's rest transform (glTF 2.0 section 3.5.2): a matrix, or translation, rotation
+/// and scale, which animations replace property by property.
+struct NodeRest {
+  int parent = -1;
+  bool has_matrix = false;  ///< a matrix node (not animatable: section 3.5.2)
+  glm::mat4 matrix{1.0f};
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
+  glm::vec3 scale{1.0f};
+  std::vector<float> weights;  ///< the morph weights at rest (the node's, else its mesh's)
+};
+
+/// glTF 2.0 section 3.7.3: joints (node indices) and their inverse bind matrices.
+struct Skin {
+  std::string name;
+  std::vector<int> joints;
+  std::vector<glm::mat4> inverse_bind;  ///< one per joint (identity when the file has none)
+};
+
+/// One morph target's displacements, per vertex of the mesh (empty when the target does
+/// not move that attribute).
+struct MorphTarget {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec3> tangents;
+};
+
+/// A mesh of the scene whose vertices move with the pose: skinned, or morphed by weights
+/// that an animation drives. It is its own geometry, never shared with another instance.
+struct DeformingMesh {
+  int mesh = -1;      ///< Scene::meshes index
+  int instance = -1;  ///< Scene::instances index of its only placement
+  int node = -1;      ///< the node that places it (its weights; its skin)
+  int skin = -1;      ///< SceneMotion::skins index, -1 when not skinned
+  // The vertices before any morph or skin (the attributes the loader read, per vertex of
+  // Scene::meshes[mesh]).
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec4> tangents;
+  std::vector<MorphTarget> targets;
+  /// Normals the loader generated flat (the file has none): recomputed from each pose's
+  /// triangles, as glTF 2.0 section 3.7.2.1 asks of a file without normals.
+  bool flat_normals = false;
+  /// Joint influences per vertex (every JOINTS_n / WEIGHTS_n set): `influences` entries
+  /// per vertex of indices into the skin's joints, and their weights, renormalised to sum
+  /// to 1 (section 3.7.3.1).
+  int influences = 0;
+  std::vector<std::uint16_t> joints;
+  std::vector<float> weights;
+};
+
+/// An instance placed by its node's world transform times `offset` (EXT_mesh_gpu_instancing's
+/// rows; identity for ordinary nodes).
+struct NodePlacement {
+  int instance = -1;
+  int node = -1;
+  glm::mat4 offset{1.0f};
+};
+
+struct SceneMotion {
+  std::vector<NodeRest> nodes;
+  std::vector<int> order;  ///< every posed node, parents before children
+  std::vector<Animation> animations;
+  std::vector<Skin> skins;
+  std::vector<DeformingMesh> deforming;
+  std::vector<NodePlacement> placements;  ///< instances that are not deforming meshes
+  std::vector<int> camera_nodes;          ///< per Scene::cameras entry, its node
+  std::vector<int> light_nodes;           ///< per Scene::lights entry, its node
+};
+
+/// Which animation at which time; `animation` -1 is the rest pose.
+struct PoseTime {
+  int animation = -1;
+  float time = 0.0f;
+};
+
+/// The index of the animation named `name_or_index` (its name, or its index as a number):
+/// Error listing the scene's animations when there is none such.
+int find_animation(const Scene& scene, std::string_view name_or_index);
+
+/// The nodes' world transforms at `pose` (SceneMotion::nodes' order).
+std::vector<glm::mat4> posed_node_transforms(const SceneMotion& motion, const PoseTime& pose);
+
+/// Poses `scene` (a no-op for a scene without motion). Throws pbrkit::Error for an
+/// animation index out of range, or a pose that is not finite (naming the node).
+void pose_scene(Scene& scene, const PoseTime& pose);
+
+}  // namespace pbrkit

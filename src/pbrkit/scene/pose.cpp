@@ -1,0 +1,234 @@
+// Posing a scene: node transforms from the animation's channels (glTF 2.0 section 3.11),
+// morph targets (section 3.7.2.2) and linear blend skinning (section 3.7.3).
+#include "pbrkit/scene/pose.h"
+
+#include <charconv>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "pbrkit/scene/scene.h"
+#include "pbrkit/util/error.h"
+
+namespace pbrkit {
+
+namespace {
+
+bool finite(const glm::mat4& m) {
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r)
+      if (!std::isfinite(m[c][r])) return false;
+  return true;
+}
+
+struct LocalPose {
+  glm::vec3 translation;
+  glm::quat rotation;
+  glm::vec3 scale;
+};
+
+std::string describe(const Scene& scene, const PoseTime& pose) {
+  if (pose.animation < 0) return "the rest pose";
+  const auto& a = scene.motion->animations[std::size_t(pose.animation)];
+  return fmt::format("animation {} ('{}') at {} s", pose.animation, a.name, pose.time);
+}
+
+// The nodes' posed morph weights (the rest weights unless a channel drives them).
+std::vector<std::vector<float>> posed_weights(const SceneMotion& motion, const PoseTime& pose) {
+  std::vector<std::vector<float>> weights(motion.nodes.size());
+  for (std::size_t i = 0; i < motion.nodes.size(); ++i) weights[i] = motion.nodes[i].weights;
+  if (pose.animation < 0) return weights;
+  const Animation& a = motion.animations[std::size_t(pose.animation)];
+  for (const AnimationChannel& ch : a.channels) {
+    if (ch.property != AnimatedProperty::kWeights) continue;
+    const AnimationSampler& s = a.samplers[std::size_t(ch.sampler)];
+    std::vector<float>& w = weights[std::size_t(ch.node)];
+    w.resize(std::size_t(s.width), 0.0f);
+    sample_animation(s, pose.time, false, w.data());
+  }
+  return weights;
+}
+
+// Rigid part of a node transform: glTF cameras ignore scale (section 3.10.1).
+glm::mat4 rigid(glm::mat4 m, const std::string& what) {
+  for (int axis = 0; axis < 3; ++axis) {
+    const float len = glm::length(glm::vec3(m[axis]));
+    if (!(len > 0.0f)) throw Error(fmt::format("{}: the camera's node has a zero scale", what));
+    m[axis] = glm::vec4(glm::vec3(m[axis]) / len, 0.0f);
+  }
+  return m;
+}
+
+void morph_and_skin(Scene& scene, const SceneMotion& motion, const DeformingMesh& d,
+                    const std::vector<float>& weights, const std::vector<glm::mat4>& world) {
+  Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+  const std::size_t n = d.positions.size();
+  mesh.positions = d.positions;
+  if (!d.flat_normals) mesh.normals = d.normals;
+  mesh.tangents = d.tangents;
+  // Morph targets: the weighted sum of displacements (section 3.7.2.2); TANGENT targets
+  // move xyz only, the handedness stays.
+  for (std::size_t t = 0; t < d.targets.size() && t < weights.size(); ++t) {
+    const float w = weights[t];
+    if (w == 0.0f) continue;
+    const MorphTarget& target = d.targets[t];
+    for (std::size_t i = 0; i < target.positions.size() && i < n; ++i)
+      mesh.positions[i] += w * target.positions[i];
+    if (!d.flat_normals)
+      for (std::size_t i = 0; i < target.normals.size() && i < mesh.normals.size(); ++i)
+        mesh.normals[i] += w * target.normals[i];
+    for (std::size_t i = 0; i < target.tangents.size() && i < mesh.tangents.size(); ++i)
+      mesh.tangents[i] += glm::vec4(w * target.tangents[i], 0.0f);
+  }
+  if (d.skin >= 0) {
+    // Linear blend skinning: the joint matrix of joint j is world(joint j) times its
+    // inverse bind matrix, and the skinned mesh's own node transform is ignored
+    // (section 3.7.3.1): the vertices come out in world space.
+    const Skin& skin = motion.skins[std::size_t(d.skin)];
+    std::vector<glm::mat4> joint(skin.joints.size());
+    for (std::size_t j = 0; j < joint.size(); ++j)
+      joint[j] = world[std::size_t(skin.joints[j])] * skin.inverse_bind[j];
+    const std::size_t k = std::size_t(d.influences);
+    for (std::size_t i = 0; i < n; ++i) {
+      glm::mat4 m(0.0f);
+      for (std::size_t c = 0; c < k; ++c) {
+        const float w = d.weights[i * k + c];
+        if (w != 0.0f) m += w * joint[d.joints[i * k + c]];
+      }
+      mesh.positions[i] = glm::vec3(m * glm::vec4(mesh.positions[i], 1.0f));
+      const glm::mat3 linear(m);
+      // Normals transform by the inverse transpose; tangents lie in the surface and
+      // transform by the matrix itself.
+      if (!d.flat_normals && i < mesh.normals.size())
+        mesh.normals[i] = glm::transpose(glm::inverse(linear)) * mesh.normals[i];
+      if (i < mesh.tangents.size())
+        mesh.tangents[i] = glm::vec4(linear * glm::vec3(mesh.tangents[i]), mesh.tangents[i].w);
+    }
+  }
+  for (glm::vec3& v : mesh.normals) {
+    const float len = glm::length(v);
+    v = len > 0.0f && std::isfinite(len) ? v / len : glm::vec3(0, 0, 1);
+  }
+  for (glm::vec4& v : mesh.tangents) {
+    const float len = glm::length(glm::vec3(v));
+    v = len > 0.0f && std::isfinite(len) ? glm::vec4(glm::vec3(v) / len, v.w)
+                                         : glm::vec4(1, 0, 0, v.w);
+  }
+  if (d.flat_normals) {
+    // The loader unwelded the triangles (one vertex per corner): each gets its face's normal.
+    mesh.normals.assign(n, glm::vec3(0, 0, 1));
+    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+      const glm::vec3 f =
+          glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+      const float len = glm::length(f);
+      const glm::vec3 unit = len > 0.0f && std::isfinite(len) ? f / len : glm::vec3(0, 0, 1);
+      mesh.normals[a] = mesh.normals[b] = mesh.normals[c] = unit;
+    }
+  }
+}
+
+}  // namespace
+
+int find_animation(const Scene& scene, std::string_view name_or_index) {
+  const std::size_t count = scene.motion ? scene.motion->animations.size() : 0;
+  if (count == 0)
+    throw Error(fmt::format("{} has no animations (asked for '{}')", scene.source, name_or_index));
+  for (std::size_t i = 0; i < count; ++i)
+    if (scene.motion->animations[i].name == name_or_index) return int(i);
+  int index = -1;
+  const char* end = name_or_index.data() + name_or_index.size();
+  if (const auto r = std::from_chars(name_or_index.data(), end, index);
+      r.ec == std::errc() && r.ptr == end && index >= 0 && std::size_t(index) < count)
+    return index;
+  std::string list;
+  for (std::size_t i = 0; i < count; ++i)
+    list += fmt::format("{}{} '{}' ({:.3g} to {:.3g} s)", i ? ", " : "", i,
+                        scene.motion->animations[i].name, scene.motion->animations[i].start(),
+                        scene.motion->animations[i].end());
+  throw Error(
+      fmt::format("{} has no animation '{}'; it has: {}", scene.source, name_or_index, list));
+}
+
+std::vector<glm::mat4> posed_node_transforms(const SceneMotion& motion, const PoseTime& pose) {
+  const std::size_t count = motion.nodes.size();
+  std::vector<LocalPose> local(count);
+  for (std::size_t i = 0; i < count; ++i)
+    local[i] = {motion.nodes[i].translation, motion.nodes[i].rotation, motion.nodes[i].scale};
+  if (pose.animation >= 0) {
+    const Animation& a = motion.animations[std::size_t(pose.animation)];
+    for (const AnimationChannel& ch : a.channels) {
+      const AnimationSampler& s = a.samplers[std::size_t(ch.sampler)];
+      LocalPose& l = local[std::size_t(ch.node)];
+      float v[4];
+      switch (ch.property) {
+        case AnimatedProperty::kTranslation:
+          sample_animation(s, pose.time, false, v);
+          l.translation = {v[0], v[1], v[2]};
+          break;
+        case AnimatedProperty::kRotation:
+          sample_animation(s, pose.time, true, v);
+          l.rotation = glm::quat(v[3], v[0], v[1], v[2]);
+          break;
+        case AnimatedProperty::kScale:
+          sample_animation(s, pose.time, false, v);
+          l.scale = {v[0], v[1], v[2]};
+          break;
+        case AnimatedProperty::kWeights:
+          break;  // posed_weights()
+      }
+    }
+  }
+  std::vector<glm::mat4> world(count, glm::mat4(1.0f));
+  for (const int node : motion.order) {
+    const NodeRest& rest = motion.nodes[std::size_t(node)];
+    const LocalPose& l = local[std::size_t(node)];
+    const glm::mat4 m = rest.has_matrix
+                            ? rest.matrix
+                            : glm::translate(glm::mat4(1.0f), l.translation) *
+                                  glm::mat4_cast(l.rotation) * glm::scale(glm::mat4(1.0f), l.scale);
+    world[std::size_t(node)] = rest.parent >= 0 ? world[std::size_t(rest.parent)] * m : m;
+  }
+  return world;
+}
+
+void pose_scene(Scene& scene, const PoseTime& pose) {
+  if (!scene.motion) {
+    if (pose.animation >= 0) throw Error(fmt::format("{} has no animations", scene.source));
+    return;
+  }
+  const SceneMotion& motion = *scene.motion;
+  if (pose.animation >= int(motion.animations.size()))
+    throw Error(fmt::format("{}: animation {} does not exist ({} animations)", scene.source,
+                            pose.animation, motion.animations.size()));
+  if (!std::isfinite(pose.time))
+    throw Error(fmt::format("{}: the animation time is not finite", scene.source));
+  const std::vector<glm::mat4> world = posed_node_transforms(motion, pose);
+  for (const int node : motion.order)
+    if (!finite(world[std::size_t(node)]))
+      throw Error(fmt::format("{}: {} gives nodes[{}] a transform that is not finite", scene.source,
+                              describe(scene, pose), node));
+  for (const NodePlacement& p : motion.placements)
+    scene.instances[std::size_t(p.instance)].transform = world[std::size_t(p.node)] * p.offset;
+  for (std::size_t i = 0; i < motion.camera_nodes.size() && i < scene.cameras.size(); ++i)
+    scene.cameras[i].camera_to_world =
+        rigid(world[std::size_t(motion.camera_nodes[i])],
+              fmt::format("{}: {}, nodes[{}]", scene.source, describe(scene, pose),
+                          motion.camera_nodes[i]));
+  for (std::size_t i = 0; i < motion.light_nodes.size() && i < scene.lights.size(); ++i) {
+    const glm::mat4& m = world[std::size_t(motion.light_nodes[i])];
+    Light& l = scene.lights[i];
+    l.position = glm::vec3(m[3]);
+    const glm::vec3 d = glm::vec3(m * glm::vec4(0, 0, -1, 0));  // lights shine along -Z
+    l.direction = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0, 0, -1);
+  }
+  const std::vector<std::vector<float>> weights = posed_weights(motion, pose);
+  for (const DeformingMesh& d : motion.deforming) {
+    morph_and_skin(scene, motion, d, weights[std::size_t(d.node)], world);
+    scene.instances[std::size_t(d.instance)].transform =
+        d.skin >= 0 ? glm::mat4(1.0f) : world[std::size_t(d.node)];
+  }
+}
+
+}  // namespace pbrkit
