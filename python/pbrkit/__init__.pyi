@@ -49,6 +49,11 @@ class Scene:
     def instance_count(self) -> int: ...
     @property
     def warnings(self) -> list[str]: ...
+    @property
+    def variants(self) -> list[str]:
+        """The material variants' names (KHR_materials_variants), in the file's order;
+        render(variant=) takes a name or an index."""
+        ...
 
 def builtin_scenes() -> list[str]: ...
 def load(path_or_builtin_name: StrPath) -> Scene: ...
@@ -68,6 +73,7 @@ def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path
            threads: int | None = None, denoise: bool | None = None,
            denoiser: Literal["learned", "classic"] | None = None, aovs: None = None,
            light_sampler: Literal["bvh", "power"] | None = None,
+           variant: Union[str, int, None] = None,
            progress: Progress | None = None) -> FloatArray: ...
 @overload
 def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path", *,
@@ -81,6 +87,7 @@ def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path
            denoiser: Literal["learned", "classic"] | None = None,
            aovs: Union[str, Sequence[str]] = ...,
            light_sampler: Literal["bvh", "power"] | None = None,
+           variant: Union[str, int, None] = None,
            progress: Progress | None = None) -> Tuple[FloatArray, dict[str, FloatArray]]: ...
 
 def denoise(color: Tuple[FloatArray, FloatArray], albedo: Tuple[FloatArray, FloatArray],

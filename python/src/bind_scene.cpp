@@ -156,6 +156,10 @@ void bind_scene(py::module_& m) {
       .def_property_readonly("instance_count",
                              [](const SceneHandle& s) { return s.scene->instances.size(); })
       .def_property_readonly("warnings", [](const SceneHandle& s) { return s.scene->warnings; })
+      .def_property_readonly(
+          "variants", [](const SceneHandle& s) { return s.scene->variants; },
+          "The material variants' names (KHR_materials_variants), in the file's order; "
+          "render(variant=) takes a name or an index.")
       .def("__repr__", [](const SceneHandle& s) {
         return "<pbrkit.Scene " + s.scene->source + ": " +
                std::to_string(s.scene->triangle_count()) + " triangles, " +

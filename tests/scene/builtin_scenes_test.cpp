@@ -560,6 +560,144 @@ TEST(BuiltinScenes, LightsIsAClosedRoomWithManyVariedEmitters) {
   EXPECT_EQ(loaded.triangle_count(), s.triangle_count());
 }
 
+// The nearest hit of the ray o + s d (s > 0) on the instances whose mesh `counts`, or
+// infinity; Moller-Trumbore with the triangle's edges included, so that a ray through an
+// edge or a corner that two meshes share hits.
+template <class Counts>
+float nearest_hit(const Scene& s, glm::vec3 o, glm::vec3 d, Counts counts) {
+  float nearest = std::numeric_limits<float>::infinity();
+  for (const Instance& inst : s.instances) {
+    const Mesh& mesh = s.meshes[std::size_t(inst.mesh)];
+    if (!counts(mesh)) continue;
+    for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
+      glm::vec3 p[3];
+      for (int k = 0; k < 3; ++k)
+        p[k] = glm::vec3(inst.transform * glm::vec4(mesh.positions[mesh.indices[t + k]], 1.0f));
+      const glm::vec3 e1 = p[1] - p[0], e2 = p[2] - p[0], q = glm::cross(d, e2);
+      const float det = glm::dot(e1, q);
+      if (std::fabs(det) < 1e-12f) continue;
+      const glm::vec3 r = o - p[0];
+      const float u = glm::dot(r, q) / det;
+      const glm::vec3 m = glm::cross(r, e1);
+      const float v = glm::dot(d, m) / det, dist = glm::dot(e2, m) / det;
+      constexpr float kEdge = 1e-5f;
+      if (u >= -kEdge && v >= -kEdge && u + v <= 1.0f + kEdge && dist > 1e-6f)
+        nearest = std::min(nearest, dist);
+    }
+  }
+  return nearest;
+}
+
+TEST(BuiltinScenes, InteriorIsAClosedRoomLitThroughItsWindow) {
+  const Scene s = load_scene("interior");
+  EXPECT_EQ(s.source, "builtin:interior");
+  EXPECT_TRUE(s.warnings.empty());
+  // The room inside: x in [-2, 2], y in [0, 3], z in [-2.5, 2.5]; the window in the +Z
+  // wall, x in [-0.2, 1], y in [0.9, 2.3].
+  auto inside = [](glm::vec3 p) {
+    return std::fabs(p.x) < 2.0f && p.y > 0.0f && p.y < 3.0f && std::fabs(p.z) < 2.5f;
+  };
+  auto in_window = [](glm::vec3 p) {
+    return p.x > -0.2f && p.x < 1.0f && p.y > 0.9f && p.y < 2.3f;
+  };
+  auto is_shell = [](const Mesh& mesh) {
+    for (const char* name : {"floor", "ceiling", "wall", "window"})
+      if (mesh.name.find(name) != std::string::npos) return true;
+    return false;
+  };
+  auto all = [](const Mesh&) { return true; };
+
+  // Watertight: from points all over the room, rays in every direction, and rays to each
+  // inside corner and the middle of each inside edge (where walls meet), leave only
+  // through the window.
+  std::vector<glm::vec3> origins;
+  for (const float x : {-1.9f, -0.5f, 0.7f, 1.9f})
+    for (const float y : {0.05f, 1.5f, 2.95f})
+      for (const float z : {-2.4f, 0.0f, 2.4f}) origins.push_back({x, y, z});
+  std::vector<glm::vec3> directions;
+  constexpr int kDirections = 400;
+  for (int k = 0; k < kDirections; ++k) {  // a Fibonacci sphere
+    const float z = 1.0f - 2.0f * (float(k) + 0.5f) / float(kDirections);
+    const float phi = 2.39996323f * float(k), r = std::sqrt(1.0f - z * z);
+    directions.push_back({r * std::cos(phi), r * std::sin(phi), z});
+  }
+  int escaped = 0;
+  for (const glm::vec3& o : origins) {
+    std::vector<glm::vec3> dirs = directions;
+    for (const float x : {-2.0f, 0.0f, 2.0f})
+      for (const float y : {0.0f, 1.5f, 3.0f})
+        for (const float z : {-2.5f, 0.0f, 2.5f})
+          if ((std::fabs(x) == 2.0f) + (y != 1.5f) + (std::fabs(z) == 2.5f) >= 2)
+            dirs.push_back(glm::normalize(glm::vec3(x, y, z) - o));
+    for (const glm::vec3& d : dirs) {
+      if (std::isfinite(nearest_hit(s, o, d, is_shell))) continue;
+      ++escaped;
+      // Out through the opening in the plane z = 2.5.
+      ASSERT_GT(d.z, 0.0f) << o.x << " " << o.y << " " << o.z;
+      const glm::vec3 at = o + (2.5f - o.z) / d.z * d;
+      EXPECT_TRUE(in_window(at)) << at.x << " " << at.y << " from " << o.x << " " << o.y << " "
+                                 << o.z;
+    }
+  }
+  EXPECT_GT(escaped, 0);
+
+  // The sun: one directional light, steep, through the window onto the floor, where
+  // nothing stands between the patch and the window.
+  ASSERT_EQ(s.lights.size(), 1u);
+  const Light& sun = s.lights[0];
+  EXPECT_EQ(sun.type, Light::Type::kDirectional);
+  const glm::vec3 d = glm::normalize(sun.direction);
+  EXPECT_LT(d.y, -std::sin(glm::radians(45.0f)));
+  const glm::vec3 window_centre(0.4f, 1.6f, 2.6f);
+  const float to_floor = nearest_hit(s, window_centre, d, all);
+  ASSERT_TRUE(std::isfinite(to_floor));
+  const glm::vec3 patch = window_centre + to_floor * d;
+  EXPECT_NEAR(patch.y, 0.0f, 1e-5f);
+  EXPECT_TRUE(inside(patch + glm::vec3(0.0f, 0.01f, 0.0f)));
+  EXPECT_FALSE(std::isfinite(nearest_hit(s, patch + glm::vec3(0.0f, 1e-3f, 0.0f), -d, all)));
+
+  // The camera stands in the room, faces away from the window, and sees the room but not
+  // the sunlit patch: what it sees is lit by bounced light.
+  const Camera& camera = s.cameras.at(0);
+  EXPECT_TRUE(inside(camera.position()));
+  EXPECT_LT(camera.forward().z, -0.8f);
+  const glm::vec4 patch_view = view_matrix(camera) * glm::vec4(patch, 1.0f);
+  const glm::vec2 patch_ndc = project(camera, patch);
+  EXPECT_TRUE(patch_view.z > 0.0f || std::fabs(patch_ndc.x) > 1.0f || std::fabs(patch_ndc.y) > 1.0f)
+      << patch_ndc.x << " " << patch_ndc.y;
+
+  // The materials the scene is for, each on an object the camera sees.
+  auto seen = [&](const std::string& name) {
+    for (const Instance& inst : s.instances) {
+      const Mesh& mesh = s.meshes[std::size_t(inst.mesh)];
+      if (mesh.name != name) continue;
+      Bounds b;
+      for (const glm::vec3& p : mesh.positions) b.extend(p);
+      const glm::vec2 ndc = project(camera, glm::vec3(inst.transform * glm::vec4(b.center(), 1)));
+      return std::fabs(ndc.x) < 1.0f && std::fabs(ndc.y) < 1.0f;
+    }
+    return false;
+  };
+  const Material& floor = named(s, "floor");
+  EXPECT_EQ(floor.metallic_factor, 0.0f);
+  EXPECT_NEAR(floor.roughness_factor, 0.15f, 1e-6f);
+  const Material& metal = named(s, "copper");
+  EXPECT_EQ(metal.metallic_factor, 1.0f);
+  EXPECT_NEAR(metal.roughness_factor, 0.35f, 1e-6f);
+  EXPECT_TRUE(seen("metal_sphere"));
+  const Material& glass = named(s, "glass");
+  ASSERT_TRUE(glass.transmission && glass.volume);
+  EXPECT_EQ(glass.transmission->factor, 1.0f);
+  EXPECT_FALSE(glass.double_sided);  // glTF-Validator: KHR_MATERIALS_VOLUME_DOUBLE_SIDED
+  for (const Mesh& mesh : s.meshes)
+    if (&s.material_of(mesh) == &glass) {
+      EXPECT_TRUE(count_edges(mesh).closed()) << mesh.name;
+      EXPECT_TRUE(seen(mesh.name));
+    }
+  EXPECT_TRUE(seen("table_top"));
+  EXPECT_TRUE(seen("cabinet"));
+}
+
 TEST(BuiltinScenes, UnknownNameListsTheKnownOnes) {
   try {
     builtin_scene("teapot");

@@ -46,8 +46,9 @@ Material base_material(glm::vec3 color, float metallic, float roughness) {
 }  // namespace builtin
 
 std::vector<std::string> builtin_scene_names() {
-  return {"spheres",  "furnace", "cornell", "clearcoat", "sheen",  "anisotropy", "iridescence",
-          "specular", "ior",     "unlit",   "glass",     "liquid", "instances",  "lights"};
+  return {"spheres",    "furnace",     "cornell",   "clearcoat", "sheen",
+          "anisotropy", "iridescence", "specular",  "ior",       "unlit",
+          "glass",      "liquid",      "instances", "lights",    "interior"};
 }
 
 bool is_builtin_scene(const std::string& name) {
@@ -70,6 +71,7 @@ Scene builtin_scene(const std::string& name) {
   if (name == "liquid") return builtin::make_liquid();
   if (name == "instances") return builtin::make_instances();
   if (name == "lights") return builtin::make_lights();
+  if (name == "interior") return builtin::make_interior();
   std::string known;
   for (const std::string& n : builtin_scene_names()) known += (known.empty() ? "" : ", ") + n;
   fail("unknown built-in scene '{}' (known: {})", name, known);

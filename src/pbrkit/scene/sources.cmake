@@ -4,6 +4,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/builtin/classic.cpp
   ${CMAKE_CURRENT_LIST_DIR}/builtin/extension_rows.cpp
   ${CMAKE_CURRENT_LIST_DIR}/builtin/instances.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/builtin/interior.cpp
   ${CMAKE_CURRENT_LIST_DIR}/builtin/lights.cpp
   ${CMAKE_CURRENT_LIST_DIR}/builtin/transmission.cpp
   ${CMAKE_CURRENT_LIST_DIR}/builtin_scenes.cpp

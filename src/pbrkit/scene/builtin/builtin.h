@@ -47,4 +47,7 @@ Scene make_instances();
 // The room of many lights (builtin/lights.cpp).
 Scene make_lights();
 
+// The sunlit room seen from inside (builtin/interior.cpp).
+Scene make_interior();
+
 }  // namespace pbrkit::builtin
