@@ -15,7 +15,9 @@
 #include "commands.h"
 #include "pbrkit/scene/load.h"
 #include "pbrkit/scene/material_schema.h"
+#include "pbrkit/scene/pose.h"
 #include "pbrkit/scene/variants.h"
+#include "pbrkit/util/error.h"
 
 namespace pbrkit::cli {
 
@@ -24,7 +26,15 @@ namespace {
 struct InfoOptions {
   std::string input;
   bool json = false;
+  std::string animation;  ///< pose by this animation first (the bounds are the pose's)
+  float animation_time = 0.0f;
 };
+
+const char* interpolation_name(Interpolation i) {
+  return i == Interpolation::kStep     ? "STEP"
+         : i == Interpolation::kLinear ? "LINEAR"
+                                       : "CUBICSPLINE";
+}
 
 const char* light_type(Light::Type t) {
   return t == Light::Type::kPoint ? "point" : t == Light::Type::kSpot ? "spot" : "directional";
@@ -122,11 +132,18 @@ struct SceneSummary {
   std::vector<std::string> unsupported;  // extensions used that the loader ignores
 };
 
-SceneSummary summarise(const std::string& input) {
+SceneSummary summarise(const InfoOptions& opt) {
   SceneSummary s;
   const auto start = std::chrono::steady_clock::now();
-  s.scene = load_scene(input);
+  s.scene = load_scene(opt.input);
   s.load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!opt.animation.empty()) {
+    try {
+      pose_scene(s.scene, {find_animation(s.scene, opt.animation), opt.animation_time});
+    } catch (const Error& e) {
+      fail("--animation: {}", e.what());
+    }
+  }
   const Scene& scene = s.scene;
   for (const Mesh& m : scene.meshes) {
     s.unique_triangles += m.triangle_count();
@@ -188,6 +205,21 @@ nlohmann::json summary_json(const SceneSummary& s) {
   for (std::size_t i = 0; i < scene.variants.size(); ++i)
     j["variants"].push_back(
         {{"name", scene.variants[i]}, {"meshes", variant_mesh_count(scene, int(i))}});
+  // Animations (glTF 2.0 section 3.11) and skins: what `render --animation` can pose.
+  j["animations"] = nlohmann::json::array();
+  j["skins"] = scene.motion ? scene.motion->skins.size() : 0;
+  if (scene.motion)
+    for (const Animation& a : scene.motion->animations) {
+      nlohmann::json interpolations = nlohmann::json::array();
+      for (const AnimationSampler& sampler : a.samplers)
+        if (!sampler.times.empty())
+          interpolations.push_back(interpolation_name(sampler.interpolation));
+      j["animations"].push_back({{"name", a.name},
+                                 {"start", a.start()},
+                                 {"end", a.end()},
+                                 {"channels", a.channels.size()},
+                                 {"interpolations", interpolations}});
+    }
   j["textures"] = nlohmann::json::array();
   for (const Texture& t : scene.textures)
     j["textures"].push_back({{"name", t.name},
@@ -264,6 +296,17 @@ void print_summary(const SceneSummary& s) {
                   fmt::format("'{}'", scene.variants[i]).c_str(), meshes, meshes == 1 ? "" : "es");
     }
   }
+  if (scene.motion) {
+    const SceneMotion& m = *scene.motion;
+    std::printf("  animations   %zu (pbrkit render --animation NAME|INDEX --animation-time S)\n",
+                m.animations.size());
+    for (std::size_t i = 0; i < m.animations.size(); ++i)
+      std::printf("    %zu %-28s %g to %g s, %zu channels\n", i,
+                  fmt::format("'{}'", m.animations[i].name).c_str(), m.animations[i].start(),
+                  m.animations[i].end(), m.animations[i].channels.size());
+    std::printf("  skins        %zu; %zu meshes deform (skinned or morphed)\n", m.skins.size(),
+                m.deforming.size());
+  }
   std::printf("  textures     %zu\n", scene.textures.size());
   for (const Texture& t : scene.textures)
     std::printf("    %-30s %5d x %-5d %s, %zu mips, %zu bytes\n", t.name.c_str(), t.width(),
@@ -295,7 +338,7 @@ void print_summary(const SceneSummary& s) {
 }
 
 void run_info(const InfoOptions& opt) {
-  const SceneSummary s = summarise(opt.input);
+  const SceneSummary s = summarise(opt);
   if (opt.json)
     std::printf("%s\n", summary_json(s).dump(2).c_str());
   else
@@ -310,6 +353,12 @@ void register_info_command(CLI::App& app) {
       "info", "Summarise a glTF file (.gltf/.glb) or a built-in scene (`pbrkit scene list`)");
   cmd->add_option("input", opt->input, "glTF file or built-in scene name")->required();
   cmd->add_flag("--json", opt->json, "Print the summary as JSON");
+  auto* animation = cmd->add_option(
+      "--animation", opt->animation,
+      "pose the scene by this animation (name or index) first: the bounds are the pose's");
+  cmd->add_option("--animation-time", opt->animation_time, "the time in the animation, seconds")
+      ->needs(animation)
+      ->capture_default_str();
   cmd->callback([opt] { run_info(*opt); });
 }
 

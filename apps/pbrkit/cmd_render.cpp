@@ -1,11 +1,14 @@
 // pbrkit render: one command, two renderers (--renderer path|gl) over one scene, camera,
 // environment and display transform.
+#include <charconv>
 #include <cmath>
 #include <filesystem>
+#include <vector>
 
 #include "commands.h"
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/color.h"
+#include "pbrkit/scene/pose.h"
 #include "pbrkit/scene/variants.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -22,8 +25,73 @@ Scene load_render_scene(const RenderCommandOptions& o) {
       fail("--variant: {}", e.what());
     }
   }
+  const std::size_t animations = scene.motion ? scene.motion->animations.size() : 0;
+  if (o.animation.empty()) {
+    if (animations > 0)
+      note(
+          "{}: {} animation(s); showing the rest pose (--animation NAME|INDEX and "
+          "--animation-time SECONDS pose it; `pbrkit info` lists them)",
+          scene.source, animations);
+    return scene;
+  }
+  try {
+    pose_scene(scene, {find_animation(scene, o.animation), o.animation_time});
+  } catch (const Error& e) {
+    fail("--animation: {}", e.what());
+  }
   return scene;
 }
+
+namespace {
+
+struct FrameRange {
+  int first = 0, last = 0, step = 1;
+};
+
+// START:END[:STEP], END included (as Blender's frame range).
+FrameRange parse_frames(const std::string& text) {
+  std::vector<int> parts;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t colon = text.find(':', begin);
+    const std::string part = text.substr(begin, colon - begin);
+    int value = 0;
+    const auto r = std::from_chars(part.data(), part.data() + part.size(), value);
+    if (part.empty() || r.ec != std::errc() || r.ptr != part.data() + part.size())
+      fail("--frames {}: expected START:END or START:END:STEP (whole frame numbers)", text);
+    parts.push_back(value);
+    if (colon == std::string::npos) break;
+    begin = colon + 1;
+  }
+  if (parts.size() < 2 || parts.size() > 3)
+    fail("--frames {}: expected START:END or START:END:STEP (whole frame numbers)", text);
+  const FrameRange r{parts[0], parts[1], parts.size() == 3 ? parts[2] : 1};
+  if (r.first < 0 || r.last < r.first || r.step < 1)
+    fail("--frames {}: needs 0 <= START <= END and STEP >= 1", text);
+  if (r.last > 999999) fail("--frames {}: frame numbers above 999999", text);
+  return r;
+}
+
+void render_frames(const RenderCommandOptions& o, const RenderRunner& run) {
+  Scene scene = load_render_scene(o);
+  if (o.frames.empty()) return run(o, scene);
+  const FrameRange range = parse_frames(o.frames);
+  if (o.animation.empty())
+    fail("--frames {}: needs --animation (which animation the frames play)", o.frames);
+  const int animation = find_animation(scene, o.animation);
+  const int count = (range.last - range.first) / range.step + 1;
+  int done = 0;
+  for (int f = range.first; f <= range.last; f += range.step) {
+    RenderCommandOptions frame = o;
+    frame.animation_time = float(f) / o.fps;
+    frame.outputs = frame_output_paths(o.outputs, f);
+    note("frame {} ({} of {}), t = {:.4g} s", f, ++done, count, frame.animation_time);
+    pose_scene(scene, {animation, frame.animation_time});
+    run(frame, scene);
+  }
+}
+
+}  // namespace
 
 RenderView select_render_view(const Scene& scene, const RenderCommandOptions& o) {
   const RenderView view = select_view(scene, o.camera, o.width, o.height);
@@ -75,6 +143,23 @@ void register_render_command(CLI::App& app) {
   cmd->add_option("--variant", options->variant,
                   "a material variant of the file (KHR_materials_variants), by name or index "
                   "(`pbrkit info` lists them); default: none, each primitive's own material");
+  auto* animation = cmd->add_option(
+      "--animation", options->animation,
+      "pose the scene by this glTF animation, by name or index (`pbrkit info` lists them); "
+      "default: the rest pose");
+  cmd->add_option("--animation-time", options->animation_time,
+                  "the time in the animation, in seconds (clamped to its keys)")
+      ->needs(animation)
+      ->capture_default_str();
+  auto* frames = cmd->add_option(
+      "--frames", options->frames,
+      "render frames START:END[:STEP] of --animation (END included; frame f at time f/fps) "
+      "from one scene load, as a numbered sequence: <output>_0001.png/.exr, ...");
+  frames->needs(animation);
+  cmd->add_option("--fps", options->fps, "frames per second of --frames")
+      ->needs(frames)
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--width", options->width,
                   "image width in pixels (default: 512 along the longer side at the camera's "
                   "aspect ratio; with only --height, from the aspect ratio)")
@@ -134,7 +219,7 @@ void register_render_command(CLI::App& app) {
     }
     o.outputs = image_output_paths(o.output, "-o");
     create_output_directory(o.outputs);
-    (*renderer == "path" ? path : gl)(o);
+    render_frames(o, *renderer == "path" ? path : gl);
   });
 }
 

@@ -105,7 +105,7 @@ RenderRunner add_gl_render_options(CLI::App& render) {
       ->capture_default_str()
       ->group(group);
 
-  return [g](const RenderCommandOptions& o) {
+  return [g](const RenderCommandOptions& o, const Scene& scene) {
     const auto t_start = Clock::now();
     gl::RenderSettings settings;
     const BrdfModel model = parse_brdf_model(o.model);
@@ -127,7 +127,6 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     const bool raw = settings.debug_channel != gl::DebugChannel::kNone;
     const ToneMapper tone_mapper = raw ? ToneMapper::kNone : parse_tone_mapper(o.tonemap);
 
-    const Scene scene = load_render_scene(o);
     std::optional<Environment> env;
     if (!o.no_env) env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
     std::optional<BakeOptions> bake;

@@ -205,9 +205,8 @@ RenderRunner add_path_render_options(CLI::App& render) {
       ->capture_default_str()
       ->group(group);
 
-  return [p, noise_threshold_option](const RenderCommandOptions& o) {
+  return [p, noise_threshold_option](const RenderCommandOptions& o, const Scene& scene) {
     const PathOptions& po = *p;
-    const Scene scene = load_render_scene(o);
     std::optional<Environment> env;
     if (!o.no_env) env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
     const RenderView view = select_render_view(scene, o);

@@ -32,6 +32,13 @@ struct RenderCommandOptions {
   std::optional<bool> exr_float;
   /// --variant: a KHR_materials_variants name or index; empty: each primitive's own material.
   std::string variant;
+  /// --animation: a glTF animation by name or index; empty: the rest pose.
+  std::string animation;
+  float animation_time = 0.0f;  ///< --animation-time, seconds
+  /// --frames START:END[:STEP] (frames numbered from 0 at time 0, END included) at --fps:
+  /// a numbered image sequence from one scene load; empty: one image.
+  std::string frames;
+  float fps = 24.0f;
   std::string output;        ///< -o: a .png or .exr path (or empty: out/<scene>_<renderer>.png)
   ImageOutputPaths outputs;  ///< resolved from `output` before rendering
 };
@@ -43,15 +50,17 @@ struct RenderCommandOptions {
 inline constexpr const char* kPathOptionsGroup = "Path tracer (--renderer path only)";
 inline constexpr const char* kGlOptionsGroup = "OpenGL renderer (--renderer gl only)";
 
-/// Called once the command line is parsed; renders and writes the outputs.
-using RenderRunner = std::function<void(const RenderCommandOptions&)>;
+/// Called once the command line is parsed and the scene loaded and posed; renders it and
+/// writes the outputs (once per frame of a sequence, on the same scene posed anew).
+using RenderRunner = std::function<void(const RenderCommandOptions&, const Scene&)>;
 
 /// Each renderer adds its own options to `render` (in its own option group) and returns
 /// the function that runs it.
 RenderRunner add_path_render_options(CLI::App& render);
 RenderRunner add_gl_render_options(CLI::App& render);
 
-/// The scene of a render, loaded with a progress bar, the --variant applied.
+/// The scene of a render, loaded with a progress bar, the --variant applied, posed at
+/// --animation-time of --animation (or at rest, with a note when the file animates).
 Scene load_render_scene(const RenderCommandOptions& o);
 
 /// The camera and image size of a render (scene/camera.h select_view), with a note when

@@ -21,6 +21,11 @@ struct ImageOutputPaths {
 /// the name before it does any work.
 ImageOutputPaths image_output_paths(const std::string& path, std::string_view what);
 
+/// The files of frame `frame` of a sequence written to `base`: the frame number, four
+/// digits at least, before the extension ("out/x.png" -> "out/x_0007.png"), the numbering
+/// Blender and ffmpeg read as an image sequence.
+ImageOutputPaths frame_output_paths(const ImageOutputPaths& base, int frame);
+
 /// Creates the directory the outputs go into (nothing for a bare file name).
 void create_output_directory(const ImageOutputPaths& outputs);
 

@@ -4,6 +4,8 @@
 #include <cctype>
 #include <filesystem>
 
+#include <fmt/format.h>
+
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {
@@ -19,6 +21,15 @@ ImageOutputPaths image_output_paths(const std::string& path, std::string_view wh
   const bool png = ext == ".png";
   const std::string other = fs::path(path).replace_extension(png ? ".exr" : ".png").string();
   return png ? ImageOutputPaths{path, other} : ImageOutputPaths{other, path};
+}
+
+ImageOutputPaths frame_output_paths(const ImageOutputPaths& base, int frame) {
+  auto numbered = [frame](const std::string& path) {
+    std::filesystem::path p(path);
+    const std::string ext = p.extension().string();
+    return p.replace_filename(p.stem().string() + fmt::format("_{:04d}", frame) + ext).string();
+  };
+  return {numbered(base.png), numbered(base.exr)};
 }
 
 void create_output_directory(const ImageOutputPaths& outputs) {
