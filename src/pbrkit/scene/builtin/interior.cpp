@@ -15,16 +15,17 @@ namespace pbrkit::builtin {
 // that almost all it sees is lit by light that has bounced at least once: a test of
 // indirect light (a renderer without global illumination shows a dark room).
 //
-// The shell is boxes 0.2 m thick that overlap at every edge and corner: a ray can leave
-// the room only through the window, where single-sided quads would let it slip between
-// two walls' edges (and the sun in) by rounding.
+// The shell is boxes 0.2 m thick that overlap at every edge and corner, so a ray can leave
+// the room only through the window: where single-sided quads meet at an edge, whether a
+// ray through the edge hits either is a matter of rounding, and the sun would leak in.
 //
 // The environment (a built-in scene cannot name one: the render command's default, or
 // --env) is seen and lets light in only through the window. The sun's 100 lux are about
 // ten times the default environment's (data/env/city.exr) illuminance on a horizontal
 // plane (about 9.3), the ratio on a clear day of the direct sun (100,000 lux at normal
-// incidence) to the sky's light (10,000 lux on the ground): what a camera exposed for the
-// sky outside sees of the room at --exposure 0, about 0.2 to 0.5 in linear radiance.
+// incidence) to the sky's light (10,000 lux on the ground). The albedos are a light room's,
+// so that what the camera sees averages about 0.16 in linear radiance, near middle grey:
+// --exposure 0 shows the room as it is (there is no per-scene exposure).
 Scene make_interior() {
   Scene scene;
   scene.source = "builtin:interior";
