@@ -14,6 +14,7 @@
 #include "pbrkit/scene/variants.h"
 #include "pbrkit/util/error.h"
 #include "scene/gltf_builder.h"
+#include "support/test_paths.h"
 
 namespace pbrkit {
 namespace {
@@ -137,6 +138,24 @@ TEST(MaterialVariants, AVariantThatSplitsAVolumesShellChangesItsClosure) {
   EXPECT_FALSE(s.meshes[1].closed);
   apply_variant(s, -1);
   EXPECT_TRUE(s.meshes[1].closed);
+}
+
+TEST(MaterialVariants, TheWriterKeepsVariantsAndEachPrimitivesOwnMaterial) {
+  VariantsFile f;
+  Scene s = load_scene(f.b.write("variants_to_write.glb").string());
+  apply_variant(s, 1);  // written as the file had it, whichever variant is on
+  const auto path = test::scratch_dir() / "variants_written.glb";
+  write_glb(s, path, {.flatten_instances = true});
+  EXPECT_EQ(test::validate_gltf(path), "");
+  Scene back = load_scene(path.string());
+  EXPECT_EQ(back.variants, s.variants);
+  ASSERT_EQ(back.meshes.size(), 3u);
+  EXPECT_EQ(materials(back), (std::vector<int>{0, 0, 2}));
+  for (const int v : {0, 1}) {
+    apply_variant(s, v);
+    apply_variant(back, v);
+    EXPECT_EQ(materials(back), materials(s)) << v;
+  }
 }
 
 std::string load_error(const std::filesystem::path& path) {

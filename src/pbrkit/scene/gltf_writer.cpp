@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <sstream>
 #include <vector>
@@ -254,10 +255,32 @@ void Writer::add_material(const Material& material) {
   model_.materials.push_back(g);
 }
 
+// KHR_materials_variants (README, "Mappings"): each material a primitive takes under some
+// variant, with the variants that choose it; null when no variant changes its material
+// (entries that only change the closure are decided again when the file loads).
+std::optional<tinygltf::Value> variant_mappings(const Mesh& m) {
+  std::map<int, tinygltf::Value::Array> variants;  // material -> the variants choosing it
+  for (const VariantMaterial& v : m.variant_materials)
+    if (v.variant >= 0 && v.material >= 0 && v.material != m.variant_materials.front().material)
+      variants[v.material].push_back(tinygltf::Value(v.variant));
+  if (variants.empty()) return std::nullopt;
+  tinygltf::Value::Array mappings;
+  for (auto& [material, list] : variants)
+    mappings.push_back(tinygltf::Value(tinygltf::Value::Object{
+        {"material", tinygltf::Value(material)}, {"variants", tinygltf::Value(std::move(list))}}));
+  return tinygltf::Value(
+      tinygltf::Value::Object{{"mappings", tinygltf::Value(std::move(mappings))}});
+}
+
 void Writer::add_mesh(const Mesh& m) {
   tinygltf::Primitive p;
   p.mode = TINYGLTF_MODE_TRIANGLES;
   p.material = m.material;
+  if (!m.variant_materials.empty()) {
+    // The file's own material, whichever variant the scene holds, and the others mapped.
+    p.material = m.variant_materials.front().material;
+    if (auto mappings = variant_mappings(m)) p.extensions["KHR_materials_variants"] = *mappings;
+  }
   p.attributes["POSITION"] = add_attribute(m.positions, TINYGLTF_TYPE_VEC3, true);
   if (!m.normals.empty())
     p.attributes["NORMAL"] = add_attribute(m.normals, TINYGLTF_TYPE_VEC3, false);
@@ -463,6 +486,14 @@ tinygltf::Model Writer::build() {
   if (model_.buffers[0].data.empty()) model_.buffers.clear();
   auto uses = [&](const char* ext) { model_.extensionsUsed.push_back(ext); };
   if (!scene_.lights.empty()) uses("KHR_lights_punctual");
+  if (!scene_.variants.empty()) {
+    tinygltf::Value::Array variants;
+    for (const std::string& name : scene_.variants)
+      variants.push_back(tinygltf::Value(tinygltf::Value::Object{{"name", tinygltf::Value(name)}}));
+    model_.extensions["KHR_materials_variants"] = tinygltf::Value(
+        tinygltf::Value::Object{{"variants", tinygltf::Value(std::move(variants))}});
+    uses("KHR_materials_variants");
+  }
   if (instanced) {
     // The README: "files that use the extension should specify it in extensionsRequired"
     // (it has no fallback for viewers without it).
