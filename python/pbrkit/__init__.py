@@ -71,7 +71,8 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
            env="builtin", env_rotation=0.0, env_intensity=1.0, camera=None,
            model="reference", multiscatter=None, max_bounces=None, time=None,
            noise_threshold=None, threads=None, denoise=None, denoiser=None, aovs=None,
-           light_sampler=None, variant=None, progress=None):
+           light_sampler=None, variant=None, animation=None, animation_time=0.0,
+           progress=None):
     """Renders ``scene`` (a Scene, a file path or a built-in name) and returns the linear
     RGB image as a float32 (H, W, 3) array; with ``aovs`` (any of "albedo", "normal",
     "depth", "samples", "noise") returns ``(image, {name: array})``.
@@ -90,7 +91,10 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
     docs/DENOISER.md; or "learned", the trained network of docs/LEARNED_DENOISER.md) and
     ``aovs`` (with ``denoise``, the raw image is the AOV "raw"). ``variant`` is a material
     variant of the file (KHR_materials_variants; ``Scene.variants`` lists them), by name or
-    index; None renders each primitive's own material.
+    index; None renders each primitive's own material. ``animation`` (a name or index of
+    ``Scene.animations``) and ``animation_time`` (seconds, clamped to its keys) pose a copy
+    of the scene for this render, as ``pbrkit render --animation --animation-time`` does;
+    None renders the Scene as it is (its rest pose, or ``Scene.pose()``'s).
     """
     if not isinstance(scene, Scene):
         scene = load(scene)
@@ -105,7 +109,7 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
         path.aovs = [aovs] if isinstance(aovs, str) else list(aovs)
     return _pbrkit._render(scene, renderer, width, height, _env_arg(env), float(env_rotation),
                            float(env_intensity), camera, model, multiscatter, progress, path,
-                           variant)
+                           variant, animation, float(animation_time))
 
 
 def denoise(color, albedo, normal, depth, *, denoiser=None, progress=None):

@@ -54,6 +54,17 @@ class Scene:
         """The material variants' names (KHR_materials_variants), in the file's order;
         render(variant=) takes a name or an index."""
         ...
+    @property
+    def animations(self) -> list[dict[str, Any]]:
+        """One dict per glTF animation, in the file's order: name, start and end (its
+        first and last keyframe, seconds) and channels (how many properties it drives);
+        render(animation=) and pose() take a name or an index."""
+        ...
+    def pose(self, animation: Union[str, int, None] = None, time: float = 0.0) -> None:
+        """Poses the scene by `animation` at `time` seconds (clamped to its keys): its
+        instance transforms, skinned and morphed meshes, cameras and lights, for every
+        later render and for bounds, cameras and lights. pose() is the rest pose again."""
+        ...
 
 def builtin_scenes() -> list[str]: ...
 def load(path_or_builtin_name: StrPath) -> Scene: ...
@@ -74,6 +85,7 @@ def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path
            denoiser: Literal["learned", "classic"] | None = None, aovs: None = None,
            light_sampler: Literal["bvh", "power"] | None = None,
            variant: Union[str, int, None] = None,
+           animation: Union[str, int, None] = None, animation_time: float = 0.0,
            progress: Progress | None = None) -> FloatArray: ...
 @overload
 def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path", *,
@@ -88,6 +100,7 @@ def render(scene: Union[Scene, StrPath], renderer: Literal["path", "gl"] = "path
            aovs: Union[str, Sequence[str]] = ...,
            light_sampler: Literal["bvh", "power"] | None = None,
            variant: Union[str, int, None] = None,
+           animation: Union[str, int, None] = None, animation_time: float = 0.0,
            progress: Progress | None = None) -> Tuple[FloatArray, dict[str, FloatArray]]: ...
 
 def denoise(color: Tuple[FloatArray, FloatArray], albedo: Tuple[FloatArray, FloatArray],

@@ -23,6 +23,7 @@
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/pose.h"
 #include "pbrkit/scene/variants.h"
 #include "pbrkit/util/error.h"
 #include "scene_handle.h"
@@ -231,18 +232,25 @@ void bind_render(py::module_& m) {
       [](const SceneHandle& handle, const std::string& renderer, std::optional<int> width,
          std::optional<int> height, const py::object& env, float env_rotation, float env_intensity,
          const py::object& camera, const std::string& model, std::optional<bool> multiscatter,
-         const py::object& progress, PathArgs path, const py::object& variant) {
-        // A variant switches the materials of a copy: the Scene object is shared, immutable.
+         const py::object& progress, PathArgs path, const py::object& variant,
+         const py::object& animation, double animation_time) {
+        // A variant switches the materials of a copy, and an animation poses a copy: the
+        // Scene object is shared, and keeps its own materials and pose.
         std::shared_ptr<const Scene> varied = handle.scene;
-        if (!variant.is_none()) {
-          if (!py::isinstance<py::str>(variant) && !py::isinstance<py::int_>(variant))
-            throw py::type_error("variant: expected None, a variant's name or its index");
+        const PoseTime pose =
+            pose_argument(*handle.scene, animation, animation_time, "animation", "animation_time");
+        if (!variant.is_none() || !animation.is_none()) {
           auto copy = std::make_shared<Scene>(*handle.scene);
-          try {
-            apply_variant(*copy, find_variant(*copy, py::str(variant).cast<std::string>()));
-          } catch (const Error& e) {
-            throw py::value_error(std::string("variant: ") + e.what());
+          if (!variant.is_none()) {
+            if (!py::isinstance<py::str>(variant) && !py::isinstance<py::int_>(variant))
+              throw py::type_error("variant: expected None, a variant's name or its index");
+            try {
+              apply_variant(*copy, find_variant(*copy, py::str(variant).cast<std::string>()));
+            } catch (const Error& e) {
+              throw py::value_error(std::string("variant: ") + e.what());
+            }
           }
+          if (!animation.is_none()) pose_scene(*copy, pose);
           varied = std::move(copy);
         }
         const Scene& scene = *varied;
@@ -268,7 +276,8 @@ void bind_render(py::module_& m) {
       },
       py::arg("scene"), py::arg("renderer"), py::arg("width"), py::arg("height"), py::arg("env"),
       py::arg("env_rotation"), py::arg("env_intensity"), py::arg("camera"), py::arg("model"),
-      py::arg("multiscatter"), py::arg("progress"), py::arg("path"), py::arg("variant"));
+      py::arg("multiscatter"), py::arg("progress"), py::arg("path"), py::arg("variant"),
+      py::arg("animation"), py::arg("animation_time"));
 
   py::class_<PathArgs>(m, "_PathArgs")
       .def(py::init<>())

@@ -1,6 +1,7 @@
 // load(), Scene, Camera, look_at(): a scene is loaded once and rendered many times, as the
 // CLI does per process; what Python reads from it is a summary (materials, cameras,
-// lights, bounds, counts), not the mesh data.
+// lights, bounds, counts, animations), not the mesh data. Scene.pose() is its one change:
+// it swaps in a posed copy, so that renders already holding the old scene keep it.
 #include <pybind11/stl.h>
 
 #include <cmath>
@@ -12,7 +13,9 @@
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
 #include "pbrkit/scene/material_schema.h"
+#include "pbrkit/scene/pose.h"
 #include "pbrkit/scene/scene.h"
+#include "pbrkit/util/error.h"
 #include "scene_handle.h"
 
 namespace py = pybind11;
@@ -81,7 +84,40 @@ py::dict light_dict(const Light& l) {
   return d;
 }
 
+py::dict animation_dict(const Animation& a) {
+  py::dict d;
+  d["name"] = a.name;
+  d["start"] = a.start();
+  d["end"] = a.end();
+  d["channels"] = a.channels.size();
+  return d;
+}
+
 }  // namespace
+
+PoseTime pose_argument(const Scene& scene, const py::object& animation, double time,
+                       const char* animation_arg, const char* time_arg) {
+  if (!std::isfinite(time))
+    throw py::value_error(std::string(time_arg) + ": expected a finite number of seconds");
+  if (animation.is_none()) {
+    // As the command line's --animation-time needs --animation: a time of the rest pose
+    // would be silently ignored.
+    if (time != 0.0)
+      throw py::value_error(std::string(time_arg) + ": needs " + animation_arg +
+                            " (which animation the time is in)");
+    return {};
+  }
+  // bool is an int to Python; True as "animation 1" would be a surprise.
+  if (py::isinstance<py::bool_>(animation) ||
+      (!py::isinstance<py::str>(animation) && !py::isinstance<py::int_>(animation)))
+    throw py::type_error(std::string(animation_arg) +
+                         ": expected None, an animation's name or its index");
+  try {
+    return {find_animation(scene, py::str(animation).cast<std::string>()), float(time)};
+  } catch (const Error& e) {
+    throw py::value_error(std::string(animation_arg) + ": " + e.what());
+  }
+}
 
 void bind_scene(py::module_& m) {
   py::class_<Camera>(m, "Camera",
@@ -121,8 +157,9 @@ void bind_scene(py::module_& m) {
       "degrees.");
 
   py::class_<SceneHandle>(m, "Scene",
-                          "A loaded scene (pbrkit.load). Read-only summary: materials, "
-                          "cameras, lights, bounds and counts.")
+                          "A loaded scene (pbrkit.load). A read-only summary (materials, "
+                          "cameras, lights, bounds, counts, variants, animations) and one "
+                          "change, pose().")
       .def_property_readonly("source", [](const SceneHandle& s) { return s.scene->source; })
       .def_property_readonly(
           "materials",
@@ -160,6 +197,34 @@ void bind_scene(py::module_& m) {
           "variants", [](const SceneHandle& s) { return s.scene->variants; },
           "The material variants' names (KHR_materials_variants), in the file's order; "
           "render(variant=) takes a name or an index.")
+      .def_property_readonly(
+          "animations",
+          [](const SceneHandle& s) {
+            py::list l;
+            if (s.scene->motion)
+              for (const Animation& a : s.scene->motion->animations) l.append(animation_dict(a));
+            return l;
+          },
+          "One dict per glTF animation, in the file's order: name, start and end (its first "
+          "and last keyframe, seconds) and channels (how many properties it drives); "
+          "render(animation=) and pose() take a name or an index.")
+      .def(
+          "pose",
+          [](SceneHandle& s, const py::object& animation, double time) {
+            const PoseTime pose = pose_argument(*s.scene, animation, time, "animation", "time");
+            // A posed copy replaces the shared scene: a render on another thread keeps the
+            // pose it started with. Poses are absolute (from the rest data the loader kept),
+            // so posing a posed scene again is the same as posing the loaded one.
+            // A pose the file makes not finite is pbrkit.Error, naming the node.
+            auto posed = std::make_shared<Scene>(*s.scene);
+            pose_scene(*posed, pose);
+            s.scene = std::move(posed);
+          },
+          py::arg("animation") = py::none(), py::arg("time") = 0.0,
+          "Poses the scene by `animation` (a name or an index of Scene.animations) at `time` "
+          "seconds (clamped to its keys): its instance transforms, skinned and morphed meshes, "
+          "cameras and lights, for every later render and for bounds, cameras and lights. "
+          "pose() (animation None) is the rest pose again.")
       .def("__repr__", [](const SceneHandle& s) {
         return "<pbrkit.Scene " + s.scene->source + ": " +
                std::to_string(s.scene->triangle_count()) + " triangles, " +
