@@ -2,6 +2,7 @@
 // environment and display transform.
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <vector>
 
@@ -35,7 +36,7 @@ Scene load_render_scene(const RenderCommandOptions& o) {
     return scene;
   }
   try {
-    pose_scene(scene, {find_animation(scene, o.animation), o.animation_time});
+    pose_scene(scene, {find_animation(scene, o.animation), o.pose_time()});
   } catch (const Error& e) {
     fail("--animation: {}", e.what());
   }
@@ -86,7 +87,7 @@ void render_frames(const RenderCommandOptions& o, const RenderRunner& run) {
     frame.animation_time = float(f) / o.fps;
     frame.outputs = frame_output_paths(o.outputs, f);
     note("frame {} ({} of {}), t = {:.4g} s", f, ++done, count, frame.animation_time);
-    pose_scene(scene, {animation, frame.animation_time});
+    pose_scene(scene, {animation, frame.pose_time()});
     run(frame, scene);
   }
 }
@@ -160,6 +161,11 @@ void register_render_command(CLI::App& app) {
       ->needs(frames)
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_option("--shutter", options->shutter,
+                  "motion blur: the shutter is open from OPEN to CLOSE seconds around the pose's "
+                  "time (--animation-time, or each frame's), e.g. -0.01:0.01; the path tracer "
+                  "samples a time per path, the OpenGL renderer draws the shutter's centre")
+      ->needs(animation);
   cmd->add_option("--width", options->width,
                   "image width in pixels (default: 512 along the longer side at the camera's "
                   "aspect ratio; with only --height, from the aspect ratio)")
@@ -213,6 +219,22 @@ void register_render_command(CLI::App& app) {
           is_path ? "gl" : "path");
     }
     RenderCommandOptions o = *options;
+    if (!o.shutter.empty()) {
+      const std::size_t colon = o.shutter.find(':');
+      char* end = nullptr;
+      bool ok = colon != std::string::npos;
+      if (ok) {
+        const std::string a = o.shutter.substr(0, colon), b = o.shutter.substr(colon + 1);
+        o.shutter_open = std::strtof(a.c_str(), &end);
+        ok = !a.empty() && *end == '\0';
+        o.shutter_close = std::strtof(b.c_str(), &end);
+        ok = ok && !b.empty() && *end == '\0';
+      }
+      if (!ok || !std::isfinite(o.shutter_open) || !std::isfinite(o.shutter_close))
+        fail("--shutter {}: expected OPEN:CLOSE in seconds, e.g. -0.01:0.01", o.shutter);
+      if (!(o.shutter_open < o.shutter_close))
+        fail("--shutter {}: the shutter must open before it closes", o.shutter);
+    }
     if (o.output.empty()) {
       std::string stem = std::filesystem::path(o.scene).stem().string();
       o.output = "out/" + stem + "_" + *renderer + ".png";

@@ -106,6 +106,11 @@ RenderRunner add_gl_render_options(CLI::App& render) {
       ->group(group);
 
   return [g](const RenderCommandOptions& o, const Scene& scene) {
+    if (!o.shutter.empty())
+      note(
+          "--shutter: the OpenGL renderer has no motion blur; it draws the shutter's centre "
+          "(t = {:.4g} s); the path tracer renders the blur",
+          o.pose_time());
     const auto t_start = Clock::now();
     gl::RenderSettings settings;
     const BrdfModel model = parse_brdf_model(o.model);

@@ -23,6 +23,7 @@
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
+#include "pbrkit/scene/pose.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 #include "pbrkit/util/progress.h"
@@ -224,6 +225,11 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.threads = po.threads;
     s.filter = parse_pixel_filter(po.filter);
     s.light_sampler = parse_light_sampler(po.light_sampler);
+    if (!o.shutter.empty()) {
+      s.shutter.animation = find_animation(scene, o.animation);
+      s.shutter.open = o.animation_time + o.shutter_open;
+      s.shutter.close = o.animation_time + o.shutter_close;
+    }
     s.brdf.model = parse_brdf_model(o.model);
     s.brdf.multiscatter = o.multiscatter.value_or(default_multiscatter(s.brdf.model));
     const bool partial = !po.sample_range.empty();

@@ -39,6 +39,14 @@ struct RenderCommandOptions {
   /// a numbered image sequence from one scene load; empty: one image.
   std::string frames;
   float fps = 24.0f;
+  /// --shutter OPEN:CLOSE: motion blur over [time + OPEN, time + CLOSE] (seconds, around the
+  /// pose's time); the scene is posed at the shutter's centre. Empty: no motion blur.
+  std::string shutter;
+  float shutter_open = 0.0f, shutter_close = 0.0f;  ///< parsed from `shutter`
+  /// The time the scene is posed at: the animation time, plus the shutter's centre offset.
+  float pose_time() const {
+    return animation_time + (shutter.empty() ? 0.0f : 0.5f * (shutter_open + shutter_close));
+  }
   std::string output;        ///< -o: a .png or .exr path (or empty: out/<scene>_<renderer>.png)
   ImageOutputPaths outputs;  ///< resolved from `output` before rendering
 };

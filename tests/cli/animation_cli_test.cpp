@@ -184,5 +184,43 @@ TEST(AnimationCli, FramesWriteANumberedSequenceThatMoves) {
   EXPECT_NE(log.find("--frames 3:1"), std::string::npos) << log;
 }
 
+TEST(AnimationCli, ShutterBlursThePathTracersImageAndIsChecked) {
+  const fs::path dir = test::scratch_dir();
+  std::string log;
+  const std::string common = cli() + " render " + strip_file().string() +
+                             " --animation bend --animation-time 0.5 --no-env --width 64 "
+                             "--height 64 --tonemap none --renderer path --spp 64 ";
+  ASSERT_EQ(test::run_command(common + "-o " + (dir / "still.exr").string(), &log), 0) << log;
+  ASSERT_EQ(
+      test::run_command(common + "--shutter -0.5:0.5 -o " + (dir / "blur.exr").string(), &log), 0)
+      << log;
+  // The strip slides 1 unit in x over the second the shutter is open: the blurred image
+  // has partly covered pixels where the still one has either the strip or black.
+  auto partial = [](const Image& image) {
+    int n = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        const float v = image.pixel(x, y)[1];
+        n += v > 0.2f && v < 0.8f;
+      }
+    return n;
+  };
+  const int still = partial(read_image(dir / "still.exr"));
+  const int blurred = partial(read_image(dir / "blur.exr"));
+  EXPECT_GT(blurred, 3 * still + 50) << still << " " << blurred;
+  // The OpenGL renderer draws the shutter's centre and says so.
+  ASSERT_EQ(test::run_command(cli() + " render " + strip_file().string() +
+                                  " --renderer gl --animation 0 --shutter 0:0.1 --width 32 "
+                                  "--height 32 -o " +
+                                  (dir / "gl_shutter.png").string(),
+                              &log),
+            0)
+      << log;
+  EXPECT_NE(log.find("draws the shutter's centre"), std::string::npos) << log;
+  EXPECT_NE(test::run_command(common + "--shutter 0.1:0 -o " + (dir / "bad.exr").string(), &log),
+            0);
+  EXPECT_NE(log.find("--shutter 0.1:0"), std::string::npos) << log;
+}
+
 }  // namespace
 }  // namespace pbrkit

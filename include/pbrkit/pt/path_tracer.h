@@ -100,6 +100,22 @@ struct PathTracerSettings {
   /// pixel's footprint, through specular bounces (false: every lookup reads level 0).
   bool texture_lod = true;
 
+  // --- motion blur --------------------------------------------------------------------
+  /// The camera's shutter over one of the scene's animations (scene/pose.h), the truth that
+  /// raster renderers approximate: each camera path samples a time in [open, close]
+  /// (seconds of the animation) and every ray of the path sees the scene at that time;
+  /// moving geometry is built at `steps` times across the shutter and interpolated between
+  /// them. `animation` -1: no motion blur. The scene should be posed at the shutter's centre:
+  /// its cameras and lights stay where the scene has them, and lights on moving geometry are
+  /// sampled there.
+  struct Shutter {
+    int animation = -1;
+    float open = 0.0f;
+    float close = 0.0f;
+    int steps = 9;
+  };
+  Shutter shutter;
+
   // --- execution ----------------------------------------------------------------------
   std::uint32_t seed = 0;
   int threads = 0;  ///< 0: all hardware threads

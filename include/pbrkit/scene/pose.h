@@ -103,6 +103,28 @@ int find_animation(const Scene& scene, std::string_view name_or_index);
 /// The nodes' world transforms at `pose` (SceneMotion::nodes' order).
 std::vector<glm::mat4> posed_node_transforms(const SceneMotion& motion, const PoseTime& pose);
 
+/// A scene's motion over a camera shutter, for motion blur: the instances' transforms and
+/// the deforming meshes' vertices at `steps` equally spaced times from the shutter's
+/// opening to its closing (renderers interpolate linearly between steps, as Embree does).
+struct ShutterMotion {
+  int steps = 0;
+  /// Per instance: `steps` transforms when it moves (empty when it does not).
+  std::vector<std::vector<glm::mat4>> transforms;
+  /// Per instance of a deforming mesh whose vertices move: `steps` arrays of its mesh's
+  /// object-space positions and normals (empty otherwise).
+  std::vector<std::vector<std::vector<glm::vec3>>> positions;
+  std::vector<std::vector<std::vector<glm::vec3>>> normals;
+  /// Whether anything moves.
+  bool moving() const;
+  /// Whether instance `i` moves (rigidly or by its vertices).
+  bool moving(std::size_t i) const { return !transforms[i].empty() || !positions[i].empty(); }
+};
+
+/// The scene's motion at `steps` (>= 2) times over [open, close] of `animation` (seconds).
+/// The scene itself is not changed. Throws pbrkit::Error for a scene without animations,
+/// an animation out of range or a shutter that is not open < close.
+ShutterMotion shutter_motion(const Scene& scene, int animation, float open, float close, int steps);
+
 /// Poses `scene` (a no-op for a scene without motion). Throws pbrkit::Error for an
 /// animation index out of range, or a pose that is not finite (naming the node).
 void pose_scene(Scene& scene, const PoseTime& pose);

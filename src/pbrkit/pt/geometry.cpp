@@ -92,10 +92,16 @@ Plan plan(const Scene& scene, const GeometryOptions& options) {
     p.kind[i] = Plan::kShared;
     ++uses[std::size_t(inst.mesh)];
   }
+  const ShutterMotion* motion = options.motion;
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
     const std::size_t m = std::size_t(scene.instances[i].mesh);
-    if (p.kind[i] == Plan::kShared && options.flatten_single_use && uses[m] == 1)
+    // Motion blur: a rigidly moving instance stays behind an Embree instance (its transform
+    // has time steps); one whose vertices move is flattened (its vertices have them).
+    const bool rigid = motion && !motion->transforms[i].empty() && motion->positions[i].empty();
+    const bool deforms = motion && !motion->positions[i].empty();
+    if (p.kind[i] == Plan::kShared && options.flatten_single_use && uses[m] == 1 && !rigid)
       p.kind[i] = Plan::kFlat;
+    if (p.kind[i] == Plan::kShared && deforms) p.kind[i] = Plan::kFlat;
     if (p.kind[i] == Plan::kFlat) ++p.flat[m];
     if (p.kind[i] == Plan::kShared) ++p.shared[m];
   }
@@ -122,6 +128,17 @@ GeometryMemory estimate_geometry_memory(const Scene& scene, const GeometryOption
           kBvhBytesPerScene + per_triangle * triangles + kBvhBytesPerInstance * double(p.shared[m]);
     }
   }
+  // Motion blur: a moving mesh's vertices and normals at every step, and a motion BVH
+  // over the steps (bounded here as one BVH per step: Embree's motion BVHs are no larger).
+  if (options.motion)
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+      const auto& steps = options.motion->positions[i];
+      if (steps.empty()) continue;
+      const Mesh& mesh = scene.meshes[std::size_t(scene.instances[i].mesh)];
+      geometry +=
+          2.0 * double(steps.size()) * double(mesh.positions.size() + 1) * sizeof(glm::vec3);
+      bvh += per_triangle * double(mesh.triangle_count()) * double(steps.size() - 1);
+    }
   return {std::size_t(geometry), std::size_t(bvh), std::size_t(bvh)};
 }
 
@@ -278,7 +295,47 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
     wm.orientation = glm::determinant(wm.linear) < 0.0f ? -1.0f : 1.0f;
     wm.normal_matrix = wm.orientation * cofactor(wm.linear);
     const unsigned mask = wm.has_alpha ? kMaskAlpha : kMaskOpaque;
-    if (p.kind[i] == Plan::kFlat) {
+    const ShutterMotion* motion = options.motion;
+    if (p.kind[i] == Plan::kFlat && motion && !motion->positions[i].empty()) {
+      // A mesh whose vertices move: its world vertices and normals at every step.
+      wm.flattened = true;
+      wm.motion = int(motions_.size());
+      InstanceMotion& mo = motions_.emplace_back();
+      const auto& steps = motion->positions[i];
+      const std::size_t count = steps.size();
+      RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+      rtcSetGeometryTimeStepCount(g, unsigned(count));
+      mo.positions.resize(count);
+      mo.normals.resize(count);
+      for (std::size_t k = 0; k < count; ++k) {
+        const glm::mat4 T = motion->transforms[i].empty() ? M : motion->transforms[i][k];
+        const glm::mat3 L(T);
+        const glm::mat3 N = (glm::determinant(L) < 0.0f ? -1.0f : 1.0f) * cofactor(L);
+        std::vector<glm::vec3>& world = mo.positions[k];
+        world.reserve(steps[k].size() + 1);
+        for (const glm::vec3& q : steps[k]) {
+          world.push_back(L * q + glm::vec3(T[3]));
+          bounds_.extend(world.back());
+        }
+        world.push_back(glm::vec3(0.0f));  // Embree's 16-byte loads read past the last
+        for (const glm::vec3& n : motion->normals[i][k]) {
+          const glm::vec3 wn = N * n;
+          const float len = glm::length(wn);
+          mo.normals[k].push_back(len > 0.0f ? wn / len : glm::vec3(0, 0, 1));
+        }
+        rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, unsigned(k), RTC_FORMAT_FLOAT3,
+                                   world.data(), 0, sizeof(glm::vec3), steps[k].size());
+      }
+      // The shutter's centre stands for the mesh where one position is needed (the light
+      // samplers' triangles and areas).
+      wm.positions = mo.positions[count / 2].data();
+      rtcSetSharedGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.indices.data(),
+                                 0, 3 * sizeof(std::uint32_t), mesh.triangle_count());
+      rtcSetGeometryMask(g, mask);
+      rtcCommitGeometry(g);
+      rtcAttachGeometryByID(rtc_scene_, g, unsigned(i));
+      rtcReleaseGeometry(g);
+    } else if (p.kind[i] == Plan::kFlat) {
       wm.flattened = true;
       std::vector<glm::vec3>& world = position_copies_.emplace_back();
       world.reserve(mesh.positions.size() + 1);
@@ -303,8 +360,27 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
                          wm.translation);
       RTCGeometry g = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
       rtcSetGeometryInstancedScene(g, mesh_scenes_[std::size_t(mesh_scene[m])]);
-      rtcSetGeometryTimeStepCount(g, 1);
-      rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(M));
+      if (motion && !motion->transforms[i].empty()) {
+        // A rigid motion: one transform per step, which Embree interpolates linearly (as
+        // resolve_moving does).
+        wm.motion = int(motions_.size());
+        InstanceMotion& mo = motions_.emplace_back();
+        mo.transforms = motion->transforms[i];
+        rtcSetGeometryTimeStepCount(g, unsigned(mo.transforms.size()));
+        for (std::size_t k = 0; k < mo.transforms.size(); ++k) {
+          rtcSetGeometryTransform(g, unsigned(k), RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR,
+                                  glm::value_ptr(mo.transforms[k]));
+          if (!object.empty())
+            for (int c = 0; c < 8; ++c)
+              bounds_.extend(glm::vec3(mo.transforms[k] *
+                                       glm::vec4(c & 1 ? object.max.x : object.min.x,
+                                                 c & 2 ? object.max.y : object.min.y,
+                                                 c & 4 ? object.max.z : object.min.z, 1.0f)));
+        }
+      } else {
+        rtcSetGeometryTimeStepCount(g, 1);
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(M));
+      }
       rtcSetGeometryMask(g, mask);
       rtcCommitGeometry(g);
       rtcAttachGeometryByID(rtc_scene_, g, unsigned(i));
@@ -332,7 +408,7 @@ SceneGeometry::~SceneGeometry() {
 
 bool SceneGeometry::intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mask,
                               std::uint32_t& geom, std::uint32_t& prim, float& t, float& u,
-                              float& v) const {
+                              float& v, float time) const {
   if (observer_) observer_->closest(o, d, tfar, mask);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -346,7 +422,7 @@ bool SceneGeometry::intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mas
   rh.ray.tnear = 0.0f;
   rh.ray.tfar = tfar;
   rh.ray.mask = mask;
-  rh.ray.time = 0.0f;
+  rh.ray.time = time;
   rh.ray.flags = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
@@ -362,7 +438,7 @@ bool SceneGeometry::intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mas
 }
 
 void SceneGeometry::intersect_packet(const glm::vec3* origins, const glm::vec3* directions,
-                                     PacketHit* hits) const {
+                                     PacketHit* hits, const float* times) const {
   static_assert(kPacketSize == 16);
   if (observer_) observer_->packet(origins, directions);
   RTCIntersectContext context;
@@ -381,7 +457,7 @@ void SceneGeometry::intersect_packet(const glm::vec3* origins, const glm::vec3* 
     rh.ray.tnear[k] = 0.0f;
     rh.ray.tfar[k] = std::numeric_limits<float>::infinity();
     rh.ray.mask[k] = 0xffffffffu;
-    rh.ray.time[k] = 0.0f;
+    rh.ray.time[k] = times ? times[k] : 0.0f;
     rh.ray.flags[k] = 0;
     rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
@@ -396,7 +472,7 @@ void SceneGeometry::intersect_packet(const glm::vec3* origins, const glm::vec3* 
   }
 }
 
-bool SceneGeometry::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
+bool SceneGeometry::occluded(glm::vec3 o, glm::vec3 d, float tfar, float time) const {
   if (observer_) observer_->occluded(o, d, tfar);
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
@@ -410,47 +486,25 @@ bool SceneGeometry::occluded(glm::vec3 o, glm::vec3 d, float tfar) const {
   ray.tnear = 0.0f;
   ray.tfar = tfar;
   ray.mask = kMaskOpaque;
-  ray.time = 0.0f;
+  ray.time = time;
   ray.flags = 0;
   rtcOccluded1(rtc_scene_, &context, &ray);
   return ray.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
 }
 
-SurfaceHit SceneGeometry::resolve(std::uint32_t geom, std::uint32_t prim, float t, float u,
-                                  float v) const {
-  const WorldMesh& wm = meshes_[geom];
-  const Mesh& mesh = *wm.mesh;
-  const std::uint32_t i0 = mesh.indices[3 * prim], i1 = mesh.indices[3 * prim + 1],
-                      i2 = mesh.indices[3 * prim + 2];
+namespace {
+
+// What a hit interpolates besides its position and normals: the tangent (taken to world
+// space by `linear`, its handedness flipped by a mirroring `orientation`), the UVs and
+// their triangle's area, the vertex colour.
+void interpolate_attributes(const Mesh& mesh, std::uint32_t i0, std::uint32_t i1, std::uint32_t i2,
+                            float u, float v, const glm::mat3& linear, float orientation,
+                            SurfaceHit& hit) {
   const float w = 1.0f - u - v;
-  SurfaceHit hit;
-  hit.t = t;
-  hit.geom = geom;
-  hit.prim = prim;
-  const glm::vec3 p0 = wm.positions[i0], p1 = wm.positions[i1], p2 = wm.positions[i2];
-  hit.p = w * p0 + u * p1 + v * p2;
-  glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
-  if (wm.flattened) {
-    // World-space winding: clockwise is the front after a mirroring transform (glTF).
-    c *= wm.orientation;
-  } else {
-    hit.p = wm.linear * hit.p + wm.translation;
-    c = wm.normal_matrix * c;
-  }
-  const float len = glm::length(c);
-  hit.area = 0.5f * len;
-  hit.ng = len > 0.0f ? c / len : glm::vec3(0.0f, 0.0f, 1.0f);
-  hit.ns = hit.ng;
-  if (!mesh.normals.empty()) {
-    const glm::vec3 n =
-        wm.normal_matrix * (w * mesh.normals[i0] + u * mesh.normals[i1] + v * mesh.normals[i2]);
-    const float nl = glm::length(n);
-    if (nl > 0.0f) hit.ns = n / nl;
-  }
   if (!mesh.tangents.empty()) {
     const glm::vec4 tg = w * mesh.tangents[i0] + u * mesh.tangents[i1] + v * mesh.tangents[i2];
     // A mirroring transform flips the bitangent's handedness.
-    hit.tangent = glm::vec4(wm.linear * glm::vec3(tg), tg.w * wm.orientation);
+    hit.tangent = glm::vec4(linear * glm::vec3(tg), tg.w * orientation);
   }
   const auto uv_area = [&](const std::vector<glm::vec2>& t) {
     const glm::vec2 a = t[i1] - t[i0], b = t[i2] - t[i0];
@@ -466,6 +520,101 @@ SurfaceHit SceneGeometry::resolve(std::uint32_t geom, std::uint32_t prim, float 
   }
   if (!mesh.colors0.empty())
     hit.color = w * mesh.colors0[i0] + u * mesh.colors0[i1] + v * mesh.colors0[i2];
+}
+
+// The geometric normal and area from a world-space cross product of two edges.
+void set_geometric_normal(glm::vec3 c, SurfaceHit& hit) {
+  const float len = glm::length(c);
+  hit.area = 0.5f * len;
+  hit.ng = len > 0.0f ? c / len : glm::vec3(0.0f, 0.0f, 1.0f);
+  hit.ns = hit.ng;
+}
+
+}  // namespace
+
+SurfaceHit SceneGeometry::resolve(std::uint32_t geom, std::uint32_t prim, float t, float u, float v,
+                                  float time) const {
+  const WorldMesh& wm = meshes_[geom];
+  if (wm.motion >= 0) return resolve_moving(geom, prim, t, u, v, time);
+  const Mesh& mesh = *wm.mesh;
+  const std::uint32_t i0 = mesh.indices[3 * prim], i1 = mesh.indices[3 * prim + 1],
+                      i2 = mesh.indices[3 * prim + 2];
+  const float w = 1.0f - u - v;
+  SurfaceHit hit;
+  hit.t = t;
+  hit.time = time;
+  hit.geom = geom;
+  hit.prim = prim;
+  const glm::vec3 p0 = wm.positions[i0], p1 = wm.positions[i1], p2 = wm.positions[i2];
+  hit.p = w * p0 + u * p1 + v * p2;
+  glm::vec3 c = glm::cross(p1 - p0, p2 - p0);
+  if (wm.flattened) {
+    // World-space winding: clockwise is the front after a mirroring transform (glTF).
+    c *= wm.orientation;
+  } else {
+    hit.p = wm.linear * hit.p + wm.translation;
+    c = wm.normal_matrix * c;
+  }
+  set_geometric_normal(c, hit);
+  if (!mesh.normals.empty()) {
+    const glm::vec3 n =
+        wm.normal_matrix * (w * mesh.normals[i0] + u * mesh.normals[i1] + v * mesh.normals[i2]);
+    const float nl = glm::length(n);
+    if (nl > 0.0f) hit.ns = n / nl;
+  }
+  interpolate_attributes(mesh, i0, i1, i2, u, v, wm.linear, wm.orientation, hit);
+  return hit;
+}
+
+// A hit on a moving instance at `time`: between the two motion steps around it, linearly,
+// as Embree interpolates the vertices and the instance transforms it intersected.
+SurfaceHit SceneGeometry::resolve_moving(std::uint32_t geom, std::uint32_t prim, float t, float u,
+                                         float v, float time) const {
+  const WorldMesh& wm = meshes_[geom];
+  const InstanceMotion& mo = motions_[std::size_t(wm.motion)];
+  const Mesh& mesh = *wm.mesh;
+  const std::uint32_t i0 = mesh.indices[3 * prim], i1 = mesh.indices[3 * prim + 1],
+                      i2 = mesh.indices[3 * prim + 2];
+  const std::size_t steps = mo.positions.empty() ? mo.transforms.size() : mo.positions.size();
+  const float f = std::clamp(time, 0.0f, 1.0f) * float(steps - 1);
+  const std::size_t k = std::min(std::size_t(f), steps - 2);
+  const float a = f - float(k);
+  const float w = 1.0f - u - v;
+  SurfaceHit hit;
+  hit.t = t;
+  hit.time = time;
+  hit.geom = geom;
+  hit.prim = prim;
+  if (!mo.positions.empty()) {
+    // World-space vertices and normals per step.
+    const auto at = [&](const std::vector<std::vector<glm::vec3>>& steps_of, std::uint32_t i) {
+      return (1.0f - a) * steps_of[k][i] + a * steps_of[k + 1][i];
+    };
+    const glm::vec3 p0 = at(mo.positions, i0), p1 = at(mo.positions, i1), p2 = at(mo.positions, i2);
+    hit.p = w * p0 + u * p1 + v * p2;
+    set_geometric_normal(glm::cross(p1 - p0, p2 - p0) * wm.orientation, hit);
+    const glm::vec3 n = w * at(mo.normals, i0) + u * at(mo.normals, i1) + v * at(mo.normals, i2);
+    const float nl = glm::length(n);
+    if (nl > 0.0f) hit.ns = n / nl;
+    // (The tangents are the shutter centre's: a normal map's frame turns with the mesh
+    // only as far as the centre pose does.)
+    interpolate_attributes(mesh, i0, i1, i2, u, v, wm.linear, wm.orientation, hit);
+    return hit;
+  }
+  const glm::mat4 M = (1.0f - a) * mo.transforms[k] + a * mo.transforms[k + 1];
+  const glm::mat3 linear(M);
+  const float orientation = glm::determinant(linear) < 0.0f ? -1.0f : 1.0f;
+  const glm::mat3 normal_matrix = orientation * cofactor(linear);
+  const glm::vec3 p0 = wm.positions[i0], p1 = wm.positions[i1], p2 = wm.positions[i2];
+  hit.p = linear * (w * p0 + u * p1 + v * p2) + glm::vec3(M[3]);
+  set_geometric_normal(normal_matrix * glm::cross(p1 - p0, p2 - p0), hit);
+  if (!mesh.normals.empty()) {
+    const glm::vec3 n =
+        normal_matrix * (w * mesh.normals[i0] + u * mesh.normals[i1] + v * mesh.normals[i2]);
+    const float nl = glm::length(n);
+    if (nl > 0.0f) hit.ns = n / nl;
+  }
+  interpolate_attributes(mesh, i0, i1, i2, u, v, linear, orientation, hit);
   return hit;
 }
 

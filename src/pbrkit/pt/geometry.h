@@ -32,6 +32,7 @@
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 
+#include "pbrkit/scene/pose.h"
 #include "pbrkit/scene/scene.h"
 
 namespace pbrkit {
@@ -41,6 +42,11 @@ namespace pbrkit {
 /// transmittance loop instead.
 inline constexpr unsigned kMaskOpaque = 1u;
 inline constexpr unsigned kMaskAlpha = 2u;
+
+/// Where emitters on moving geometry are sampled for next-event estimation (motion blur):
+/// the shutter's centre. Hits still find such an emitter where it is at the path's time, so
+/// a moving emitter's light is approximate; still ones are exact.
+inline constexpr float kShutterCentre = 0.5f;
 
 /// One instance: a mesh placed in the world.
 struct WorldMesh {
@@ -63,6 +69,9 @@ struct WorldMesh {
   bool has_alpha = false;  ///< needs the alpha test / stochastic transparency
   bool emissive = false;
   bool visible = true;  ///< false for a transform of rank 0 or 1 (no area, nothing to hit)
+  /// Motion blur: index of its motion over the shutter (SceneGeometry), -1 when static. The
+  /// fields above then hold the shutter's centre (what lights and areas use).
+  int motion = -1;
 };
 
 /// How Embree lays out the BVHs' triangles.
@@ -85,6 +94,11 @@ struct GeometryOptions {
   /// Meshes placed once go into the top level in world space (see above); false puts every
   /// mesh behind an instance (benchmarks compare both).
   bool flatten_single_use = true;
+  /// Motion blur: the instances' motion over the shutter (scene/pose.h shutter_motion);
+  /// null or nothing moving: a still scene. A moving instance is built with one Embree time
+  /// step per motion step (a moving mesh's world vertices, or a rigid one's transforms),
+  /// and rays carry a time in [0, 1] across the shutter.
+  const ShutterMotion* motion = nullptr;
 };
 
 /// Memory of a SceneGeometry, in bytes.
@@ -114,6 +128,7 @@ struct SurfaceHit {
   /// Width of the ray's footprint across the surface, w / |n.d| (ray cones, for texture
   /// level of detail; set by the integrator). 0: textures are read at level 0.
   float footprint = 0.0f;
+  float time = 0.0f;       ///< the ray's time across the shutter, [0, 1] (motion blur)
   std::uint32_t geom = 0;  ///< the instance (index in Scene::instances)
   std::uint32_t prim = 0;  ///< the triangle in the instance's mesh
 };
@@ -140,8 +155,9 @@ class SceneGeometry {
 
   /// Closest hit along o + t d, t in (0, tfar), of geometry selected by `mask`.
   /// Returns false on a miss; fills geom (the instance), prim, t and barycentrics u, v.
+  /// `time`: across the shutter, [0, 1] (motion blur; ignored by a still scene).
   bool intersect(glm::vec3 o, glm::vec3 d, float tfar, unsigned mask, std::uint32_t& geom,
-                 std::uint32_t& prim, float& t, float& u, float& v) const;
+                 std::uint32_t& prim, float& t, float& u, float& v, float time = 0.0f) const;
   /// What intersect() returns, for a ray of a packet: geom = kNoHit on a miss.
   struct PacketHit {
     std::uint32_t geom, prim;
@@ -157,10 +173,10 @@ class SceneGeometry {
   /// its ray-stream code). A lane's result may depend on the whole packet (the order in
   /// which nodes are visited decides between hits at exactly equal t), so a caller that
   /// needs reproducible results must always trace the same packets.
-  void intersect_packet(const glm::vec3* origins, const glm::vec3* directions,
-                        PacketHit* hits) const;
+  void intersect_packet(const glm::vec3* origins, const glm::vec3* directions, PacketHit* hits,
+                        const float* times = nullptr) const;
   /// Any opaque hit in (0, tfar)?
-  bool occluded(glm::vec3 o, glm::vec3 d, float tfar) const;
+  bool occluded(glm::vec3 o, glm::vec3 d, float tfar, float time = 0.0f) const;
   /// Starts loading the vertex data resolve(geom, prim, ...) will read (for a batch of
   /// hits, so that their cache misses overlap).
   void prefetch(std::uint32_t geom, std::uint32_t prim) const {
@@ -171,8 +187,11 @@ class SceneGeometry {
       if (!wm.mesh->normals.empty()) __builtin_prefetch(wm.mesh->normals.data() + idx[k]);
     }
   }
-  /// Shading data of a hit, in world space.
-  SurfaceHit resolve(std::uint32_t geom, std::uint32_t prim, float t, float u, float v) const;
+  /// Shading data of a hit, in world space (at `time` across the shutter: the hit's time).
+  SurfaceHit resolve(std::uint32_t geom, std::uint32_t prim, float t, float u, float v,
+                     float time = 0.0f) const;
+  /// Whether anything moves during the shutter (rays need a time).
+  bool moving() const { return !motions_.empty(); }
   /// World-space area of triangle `prim` of instance `geom`.
   float triangle_area(std::uint32_t geom, std::uint32_t prim) const;
 
@@ -190,7 +209,18 @@ class SceneGeometry {
   const Bounds& bounds() const { return bounds_; }
 
  private:
+  // A moving instance over the shutter's steps: a rigid one's transforms, or a deforming
+  // one's world-space vertices (padded for Embree) and normals.
+  struct InstanceMotion {
+    std::vector<glm::mat4> transforms;
+    std::vector<std::vector<glm::vec3>> positions;
+    std::vector<std::vector<glm::vec3>> normals;
+  };
+  SurfaceHit resolve_moving(std::uint32_t geom, std::uint32_t prim, float t, float u, float v,
+                            float time) const;
+
   RTCDevice device_ = nullptr;
+  std::vector<InstanceMotion> motions_;
   RTCScene rtc_scene_ = nullptr;
   std::vector<RTCScene> mesh_scenes_;  ///< one per shared mesh
   std::vector<WorldMesh> meshes_;

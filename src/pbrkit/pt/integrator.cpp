@@ -107,7 +107,8 @@ struct AovTracker {
 
 PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
                           const SceneGeometry::PacketHit& primary, OwenSobolPixel& sampler,
-                          std::uint32_t pixel, std::uint32_t index, std::uint64_t& rays) const {
+                          std::uint32_t pixel, std::uint32_t index, std::uint64_t& rays,
+                          float time) const {
   PathSample out;
   glm::vec3 beta(1.0f);
   float prev_pdf = 0.0f;  // BSDF pdf of the direction that led here (for MIS)
@@ -132,7 +133,7 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     const Material* material = nullptr;
     const glm::vec3 segment_start = origin;
     const bool found = closest_hit(origin, direction, pixel, index, depth, rays, hit, material,
-                                   depth == 0 ? &primary : nullptr);
+                                   depth == 0 ? &primary : nullptr, time);
     // Beer-Lambert absorption along the segment inside a volume (KHR_materials_volume).
     if (media.size > 0) {
       beta *= absorb(media.sigma_a(), found ? glm::length(hit.p - segment_start)
@@ -368,7 +369,7 @@ inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame
 inline bool Integrator::closest_hit(glm::vec3& origin, glm::vec3 direction, std::uint32_t pixel,
                                     std::uint32_t index, int depth, std::uint64_t& rays,
                                     SurfaceHit& hit, const Material*& material,
-                                    const SceneGeometry::PacketHit* first) const {
+                                    const SceneGeometry::PacketHit* first, float time) const {
   for (std::uint32_t pass = 0; pass < 256; ++pass) {
     std::uint32_t geom = 0, prim = 0;
     float t = 0.0f, u = 0.0f, v = 0.0f;
@@ -380,11 +381,11 @@ inline bool Integrator::closest_hit(glm::vec3& origin, glm::vec3 direction, std:
       t = first->t;
       u = first->u;
       v = first->v;
-    } else if (!geometry_.intersect(origin, direction, kInfinity, 0xffffffffu, geom, prim, t, u,
-                                    v)) {
+    } else if (!geometry_.intersect(origin, direction, kInfinity, 0xffffffffu, geom, prim, t, u, v,
+                                    time)) {
       return false;
     }
-    hit = geometry_.resolve(geom, prim, t, u, v);
+    hit = geometry_.resolve(geom, prim, t, u, v, time);
     const WorldMesh& wm = geometry_.meshes()[geom];
     material = wm.material;
     // Back faces of single-sided materials are culled (glTF), except where light goes
@@ -420,7 +421,7 @@ inline glm::vec3 Integrator::transmittance(const SurfaceHit& hit, const LightSam
     tfar = glm::length(target - o) * (1.0f - 1e-4f);
   }
   ++rays;
-  if (geometry_.occluded(o, ls.wi, tfar)) return glm::vec3(0.0f);
+  if (geometry_.occluded(o, ls.wi, tfar, hit.time)) return glm::vec3(0.0f);
   if (!geometry_.has_alpha()) return glm::vec3(1.0f);
   float tr = 1.0f;
   glm::vec3 origin = o;
@@ -429,8 +430,9 @@ inline glm::vec3 Integrator::transmittance(const SurfaceHit& hit, const LightSam
     std::uint32_t geom = 0, prim = 0;
     float t = 0.0f, u = 0.0f, v = 0.0f;
     ++rays;
-    if (!geometry_.intersect(origin, ls.wi, remaining, kMaskAlpha, geom, prim, t, u, v)) break;
-    const SurfaceHit h = geometry_.resolve(geom, prim, t, u, v);
+    if (!geometry_.intersect(origin, ls.wi, remaining, kMaskAlpha, geom, prim, t, u, v, hit.time))
+      break;
+    const SurfaceHit h = geometry_.resolve(geom, prim, t, u, v, hit.time);
     const Material& m = *geometry_.meshes()[geom].material;
     const float alpha = material_alpha(scene_, m, h);
     if (m.alpha_mode == AlphaMode::kMask)

@@ -107,10 +107,11 @@ class Integrator {
 
   /// The radiance arriving along the camera ray (origin, direction) for sample `index` of
   /// pixel `pixel`, whose sequence is `sampler`; `primary` is the ray's intersection,
-  /// found with its packet. `rays` counts the rays traced.
+  /// found with its packet. `rays` counts the rays traced. `time`: the path's time across
+  /// the shutter, [0, 1] (motion blur: every ray of the path sees the scene then).
   PathSample Li(glm::vec3 origin, glm::vec3 direction, const SceneGeometry::PacketHit& primary,
                 OwenSobolPixel& sampler, std::uint32_t pixel, std::uint32_t index,
-                std::uint64_t& rays) const;
+                std::uint64_t& rays, float time = 0.0f) const;
 
  private:
   /// kTransmits: the BSDF has lobes below the surface, so light samples on the far side
@@ -135,7 +136,7 @@ class Integrator {
                             glm::vec3& sigma_near, glm::vec3& sigma_far) const;
   bool closest_hit(glm::vec3& origin, glm::vec3 direction, std::uint32_t pixel, std::uint32_t index,
                    int depth, std::uint64_t& rays, SurfaceHit& hit, const Material*& material,
-                   const SceneGeometry::PacketHit* first = nullptr) const;
+                   const SceneGeometry::PacketHit* first, float time) const;
   // (A template like sample_ld: each instantiation has one caller, so the opaque one is
   // inlined into Li as before.)
   template <bool kTransmits>

@@ -119,7 +119,7 @@ LightSet::LightSet(const Scene& scene, const SceneGeometry& geometry, const Envi
         // hemisphere around its geometric normal: theta_o = 0, theta_e = pi / 2.
         LightBounds lb;
         const auto corner = [&](float u, float v) {
-          return geometry.resolve(std::uint32_t(g), std::uint32_t(t), 0.0f, u, v);
+          return geometry.resolve(std::uint32_t(g), std::uint32_t(t), 0.0f, u, v, kShutterCentre);
         };
         const SurfaceHit h0 = corner(0.0f, 0.0f);
         const glm::vec3 p1 = corner(1.0f, 0.0f).p, p2 = corner(0.0f, 1.0f).p;
@@ -262,7 +262,7 @@ bool LightSet::sample(glm::vec3 p, glm::vec3 n, float u_select, glm::vec2 u,
       // area of one triangle by the same factor.
       const float su = std::sqrt(u.x);
       const float b1 = u.y * su, b2 = 1.0f - su;
-      const SurfaceHit hit = geometry_.resolve(e.index, e.prim, 0.0f, b1, b2);
+      const SurfaceHit hit = geometry_.resolve(e.index, e.prim, 0.0f, b1, b2, kShutterCentre);
       const glm::vec3 to = hit.p - p;
       const float d2 = glm::dot(to, to);
       if (!(d2 > 0.0f) || !(hit.area > 0.0f)) return false;

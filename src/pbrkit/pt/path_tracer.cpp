@@ -73,7 +73,14 @@ RenderSetup build_setup(const Scene& scene, const Environment* env,
   const auto build_start = Clock::now();
   arena.execute([&] {
     set_ftz_daz();
-    setup.geometry = std::make_unique<SceneGeometry>(scene);
+    GeometryOptions options;
+    ShutterMotion motion;
+    if (settings.shutter.animation >= 0) {
+      const PathTracerSettings::Shutter& sh = settings.shutter;
+      motion = shutter_motion(scene, sh.animation, sh.open, sh.close, sh.steps);
+      if (motion.moving()) options.motion = &motion;
+    }
+    setup.geometry = std::make_unique<SceneGeometry>(scene, options);
     setup.geometry->observe(observer);
     stats.bvh_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
     setup.lights = std::make_unique<LightSet>(scene, *setup.geometry, env, settings.light_sampler);
@@ -270,20 +277,24 @@ std::uint64_t SampleLoop::render_packet(int bx, int by, PathCounts& counts) {
   std::optional<OwenSobolPixel> samplers[kLanes];
   for (int k = 0; k < kLanes; ++k) samplers[k].emplace(sampler_, std::uint32_t(pixel_of[k]));
   glm::vec3 origins[kLanes], directions[kLanes];
+  float times[kLanes];
+  const bool moving = geometry_.moving();
   SceneGeometry::PacketHit hits[kLanes];
   std::uint64_t taken = 0;
   for (std::uint32_t s = first; s < target_; ++s) {
     const std::uint32_t index = begin_ + s;
     for (int k = 0; k < kLanes; ++k) {
-      const glm::vec2 off = sample_pixel_filter(
-          settings_.filter, glm::vec2(samplers[k]->sample_block(index, kPixelFilterBlock)));
+      // The pixel filter's block has two dimensions to spare: the third is the shutter time.
+      const glm::vec4 block = samplers[k]->sample_block(index, kPixelFilterBlock);
+      const glm::vec2 off = sample_pixel_filter(settings_.filter, glm::vec2(block));
+      times[k] = moving ? block.z : 0.0f;
       const glm::vec2 ndc((float(px[k]) + 0.5f + off.x) / float(width) * 2.0f - 1.0f,
                           1.0f - (float(py[k]) + 0.5f + off.y) / float(height) * 2.0f);
       const Ray ray = camera_rays_.generate(ndc);
       origins[k] = ray.origin;
       directions[k] = ray.direction;
     }
-    geometry_.intersect_packet(origins, directions, hits);
+    geometry_.intersect_packet(origins, directions, hits, moving ? times : nullptr);
     // The paths below are traced one after the other; the cache misses of their first
     // hits' vertex data are started here together, so that they overlap.
     for (int k = 0; k < kLanes; ++k)
@@ -292,7 +303,7 @@ std::uint64_t SampleLoop::render_packet(int bx, int by, PathCounts& counts) {
       const std::size_t i = pixel_of[k];
       if (!inside[k] || film_.done[i] > 0.0f || s < std::uint32_t(film_.count[i])) continue;
       const PathSample ps = integrator_.Li(origins[k], directions[k], hits[k], *samplers[k],
-                                           std::uint32_t(i), index, counts.rays);
+                                           std::uint32_t(i), index, counts.rays, times[k]);
       counts.non_finite += ps.non_finite ? 1 : 0;
       counts.medium_overflows += ps.medium_overflow ? 1 : 0;
       film_.sum[i] += ps.L;

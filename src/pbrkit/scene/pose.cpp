@@ -60,13 +60,20 @@ glm::mat4 rigid(glm::mat4 m, const std::string& what) {
   return m;
 }
 
-void morph_and_skin(Scene& scene, const SceneMotion& motion, const DeformingMesh& d,
-                    const std::vector<float>& weights, const std::vector<glm::mat4>& world) {
-  Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+// A deforming mesh's vertices at a pose.
+struct Vertices {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec4> tangents;
+};
+
+void deform(const SceneMotion& motion, const DeformingMesh& d,
+            const std::vector<std::uint32_t>& indices, const std::vector<float>& weights,
+            const std::vector<glm::mat4>& world, Vertices& out) {
   const std::size_t n = d.positions.size();
-  mesh.positions = d.positions;
-  if (!d.flat_normals) mesh.normals = d.normals;
-  mesh.tangents = d.tangents;
+  out.positions = d.positions;
+  out.normals = d.flat_normals ? std::vector<glm::vec3>{} : d.normals;
+  out.tangents = d.tangents;
   // Morph targets: the weighted sum of displacements (section 3.7.2.2); TANGENT targets
   // move xyz only, the handedness stays.
   for (std::size_t t = 0; t < d.targets.size() && t < weights.size(); ++t) {
@@ -74,12 +81,11 @@ void morph_and_skin(Scene& scene, const SceneMotion& motion, const DeformingMesh
     if (w == 0.0f) continue;
     const MorphTarget& target = d.targets[t];
     for (std::size_t i = 0; i < target.positions.size() && i < n; ++i)
-      mesh.positions[i] += w * target.positions[i];
-    if (!d.flat_normals)
-      for (std::size_t i = 0; i < target.normals.size() && i < mesh.normals.size(); ++i)
-        mesh.normals[i] += w * target.normals[i];
-    for (std::size_t i = 0; i < target.tangents.size() && i < mesh.tangents.size(); ++i)
-      mesh.tangents[i] += glm::vec4(w * target.tangents[i], 0.0f);
+      out.positions[i] += w * target.positions[i];
+    for (std::size_t i = 0; i < target.normals.size() && i < out.normals.size(); ++i)
+      out.normals[i] += w * target.normals[i];
+    for (std::size_t i = 0; i < target.tangents.size() && i < out.tangents.size(); ++i)
+      out.tangents[i] += glm::vec4(w * target.tangents[i], 0.0f);
   }
   if (d.skin >= 0) {
     // Linear blend skinning: the joint matrix of joint j is world(joint j) times its
@@ -96,37 +102,44 @@ void morph_and_skin(Scene& scene, const SceneMotion& motion, const DeformingMesh
         const float w = d.weights[i * k + c];
         if (w != 0.0f) m += w * joint[d.joints[i * k + c]];
       }
-      mesh.positions[i] = glm::vec3(m * glm::vec4(mesh.positions[i], 1.0f));
+      out.positions[i] = glm::vec3(m * glm::vec4(out.positions[i], 1.0f));
       const glm::mat3 linear(m);
       // Normals transform by the inverse transpose; tangents lie in the surface and
       // transform by the matrix itself.
-      if (!d.flat_normals && i < mesh.normals.size())
-        mesh.normals[i] = glm::transpose(glm::inverse(linear)) * mesh.normals[i];
-      if (i < mesh.tangents.size())
-        mesh.tangents[i] = glm::vec4(linear * glm::vec3(mesh.tangents[i]), mesh.tangents[i].w);
+      if (i < out.normals.size())
+        out.normals[i] = glm::transpose(glm::inverse(linear)) * out.normals[i];
+      if (i < out.tangents.size())
+        out.tangents[i] = glm::vec4(linear * glm::vec3(out.tangents[i]), out.tangents[i].w);
     }
   }
-  for (glm::vec3& v : mesh.normals) {
+  for (glm::vec3& v : out.normals) {
     const float len = glm::length(v);
     v = len > 0.0f && std::isfinite(len) ? v / len : glm::vec3(0, 0, 1);
   }
-  for (glm::vec4& v : mesh.tangents) {
+  for (glm::vec4& v : out.tangents) {
     const float len = glm::length(glm::vec3(v));
     v = len > 0.0f && std::isfinite(len) ? glm::vec4(glm::vec3(v) / len, v.w)
                                          : glm::vec4(1, 0, 0, v.w);
   }
   if (d.flat_normals) {
     // The loader unwelded the triangles (one vertex per corner): each gets its face's normal.
-    mesh.normals.assign(n, glm::vec3(0, 0, 1));
-    for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-      const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+    out.normals.assign(n, glm::vec3(0, 0, 1));
+    for (std::size_t t = 0; t + 2 < indices.size(); t += 3) {
+      const std::uint32_t a = indices[t], b = indices[t + 1], c = indices[t + 2];
       const glm::vec3 f =
-          glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+          glm::cross(out.positions[b] - out.positions[a], out.positions[c] - out.positions[a]);
       const float len = glm::length(f);
       const glm::vec3 unit = len > 0.0f && std::isfinite(len) ? f / len : glm::vec3(0, 0, 1);
-      mesh.normals[a] = mesh.normals[b] = mesh.normals[c] = unit;
+      out.normals[a] = out.normals[b] = out.normals[c] = unit;
     }
   }
+}
+
+void check_finite(const Scene& scene, const PoseTime& pose, const std::vector<glm::mat4>& world) {
+  for (const int node : scene.motion->order)
+    if (!finite(world[std::size_t(node)]))
+      throw Error(fmt::format("{}: {} gives nodes[{}] a transform that is not finite", scene.source,
+                              describe(scene, pose), node));
 }
 
 }  // namespace
@@ -205,10 +218,7 @@ void pose_scene(Scene& scene, const PoseTime& pose) {
   if (!std::isfinite(pose.time))
     throw Error(fmt::format("{}: the animation time is not finite", scene.source));
   const std::vector<glm::mat4> world = posed_node_transforms(motion, pose);
-  for (const int node : motion.order)
-    if (!finite(world[std::size_t(node)]))
-      throw Error(fmt::format("{}: {} gives nodes[{}] a transform that is not finite", scene.source,
-                              describe(scene, pose), node));
+  check_finite(scene, pose, world);
   for (const NodePlacement& p : motion.placements)
     scene.instances[std::size_t(p.instance)].transform = world[std::size_t(p.node)] * p.offset;
   for (std::size_t i = 0; i < motion.camera_nodes.size() && i < scene.cameras.size(); ++i)
@@ -224,11 +234,81 @@ void pose_scene(Scene& scene, const PoseTime& pose) {
     l.direction = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0, 0, -1);
   }
   const std::vector<std::vector<float>> weights = posed_weights(motion, pose);
+  Vertices v;
   for (const DeformingMesh& d : motion.deforming) {
-    morph_and_skin(scene, motion, d, weights[std::size_t(d.node)], world);
+    Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+    deform(motion, d, mesh.indices, weights[std::size_t(d.node)], world, v);
+    mesh.positions.swap(v.positions);
+    mesh.normals.swap(v.normals);
+    mesh.tangents.swap(v.tangents);
     scene.instances[std::size_t(d.instance)].transform =
         d.skin >= 0 ? glm::mat4(1.0f) : world[std::size_t(d.node)];
   }
+}
+
+bool ShutterMotion::moving() const {
+  for (std::size_t i = 0; i < transforms.size(); ++i)
+    if (moving(i)) return true;
+  return false;
+}
+
+ShutterMotion shutter_motion(const Scene& scene, int animation, float open, float close,
+                             int steps) {
+  if (!scene.motion || scene.motion->animations.empty())
+    throw Error(fmt::format("{} has no animations to blur", scene.source));
+  const SceneMotion& motion = *scene.motion;
+  if (animation < 0 || animation >= int(motion.animations.size()))
+    throw Error(fmt::format("{}: animation {} does not exist ({} animations)", scene.source,
+                            animation, motion.animations.size()));
+  if (!(open < close) || !std::isfinite(open) || !std::isfinite(close))
+    throw Error(
+        fmt::format("{}: the shutter {}:{} must open before it closes", scene.source, open, close));
+  if (steps < 2 || steps > 129)  // Embree's limit on time steps
+    throw Error(fmt::format("{}: {} motion steps; 2 to 129", scene.source, steps));
+  const std::size_t count = scene.instances.size();
+  ShutterMotion m;
+  m.steps = steps;
+  m.transforms.resize(count);
+  m.positions.resize(count);
+  m.normals.resize(count);
+  std::vector<std::vector<glm::mat4>> transforms(count);
+  std::vector<std::vector<Vertices>> vertices(motion.deforming.size());
+  for (int k = 0; k < steps; ++k) {
+    const PoseTime pose{animation, open + (close - open) * float(k) / float(steps - 1)};
+    const std::vector<glm::mat4> world = posed_node_transforms(motion, pose);
+    check_finite(scene, pose, world);
+    for (const NodePlacement& p : motion.placements)
+      transforms[std::size_t(p.instance)].push_back(world[std::size_t(p.node)] * p.offset);
+    const std::vector<std::vector<float>> weights = posed_weights(motion, pose);
+    for (std::size_t i = 0; i < motion.deforming.size(); ++i) {
+      const DeformingMesh& d = motion.deforming[i];
+      Vertices& v = vertices[i].emplace_back();
+      deform(motion, d, scene.meshes[std::size_t(d.mesh)].indices, weights[std::size_t(d.node)],
+             world, v);
+      transforms[std::size_t(d.instance)].push_back(d.skin >= 0 ? glm::mat4(1.0f)
+                                                                : world[std::size_t(d.node)]);
+    }
+  }
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto& t = transforms[i];
+    for (std::size_t k = 1; k < t.size(); ++k)
+      if (t[k] != t[0]) {
+        m.transforms[i] = t;
+        break;
+      }
+  }
+  for (std::size_t i = 0; i < motion.deforming.size(); ++i) {
+    const std::size_t inst = std::size_t(motion.deforming[i].instance);
+    const auto& v = vertices[i];
+    bool moves = false;
+    for (std::size_t k = 1; k < v.size() && !moves; ++k) moves = v[k].positions != v[0].positions;
+    if (!moves) continue;
+    for (const Vertices& step : v) {
+      m.positions[inst].push_back(step.positions);
+      m.normals[inst].push_back(step.normals);
+    }
+  }
+  return m;
 }
 
 }  // namespace pbrkit
