@@ -60,7 +60,8 @@ void register_view_command(CLI::App& app) {
       "Interactive viewer: the OpenGL image and the path-traced truth of the same view (keys "
       "1-4: raster, path, split, difference); orbit (drag), pan (right drag), zoom (wheel); a "
       "panel for environment, exposure, tone mapper, model, compensation, IBL, lights and "
-      "material overrides; F12/P screenshot (PNG + EXR), R reload, Esc quit; drop a "
+      "material overrides; F12/P screenshot (PNG + EXR), R reload, Space play / pause an "
+      "animation, Esc quit; drop a "
       ".gltf/.glb or .hdr/.exr on the window. Needs an X display (xvfb-run for scripts).");
   cmd->add_option("scene", o->scene,
                   "a .gltf/.glb file or a built-in scene: " + builtin_scene_list())
@@ -71,6 +72,14 @@ void register_view_command(CLI::App& app) {
   cmd->add_option("--variant", o->variant,
                   "initial material variant (KHR_materials_variants), by name or index; the "
                   "panel switches them");
+  auto* animation = cmd->add_option(
+      "--animation", o->animation,
+      "start posed by this glTF animation, by name or index (`pbrkit info` lists them); the "
+      "panel's Animation section plays and scrubs them");
+  cmd->add_option("--animation-time", o->animation_time,
+                  "the time in the animation, in seconds (clamped to its keys)")
+      ->needs(animation)
+      ->capture_default_str();
   cmd->add_option("--width", o->width, "window width")
       ->check(CLI::Range(64, 8192))
       ->capture_default_str();

@@ -122,8 +122,13 @@ void run_frames(ViewerState& s, gl::Renderer& renderer, GLFWwindow* window) {
   const ViewerOptions& options = s.options;
   double cpu_ms = 0.0, gpu_ms = 0.0;
   int last_w = 0, last_h = 0;
+  Clock::time_point previous = Clock::now();
   for (int frame_index = 0; !glfwWindowShouldClose(window); ++frame_index) {
     const auto t0 = Clock::now();
+    // The animation's clock runs on the wall clock, but not across a stall (a scene
+    // dropped on the window, a bake): at most a quarter second a frame.
+    const double elapsed = std::min(std::chrono::duration<double>(t0 - previous).count(), 0.25);
+    previous = t0;
     glfwPollEvents();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -135,6 +140,8 @@ void run_frames(ViewerState& s, gl::Renderer& renderer, GLFWwindow* window) {
     handle_mouse(s, io);
     const bool screenshot = handle_keys(s, renderer, window, io);
     if (draw_panel(s, renderer, cpu_ms, gpu_ms)) s.path_dirty = s.path_scene_dirty = true;
+    // Playing: this frame's pose, uploaded before the raster frame draws it.
+    if (s.playback.playing && advance(s.playback, elapsed)) apply_pose(s, renderer);
     s.settings.metallic_override = s.override_metallic ? s.metallic : -1.0f;
     s.settings.roughness_override = s.override_roughness ? s.roughness : -1.0f;
 

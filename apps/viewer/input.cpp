@@ -21,18 +21,22 @@ void handle_drops(ViewerState& s, gl::Renderer& renderer, float aspect) {
     std::string ext = std::filesystem::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     if (ext == ".gltf" || ext == ".glb") {
-      const std::string previous = s.options.scene, previous_variant = s.options.variant;
+      const ViewerOptions previous_options = s.options;
+      const Playback previous_playback = s.playback;
       try {
         s.options.scene = path;
         s.options.camera.reset();
-        s.options.variant.clear();  // another file's variants
+        s.options.variant.clear();  // another file's variants and animations
+        s.options.animation.clear();
+        s.options.animation_time = 0.0f;
+        s.playback.playing = false;
         load_scene_into(s, renderer);
         reset_orbit(s, aspect);
         s.orbit_moved = false;
         s.message.clear();
       } catch (const Error& e) {
-        s.options.scene = previous;
-        s.options.variant = previous_variant;
+        s.options = previous_options;
+        s.playback = previous_playback;
         s.message = std::string("not loaded: ") + e.what();
       }
     } else if (ext == ".hdr" || ext == ".exr") {
@@ -107,6 +111,8 @@ bool handle_keys(ViewerState& s, gl::Renderer& renderer, GLFWwindow* window, con
     s.denoise = !s.denoise;
     s.path_display_dirty = true;
   }
+  if (ImGui::IsKeyPressed(GLFW_KEY_SPACE) && s.playback.animation >= 0)
+    set_playing(s, renderer, !s.playback.playing);
   if (ImGui::IsKeyPressed(GLFW_KEY_R)) {
     try {
       load_scene_into(s, renderer);

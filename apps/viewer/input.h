@@ -18,7 +18,8 @@ void handle_drops(ViewerState& s, gl::Renderer& renderer, float aspect);
 void handle_mouse(ViewerState& s, const ImGuiIO& io);
 
 /// The keys (when the panel does not want the keyboard): Esc, the view modes 1-4, C the
-/// next channel, D the denoiser, R reload; true when F12 or P asks for a screenshot.
+/// next channel, D the denoiser, Space play / pause the animation, R reload; true when F12 or P
+/// asks for a screenshot.
 bool handle_keys(ViewerState& s, gl::Renderer& renderer, GLFWwindow* window, const ImGuiIO& io);
 
 }  // namespace pbrkit::viewer

@@ -1,5 +1,6 @@
 #include "panel.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "pbrkit/core/color.h"
 #include "pbrkit/image/compare.h"
 #include "pbrkit/scene/material_schema.h"
+#include "pbrkit/scene/pose.h"
 
 namespace pbrkit::viewer {
 
@@ -129,6 +131,37 @@ bool draw_truth_panel(ViewerState& s) {
   return changed;
 }
 
+// The animation section (a scene with glTF animations): which one ("rest pose" first),
+// play / pause, the time, speed and loop. It poses and uploads the scene itself and
+// restarts the path view on a new pose only while paused (apply_pose).
+void draw_animation_panel(ViewerState& s, gl::Renderer& renderer) {
+  if (!s.scene.motion || s.scene.motion->animations.empty()) return;
+  if (!ImGui::CollapsingHeader("Animation", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  std::vector<std::string> names = {"rest pose"};
+  const std::vector<Animation>& animations = s.scene.motion->animations;
+  for (std::size_t i = 0; i < animations.size(); ++i)
+    names.push_back(fmt::format("{} {} ({:.3g} to {:.3g} s)", i, animations[i].name,
+                                animations[i].start(), animations[i].end()));
+  Playback& p = s.playback;
+  int choice = p.animation + 1;
+  if (name_combo("animation", choice, names)) set_animation(s, renderer, choice - 1);
+  if (p.animation < 0) return;
+  if (ImGui::Button(p.playing ? "pause (space)" : "play (space)"))
+    set_playing(s, renderer, !p.playing);
+  ImGui::SameLine();
+  ImGui::Checkbox("loop", &p.loop);
+  if (ImGui::SliderFloat("time", &p.time, p.start, p.end, "%.3f s")) {
+    p.time = std::clamp(p.time, p.start, p.end);  // a typed value may lie outside
+    apply_pose(s, renderer);
+  }
+  ImGui::SliderFloat("speed", &p.speed, 0.05f, 4.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
+  ImGui::Text("pose + upload %.1f ms a frame", s.pose_ms);
+  if (p.playing && s.mode != ViewMode::kRaster)
+    ImGui::TextWrapped(
+        "path view: held while playing (a restart every frame would show only previews); "
+        "it restarts on the pose shown when paused");
+}
+
 }  // namespace
 
 bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gpu_ms) {
@@ -218,6 +251,7 @@ bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
       changed = true;
     }
   }
+  draw_animation_panel(s, renderer);
   ImGui::Separator();
   changed |= ImGui::Checkbox("override metallic", &s.override_metallic);
   if (s.override_metallic) changed |= ImGui::SliderFloat("metallic", &s.metallic, 0.0f, 1.0f);
@@ -229,7 +263,7 @@ bool draw_panel(ViewerState& s, gl::Renderer& renderer, double cpu_ms, double gp
   }
   ImGui::TextUnformatted("drag: orbit, right drag: pan, wheel: zoom");
   ImGui::TextUnformatted("1-4: raster, path, split, difference");
-  ImGui::TextUnformatted("C: next channel, D: denoise (path)");
+  ImGui::TextUnformatted("C: next channel, D: denoise (path), Space: play / pause");
   ImGui::TextUnformatted("F12/P: screenshot, R: reload, Esc: quit");
   ImGui::TextUnformatted("drop a .gltf/.glb or an .hdr/.exr on the window");
   ImGui::End();

@@ -1,7 +1,7 @@
 #pragma once
 // The viewer's panel (Dear ImGui), private to the viewer: the view mode and the truth
 // views' progress and error, the environment, display, model and renderer settings, the
-// lights, and the material overrides.
+// lights, the variants and animations, and the material overrides.
 #include "pbrkit/gl/renderer.h"
 #include "viewer_state.h"
 

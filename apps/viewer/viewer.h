@@ -43,6 +43,10 @@ struct ViewerOptions {
   /// A KHR_materials_variants variant by name or index (the panel switches them); empty:
   /// each primitive's own material.
   std::string variant;
+  /// A glTF animation to start posed by, by name or index (the panel plays and scrubs
+  /// them), at `animation_time` seconds (clamped to its keys); empty: the rest pose.
+  std::string animation;
+  float animation_time = 0.0f;
   /// The window asked for; every frame is rendered at the framebuffer's size, and the
   /// projection and the first view's framing take its aspect.
   int width = 1280, height = 720;

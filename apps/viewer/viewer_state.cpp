@@ -9,6 +9,7 @@
 #include "pbrkit/gl/context.h"
 #include "pbrkit/scene/load.h"
 #include "pbrkit/scene/material_schema.h"
+#include "pbrkit/scene/pose.h"
 #include "pbrkit/scene/variants.h"
 #include "pbrkit/util/data_dir.h"
 #include "pbrkit/util/log.h"
@@ -111,8 +112,21 @@ void load_environment(ViewerState& s, gl::Renderer& renderer) {
 void load_scene_into(ViewerState& s, gl::Renderer& renderer) {
   Scene scene = load_scene(s.options.scene);
   if (!s.options.variant.empty()) apply_variant(scene, find_variant(scene, s.options.variant));
+  // The animation and time the options name (the command line's, or the panel's choice
+  // kept for a reload), the scene posed before its first upload.
+  Playback playback = s.playback;
+  playback.time = s.options.animation_time;
+  if (s.options.animation.empty()) {
+    choose_animation(playback, -1, 0.0f, 0.0f);
+  } else {
+    const int index = find_animation(scene, s.options.animation);
+    const Animation& a = scene.motion->animations[std::size_t(index)];
+    choose_animation(playback, index, a.start(), a.end());
+    pose_scene(scene, {playback.animation, playback.time});
+  }
   renderer.set_scene(scene);  // a scene too large is refused here, the previous one kept
   s.scene = std::move(scene);
+  s.playback = playback;
   renderer.set_materials(overridden_materials(s));  // the panel's overrides survive a reload
   s.settings.light_enabled.assign(s.scene.lights.size(), true);
   s.path_scene_dirty = true;
@@ -126,6 +140,52 @@ void set_variant(ViewerState& s, gl::Renderer& renderer, int variant) {
   renderer.set_materials(overridden_materials(s));
   s.options.variant = variant < 0 ? "" : s.scene.variants[std::size_t(variant)];
   s.path_scene_dirty = true;
+}
+
+void apply_pose(ViewerState& s, gl::Renderer& renderer) {
+  const Clock::time_point t0 = Clock::now();
+  const Playback& p = s.playback;
+  pose_scene(s.scene, {p.animation, p.time});
+  // The GL renderer has no update of vertices or instance transforms alone: the whole
+  // scene is uploaded again, textures included, each posed frame while playing. That costs
+  // time in proportion to the scene's bytes (the panel shows it, pose_ms); fine for the
+  // animated samples this is for (a skinned character is a few MB), not for a large
+  // textured scene with one moving node.
+  renderer.set_scene(s.scene);
+  renderer.set_materials(overridden_materials(s));
+  s.options.animation.clear();
+  if (p.animation >= 0) {
+    // By name when the name finds this animation again (a reload), else by index.
+    const std::string& name = s.scene.motion->animations[std::size_t(p.animation)].name;
+    s.options.animation = !name.empty() && find_animation(s.scene, name) == p.animation
+                              ? name
+                              : std::to_string(p.animation);
+  }
+  s.options.animation_time = p.time;
+  s.path_scene_dirty = true;
+  if (!p.playing) s.path_dirty = true;
+  s.pose_ms = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+void set_animation(ViewerState& s, gl::Renderer& renderer, int animation) {
+  if (animation < 0 || !s.scene.motion) {
+    choose_animation(s.playback, -1, 0.0f, 0.0f);
+  } else {
+    const Animation& a = s.scene.motion->animations[std::size_t(animation)];
+    s.playback.time = a.start();
+    choose_animation(s.playback, animation, a.start(), a.end());
+  }
+  apply_pose(s, renderer);
+}
+
+void set_playing(ViewerState& s, gl::Renderer& renderer, bool playing) {
+  const float time = s.playback.time;
+  if (playing)
+    play(s.playback);
+  else
+    s.playback.playing = false;
+  if (s.playback.time != time) apply_pose(s, renderer);
+  if (!s.playback.playing) s.path_dirty = s.path_scene_dirty = true;
 }
 
 void reset_orbit(ViewerState& s, float aspect) {

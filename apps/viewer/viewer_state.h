@@ -21,6 +21,7 @@
 #include "pbrkit/pt/progressive_render.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/scene.h"
+#include "playback.h"
 #include "truth_view.h"
 #include "viewer/viewer.h"
 
@@ -117,6 +118,10 @@ struct ViewerState {
   ViewMode shown_mode = ViewMode::kRaster;
   ErrorView error;
   Clock::time_point error_time{};
+  // The animation shown and its clock; the scene (and the renderer's copy) is posed at
+  // its time.
+  Playback playback;
+  double pose_ms = 0.0;              // the last pose's cost: posing and uploading the scene
   std::vector<std::string> dropped;  // files dropped on the window, handled next frame
   std::string message;               // the last problem with a dropped file or a reload
 };
@@ -139,6 +144,20 @@ void load_scene_into(ViewerState& s, gl::Renderer& renderer);
 /// Switches the scene to material variant `variant` (-1: none; scene/variants.h), uploads
 /// the meshes' new materials with the panel's overrides and keeps the choice for reloads.
 void set_variant(ViewerState& s, gl::Renderer& renderer, int variant);
+
+/// Poses the scene at the playback's animation and time (the rest pose for none), uploads
+/// it with the panel's overrides and keeps the choice for reloads; the path view restarts
+/// on the new pose unless the animation is playing (a restart every frame would never get
+/// past the preview), in which case it restarts when playback stops.
+void apply_pose(ViewerState& s, gl::Renderer& renderer);
+
+/// Switches to animation `animation` (-1: the rest pose) and poses the scene at its start
+/// (playing on if it was playing).
+void set_animation(ViewerState& s, gl::Renderer& renderer, int animation);
+
+/// Plays or pauses the animation (playback.h's play: from the start again after it
+/// stopped at the end); paused, the path view restarts on the pose shown.
+void set_playing(ViewerState& s, gl::Renderer& renderer, bool playing);
 
 /// The initial view: the chosen glTF camera's, or the automatic framing, which fits the
 /// scene into the narrower of the two fields of view of a frame of `aspect`.
