@@ -86,6 +86,7 @@ void render_frames(const RenderCommandOptions& o, const RenderRunner& run) {
     RenderCommandOptions frame = o;
     frame.animation_time = float(f) / o.fps;
     frame.outputs = frame_output_paths(o.outputs, f);
+    frame.more_frames = f + range.step <= range.last;
     note("frame {} ({} of {}), t = {:.4g} s", f, ++done, count, frame.animation_time);
     pose_scene(scene, {animation, frame.pose_time()});
     run(frame, scene);

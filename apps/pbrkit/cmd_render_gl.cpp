@@ -105,7 +105,15 @@ RenderRunner add_gl_render_options(CLI::App& render) {
       ->capture_default_str()
       ->group(group);
 
-  return [g](const RenderCommandOptions& o, const Scene& scene) {
+  // What the frames of a sequence share: one context, renderer and IBL bake (the scene is
+  // uploaded again per frame); released after the last frame, before main() returns.
+  struct Session {
+    std::optional<gl::HeadlessContext> context;
+    std::optional<gl::Renderer> renderer;
+    bool lit = false;
+  };
+  auto session = std::make_shared<Session>();
+  return [g, session](const RenderCommandOptions& o, const Scene& scene) {
     if (!o.shutter.empty())
       note(
           "--shutter: the OpenGL renderer has no motion blur; it draws the shutter's centre "
@@ -132,23 +140,31 @@ RenderRunner add_gl_render_options(CLI::App& render) {
     const bool raw = settings.debug_channel != gl::DebugChannel::kNone;
     const ToneMapper tone_mapper = raw ? ToneMapper::kNone : parse_tone_mapper(o.tonemap);
 
-    std::optional<Environment> env;
-    if (!o.no_env) env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
-    std::optional<BakeOptions> bake;
-    if (settings.ibl) {
-      bake = gl::realtime_bake_options(g->bake_size, g->bake_samples);
-      bake->model = settings.brdf.model;
-    }
     const RenderView view = select_render_view(scene, o);
     const int width = view.size.width, height = view.size.height;
 
     const auto t_gl = Clock::now();
-    gl::HeadlessContext context;
-    gl::Renderer renderer;
+    if (!session->renderer) {
+      session->context.emplace();
+      session->renderer.emplace();
+    }
+    gl::HeadlessContext& context = *session->context;
+    gl::Renderer& renderer = *session->renderer;
     renderer.set_scene(scene);
-    const auto t_bake = Clock::now();
-    renderer.set_environment_light(env ? &*env : nullptr, bake);
-    const double bake_ms = env && bake ? ms_since(t_bake) : 0.0;
+    double bake_ms = 0.0;
+    if (!session->lit) {
+      std::optional<Environment> env;
+      if (!o.no_env) env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
+      std::optional<BakeOptions> bake;
+      if (settings.ibl) {
+        bake = gl::realtime_bake_options(g->bake_size, g->bake_samples);
+        bake->model = settings.brdf.model;
+      }
+      const auto t_bake = Clock::now();
+      renderer.set_environment_light(env ? &*env : nullptr, bake);
+      bake_ms = env && bake ? ms_since(t_bake) : 0.0;
+      session->lit = true;
+    }
     renderer.render(view.camera, width, height, settings);
     const Image frame = renderer.read_back();
     const double gpu_ms = renderer.gpu_time_ms();
@@ -162,6 +178,11 @@ RenderRunner add_gl_render_options(CLI::App& render) {
         "the GPU), total {:.0f} ms; wrote {} and {}",
         gl::describe_current_context(), context.platform(), scene.source, width, height, bake_ms,
         gl_ms, gpu_ms, ms_since(t_start), o.outputs.png, o.outputs.exr);
+    if (!o.more_frames) {
+      session->renderer.reset();
+      session->context.reset();
+      session->lit = false;
+    }
   };
 }
 

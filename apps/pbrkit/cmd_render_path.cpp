@@ -206,10 +206,14 @@ RenderRunner add_path_render_options(CLI::App& render) {
       ->capture_default_str()
       ->group(group);
 
-  return [p, noise_threshold_option](const RenderCommandOptions& o, const Scene& scene) {
+  // The environment the frames of a sequence share (loaded once).
+  auto shared_env = std::make_shared<std::optional<Environment>>();
+  return [p, noise_threshold_option, shared_env](const RenderCommandOptions& o,
+                                                 const Scene& scene) {
     const PathOptions& po = *p;
-    std::optional<Environment> env;
-    if (!o.no_env) env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
+    std::optional<Environment>& env = *shared_env;
+    if (!o.no_env && !env)
+      env = load_environment_or_default(o.env, o.env_rotation, o.env_intensity);
     const RenderView view = select_render_view(scene, o);
     const Camera& camera = view.camera;
 
@@ -329,6 +333,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
       throw ExitRequest{128 + (sig > 0 ? sig : SIGINT)};
     }
     if (!st.complete) note("stopped at the time limit: wrote the image rendered so far");
+    if (!o.more_frames) env.reset();
   };
 }
 

@@ -39,6 +39,9 @@ struct RenderCommandOptions {
   /// a numbered image sequence from one scene load; empty: one image.
   std::string frames;
   float fps = 24.0f;
+  /// Set on every frame of a sequence but the last: a runner may keep what the next frame
+  /// reuses (the environment, the OpenGL context and its IBL bake) until then.
+  bool more_frames = false;
   /// --shutter OPEN:CLOSE: motion blur over [time + OPEN, time + CLOSE] (seconds, around the
   /// pose's time); the scene is posed at the shutter's centre. Empty: no motion blur.
   std::string shutter;
