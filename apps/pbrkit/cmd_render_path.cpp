@@ -88,6 +88,7 @@ struct PathOptions {
   bool noise_threshold_given = false;
   std::string filter{pixel_filter_name(PathTracerSettings{}.filter)};
   std::string light_sampler{light_sampler_name(PathTracerSettings{}.light_sampler)};
+  std::string guiding{guiding_name(PathTracerSettings{}.guiding)};
 };
 
 std::pair<std::uint32_t, std::uint32_t> parse_sample_range(const std::string& text) {
@@ -205,6 +206,15 @@ RenderRunner add_path_render_options(CLI::App& render) {
       ->check(CLI::IsMember({"bvh", "power"}))
       ->capture_default_str()
       ->group(group);
+  render
+      .add_option("--guiding", p->guiding,
+                  "path guiding: on learns the incident light while rendering (passes of "
+                  "doubling sample counts) and sends half the bounces of diffuse and rough "
+                  "surfaces where it comes from (unbiased; a resumed render or a --sample-range "
+                  "part learns its own guide, so its bits differ from an uninterrupted render's)")
+      ->check(CLI::IsMember({"off", "on"}))
+      ->capture_default_str()
+      ->group(group);
 
   // The environment the frames of a sequence share (loaded once).
   auto shared_env = std::make_shared<std::optional<Environment>>();
@@ -229,6 +239,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.threads = po.threads;
     s.filter = parse_pixel_filter(po.filter);
     s.light_sampler = parse_light_sampler(po.light_sampler);
+    s.guiding = parse_guiding(po.guiding);
     if (!o.shutter.empty()) {
       s.shutter.animation = find_animation(scene, o.animation);
       s.shutter.open = o.animation_time + o.shutter_open;

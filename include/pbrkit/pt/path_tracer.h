@@ -9,6 +9,7 @@
 // The library never installs signal handlers; the caller passes a stop flag and/or a
 // progress callback that returns false, and gets back everything rendered so far.
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -41,6 +42,20 @@ enum class LightSamplerKind {
 };
 LightSamplerKind parse_light_sampler(std::string_view name);  ///< "bvh" | "power"
 std::string_view light_sampler_name(LightSamplerKind kind);
+
+/// Path guiding: learn the incident radiance while rendering and sample directions from it
+/// (the SD-tree of Mueller, Gross & Novak 2017, "Practical Path Guiding for Efficient
+/// Light-Transport Simulation"; docs/MODEL.md, "Path guiding").
+enum class Guiding {
+  kOff,  ///< BSDF sampling only: the default
+  /// Passes of doubling sample counts, each sampling with what the previous one learned
+  /// (one-sample MIS with BSDF sampling, half and half) at diffuse and rough vertices. Still
+  /// unbiased and the same bits whatever the thread count; a resumed render or a sample range
+  /// learns its own guide from its own samples.
+  kOn,
+};
+Guiding parse_guiding(std::string_view name);  ///< "off" | "on"
+std::string_view guiding_name(Guiding guiding);
 
 /// The reconstruction filter, importance-sampled: every sample has weight 1 and lands at
 /// an offset drawn from the filter, so pixels are independent (no splatting) and sample
@@ -91,6 +106,8 @@ struct PathTracerSettings {
   /// How a light is chosen for next-event estimation (both are unbiased; with a single
   /// light they give bit-identical images).
   LightSamplerKind light_sampler = LightSamplerKind::kBvh;
+  /// Path guiding (Guiding): off by default (BENCHMARKS.md, "Path guiding", says why).
+  Guiding guiding = Guiding::kOff;
   BrdfOptions brdf;
   PixelFilter filter = PixelFilter::kTent;
   /// Show the environment to camera rays (false: black background, light still counts).
@@ -147,6 +164,14 @@ struct PathTracerStats {
   /// Camera paths in this call that entered more nested volumes than the integrator tracks
   /// (kMaxNestedVolumes): the innermost ones were not entered. Warned about, with the limit.
   std::uint64_t medium_overflows = 0;
+  /// Path guiding (settings.guiding): the guide's bytes at the end (both trees and the
+  /// accumulators), its regions and directional nodes, the passes it learned from, and the
+  /// seconds spent building it between passes (the recording and sampling in the paths are
+  /// in render_seconds).
+  std::size_t guide_bytes = 0;
+  std::size_t guide_regions = 0, guide_nodes = 0;
+  int guide_passes = 0;
+  double guide_seconds = 0.0;
 };
 
 /// The deepest nesting of volumes (KHR_materials_volume) a path tracks.

@@ -129,6 +129,9 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   // One hit for the whole path: each bounce's closest_hit overwrites it where it finds one,
   // and a fresh one per bounce cost a 112-byte zero fill (2% of the render on `spheres`).
   SurfaceHit hit;
+  // Path guiding: the vertices whose continuation is recorded once the path is done.
+  GuideVertex guide_vertices[kMaxGuideVertices];
+  int guide_count = 0;
   for (int depth = 0;; ++depth) {
     const Material* material = nullptr;
     const glm::vec3 segment_start = origin;
@@ -218,15 +221,29 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
                                     n_material, sigma_near, sigma_far);
     const Bsdf bsdf(in.params, settings_.brdf);
     const BoundBsdf brdf = bsdf.at(frame.to_local(wo));
+    // Path guiding (guiding.h): every vertex without a delta lobe records what it receives;
+    // a diffuse or rough one whose region has learned something also samples from it.
+    const DirectionalQuadtree* guide = nullptr;
+    std::uint32_t region = 0;
+    const bool recorded = guide_ && !bsdf.has_delta_lobe();
+    if (recorded) {
+      region = guide_->region_at(hit.p);
+      if (guided_vertex(in.params, bsdf) && guide_->distribution(region).total() > 0.0f)
+        guide = &guide_->distribution(region);
+    }
 
     // Direct lighting: one light sample, weighted against BSDF sampling.
     if (transmits) [[unlikely]]
-      out.L += sample_ld_transmissive(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far);
+      out.L +=
+          sample_ld_transmissive(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far, guide);
     else
-      out.L += sample_ld<false>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far);
+      out.L += sample_ld<false>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far, guide);
 
-    // Continue the path by sampling the BSDF (visible-normal GGX, cosine, the dielectric).
-    const BrdfSample bs = brdf.sample(u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y));
+    // Continue the path by sampling the BSDF (visible-normal GGX, cosine, the dielectric),
+    // or at a guided vertex the mixture of the BSDF and the guide.
+    const BrdfSample bs =
+        guide ? sample_guided(brdf, frame, *guide, u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y))
+              : brdf.sample(u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y));
     if (!bs.valid) break;
     const glm::vec3 wi = frame.to_world(bs.wi);
     // The shading frame's side must agree with the geometric one: a direction on the other
@@ -252,6 +269,8 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
       env_at = env->locate(wi);
       env->prefetch(env_at);
     }
+    if (recorded && !bs.delta && guide_count < kMaxGuideVertices)
+      guide_vertices[guide_count++] = {out.L, beta, wi, bs.pdf, region};
     prev_pdf = bs.pdf;  // infinite after a delta lobe: MIS gives it all the weight
     // A bounce is specular for the cone when its lobe is narrower than a pixel's cone (the
     // sampled direction's solid angle 1 / pdf below pi spread^2): smooth glass's delta lobe,
@@ -269,6 +288,8 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   if (!std::isfinite(out.L.x + out.L.y + out.L.z)) [[unlikely]] {
     out.L = glm::vec3(0.0f);
     out.non_finite = true;
+  } else if (guide_count > 0) {
+    record_path(guide_vertices, guide_count, out.L);
   }
   out.medium_overflow = media.overflowed;
   return out;
@@ -282,8 +303,57 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 // beta f Li tr w / pdf.
 [[gnu::noinline]] glm::vec3 Integrator::sample_ld_transmissive(
     const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf, glm::vec4 u_nee,
-    glm::vec3 beta, std::uint64_t& rays, glm::vec3 sigma_near, glm::vec3 sigma_far) const {
-  return sample_ld<true>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far);
+    glm::vec3 beta, std::uint64_t& rays, glm::vec3 sigma_near, glm::vec3 sigma_far,
+    const DirectionalQuadtree* guide) const {
+  return sample_ld<true>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far, guide);
+}
+
+BrdfSample Integrator::sample_guided(const BoundBsdf& brdf, const Frame& frame,
+                                     const DirectionalQuadtree& guide, float u_choice,
+                                     glm::vec2 u) const {
+  // One-sample MIS (Veach 1997, section 9.2.4) with the balance heuristic: whichever
+  // strategy drew the direction, its weight is f cos / (a p_bsdf + (1 - a) p_guide), the
+  // mixture's pdf (Mueller et al. 2017 mix the two so, with a = 0.5). The choice reuses the
+  // BSDF's lobe number, rescaled to [0, 1) for the BSDF when it is chosen.
+  constexpr float a = kGuideBsdfFraction;
+  if (u_choice < a) {
+    BrdfSample s = brdf.sample(std::min(u_choice / a, 0x1.fffffep-1f), u);
+    if (!s.valid || s.delta) return s;
+    const float p = a * s.pdf + (1.0f - a) * guide.pdf(frame.to_world(s.wi));
+    s.weight *= s.pdf / p;
+    s.pdf = p;
+    return s;
+  }
+  BrdfSample s;
+  float p_guide = 0.0f;
+  s.wi = frame.to_local(guide.sample(u, p_guide));
+  float p_bsdf = 0.0f;
+  const glm::vec3 f = brdf.eval(s.wi, &p_bsdf);
+  const float p = a * p_bsdf + (1.0f - a) * p_guide;
+  if (!(p > 0.0f) || f == glm::vec3(0.0f)) return s;
+  s.weight = f * (std::abs(s.wi.z) / p);
+  s.pdf = p;
+  s.valid = true;
+  return s;
+}
+
+void Integrator::record_path(const GuideVertex* vertices, int count, glm::vec3 L) const {
+  // The radiance arriving at vertex i along its continuation is what the path gathered
+  // after it divided by the throughput up to it (the product of f cos / pdf and Russian
+  // roulette's 1 / q on the way), per channel; the guide learns its mean over the channels,
+  // divided by the direction's pdf (Mueller et al. 2017 record L_i / p).
+  for (int i = 0; i < count; ++i) {
+    const GuideVertex& v = vertices[i];
+    const glm::vec3 after = L - v.L_before;
+    float sum = 0.0f;
+    int channels = 0;
+    for (int c = 0; c < 3; ++c)
+      if (v.beta[c] > 0.0f) {
+        sum += std::max(after[c], 0.0f) / v.beta[c];
+        ++channels;
+      }
+    if (channels > 0 && v.pdf > 0.0f) guide_->record(v.region, v.wi, sum / float(channels) / v.pdf);
+  }
 }
 
 [[gnu::noinline]] bool Integrator::resolve_transmission(ShadingInputs& in, const Material& material,
@@ -332,7 +402,8 @@ template <bool kTransmits>
 inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame,
                                        const BoundBsdf& brdf, glm::vec4 u_nee, glm::vec3 beta,
                                        std::uint64_t& rays, glm::vec3 sigma_near,
-                                       glm::vec3 sigma_far) const {
+                                       glm::vec3 sigma_far,
+                                       const DirectionalQuadtree* guide) const {
   LightSample ls;
   // (The light choice needs no random number when there is a single light.)
   const float u_light = lights_.size() > 1 ? u_nee.x : 0.5f;
@@ -350,6 +421,9 @@ inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame
   const float cos_i = kTransmits ? std::abs(wi_local.z) : std::max(wi_local.z, 0.0f);
   const glm::vec3 f = brdf.eval(wi_local, mis ? &bsdf_pdf : nullptr) * cos_i;
   if (f == glm::vec3(0.0f)) return glm::vec3(0.0f);
+  // At a guided vertex the other strategy is the mixture of the BSDF and the guide.
+  if (mis && guide)
+    bsdf_pdf = kGuideBsdfFraction * bsdf_pdf + (1.0f - kGuideBsdfFraction) * guide->pdf(ls.wi);
   float w = 1.0f;
   if (mis) w = power_heuristic(ls.pdf, bsdf_pdf);
   glm::vec3 tr = transmittance<kTransmits>(hit, ls, above ? hit.ng : -hit.ng, rays);

@@ -12,6 +12,7 @@
 #include "pbrkit/core/sampling.h"
 #include "pbrkit/pt/camera_rays.h"
 #include "pbrkit/pt/geometry.h"
+#include "pbrkit/pt/guiding.h"
 #include "pbrkit/pt/lights.h"
 #include "pbrkit/pt/path_tracer.h"
 #include "pbrkit/pt/shading.h"
@@ -94,16 +95,33 @@ struct PathSample {
   bool medium_overflow = false;
 };
 
+/// Path guiding's share of the directions at a guided vertex that BSDF sampling draws
+/// (one-sample MIS with the guide; the paper's alpha = 0.5).
+inline constexpr float kGuideBsdfFraction = 0.5f;
+
+/// Whether a vertex is guided (PathTracerSettings::guiding): where the guide can find what
+/// BSDF sampling misses, diffuse and rough surfaces. A narrow lobe (smooth metal, smooth
+/// glass) is sampled better by itself than by a guide of a few degrees' resolution, and a
+/// delta lobe cannot be guided at all. A smooth dielectric over a diffuse base is guided for
+/// its diffuse part (its specular lobe then gets half the samples it had).
+inline bool guided_vertex(const SurfaceParams& p, const Bsdf& bsdf) {
+  if (bsdf.has_delta_lobe()) return false;
+  return p.base.roughness >= 0.3f || (p.base.metallic < 0.5f && p.transmission.weight < 0.5f);
+}
+
 class Integrator {
  public:
   /// `pixel_cone`: a camera ray's cone (texture level of detail, settings.texture_lod).
+  /// `guide`: the path guide to sample from and record into (nullptr: no guiding).
   Integrator(const Scene& scene, const SceneGeometry& geometry, const LightSet& lights,
-             const PathTracerSettings& settings, RayCone pixel_cone = {})
+             const PathTracerSettings& settings, RayCone pixel_cone = {},
+             PathGuide* guide = nullptr)
       : scene_(scene),
         geometry_(geometry),
         lights_(lights),
         settings_(settings),
-        pixel_cone_(pixel_cone) {}
+        pixel_cone_(pixel_cone),
+        guide_(guide) {}
 
   /// The radiance arriving along the camera ray (origin, direction) for sample `index` of
   /// pixel `pixel`, whose sequence is `sampler`; `primary` is the ray's intersection,
@@ -121,12 +139,29 @@ class Integrator {
   template <bool kTransmits>
   glm::vec3 sample_ld(const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf,
                       glm::vec4 u_nee, glm::vec3 beta, std::uint64_t& rays, glm::vec3 sigma_near,
-                      glm::vec3 sigma_far) const;
+                      glm::vec3 sigma_far, const DirectionalQuadtree* guide) const;
   /// sample_ld<true>, out of line: Li stays the size it was for opaque surfaces (its
   /// inlining budget otherwise moved other helpers out of line).
   glm::vec3 sample_ld_transmissive(const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf,
                                    glm::vec4 u_nee, glm::vec3 beta, std::uint64_t& rays,
-                                   glm::vec3 sigma_near, glm::vec3 sigma_far) const;
+                                   glm::vec3 sigma_near, glm::vec3 sigma_far,
+                                   const DirectionalQuadtree* guide) const;
+  /// One direction at a guided vertex: from the BSDF (with probability kGuideBsdfFraction)
+  /// or from the guide, weighted f cos / pdf by the mixture's pdf (one-sample MIS, the
+  /// balance heuristic); `pdf` the mixture's, what MIS with light sampling needs.
+  BrdfSample sample_guided(const BoundBsdf& brdf, const Frame& frame,
+                           const DirectionalQuadtree& guide, float u_choice, glm::vec2 u) const;
+  /// A guided vertex's record: where it was, the direction it continued in and that
+  /// direction's pdf, the throughput after it and the path's radiance before it.
+  struct GuideVertex {
+    glm::vec3 L_before, beta, wi;
+    float pdf;
+    std::uint32_t region;
+  };
+  static constexpr int kMaxGuideVertices = 32;
+  /// Records what each vertex of a finished path received along its continuation: the
+  /// radiance the path gathered after it over the throughput up to it.
+  void record_path(const GuideVertex* vertices, int count, glm::vec3 L) const;
   /// Resolves a transmissive surface's media (the medium stack, dispersion's channel) and
   /// sets in.params.transmission's eta and thin_walled; returns whether a volume is behind
   /// the surface. Out of line: opaque paths never call it.
@@ -148,6 +183,7 @@ class Integrator {
   const LightSet& lights_;
   const PathTracerSettings& settings_;
   RayCone pixel_cone_;
+  PathGuide* guide_;
 };
 
 }  // namespace pbrkit

@@ -27,6 +27,7 @@
 #include "pbrkit/pt/adaptive_sampling.h"
 #include "pbrkit/pt/camera_rays.h"
 #include "pbrkit/pt/geometry.h"
+#include "pbrkit/pt/guiding.h"
 #include "pbrkit/pt/integrator.h"
 #include "pbrkit/pt/lights.h"
 #include "pbrkit/pt/pixel_filter.h"
@@ -65,6 +66,7 @@ std::uint32_t next_target(std::uint32_t target, std::uint32_t total, std::uint32
 struct RenderSetup {
   std::unique_ptr<SceneGeometry> geometry;
   std::unique_ptr<LightSet> lights;
+  std::unique_ptr<PathGuide> guide;  ///< settings.guiding on (and light that bounces)
 };
 RenderSetup build_setup(const Scene& scene, const Environment* env,
                         const PathTracerSettings& settings, RayObserver* observer,
@@ -88,6 +90,10 @@ RenderSetup build_setup(const Scene& scene, const Environment* env,
     // build them here, with the rest of the set-up, rather than inside the sampling loop,
     // where every render thread would wait for the first one to finish them.
     if (settings.max_bounces > 0) EnergyTable::get(direct_geometry(settings.brdf.model));
+    // Path guiding learns from scratch in every render (a resumed one and each sample range
+    // too): its guide is built from this call's own samples.
+    if (settings.guiding == Guiding::kOn && settings.max_bounces > 0)
+      setup.guide = std::make_unique<PathGuide>(setup.geometry->bounds());
   });
   stats.build_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
   return setup;
@@ -156,8 +162,9 @@ class SampleLoop {
         begin_(begin),
         total_(total),
         camera_rays_(camera, float(settings.width) / float(settings.height)),
+        guide_(setup.guide.get()),
         integrator_(scene, *setup.geometry, *setup.lights, settings,
-                    camera_rays_.pixel_cone(settings.height)),
+                    camera_rays_.pixel_cone(settings.height), setup.guide.get()),
         sampler_(settings.seed),
         tiles_x_((settings.width + kTileSize - 1) / kTileSize),
         tiles_y_((settings.height + kTileSize - 1) / kTileSize),
@@ -189,6 +196,7 @@ class SampleLoop {
   Film& film_;
   const std::uint32_t begin_, total_;
   const CameraRays camera_rays_;
+  PathGuide* const guide_;
   const Integrator integrator_;
   const OwenSobolSampler sampler_;
   const int tiles_x_, tiles_y_;
@@ -207,7 +215,9 @@ class SampleLoop {
   std::mutex progress_mutex_;
   double last_progress_ = -1.0;
   double last_checkpoint_ = 0.0;
-  std::uint32_t target_ = 0;  // the sample count of the current pass
+  std::uint32_t target_ = 0;       // the sample count of the current pass
+  std::uint32_t guided_step_ = 1;  // with guiding: the samples per pixel of the next pass
+  double guide_seconds_ = 0.0;
 };
 
 bool SampleLoop::should_stop() {
@@ -369,10 +379,32 @@ bool SampleLoop::every_pixel_done() const {
 bool SampleLoop::run() {
   pass_statistics();
   bool complete = false;
+  if (guide_) {
+    // Path guiding trains in passes of doubling sample counts (Mueller et al. 2017's
+    // "binary doubling": pass k takes 2^k samples per pixel, sampling with what pass k - 1
+    // learned) from where this call starts: a resumed film's fewest samples in a pixel
+    // still going.
+    std::uint32_t start = total_;
+    for (std::size_t i = 0; i < film_.pixel_count(); ++i)
+      if (!(film_.done[i] > 0.0f)) start = std::min(start, std::uint32_t(film_.count[i]));
+    target_ = std::min(start, total_);
+  }
   while (!complete && !should_stop()) {
-    target_ = next_target(target_, total_, settings_.min_spp);
+    if (guide_) {
+      target_ = std::min(total_, target_ + guided_step_);
+      guided_step_ = std::min(guided_step_, 1u << 30) * 2;
+    } else {
+      target_ = next_target(target_, total_, settings_.min_spp);
+    }
     render_pass();
     if (should_stop()) break;
+    // The guide learns from the pass (between passes: the paths record into it with integer
+    // atomics, read here in a fixed order).
+    if (guide_ && target_ < total_) {
+      const auto t0 = Clock::now();
+      guide_->end_pass();
+      guide_seconds_ += std::chrono::duration<double>(Clock::now() - t0).count();
+    }
     // Adaptive sampling: pixels whose two half-buffer estimates agree (and their
     // neighbours') stop here.
     stop_converged_pixels(film_, target_, settings_.noise_threshold, settings_.min_spp);
@@ -407,6 +439,13 @@ void SampleLoop::finish(PathTracerStats& stats) {
         "limit); inside the deeper ones they took the enclosing medium's ior and absorption",
         stats.medium_overflows, kMaxNestedVolumes);
   stats.samples = samples_taken_.load();
+  if (guide_) {
+    stats.guide_bytes = guide_->bytes();
+    stats.guide_regions = guide_->region_count();
+    stats.guide_nodes = guide_->directional_nodes();
+    stats.guide_passes = guide_->passes();
+    stats.guide_seconds = guide_seconds_;
+  }
 }
 
 }  // namespace
@@ -431,6 +470,13 @@ PathTracerResult render_path_observed(const Scene& scene, const Environment* env
   result.stats.complete = complete;
   result.stats.stopped = !complete;
   result.stats.noise = mean_pixel_noise(result.film);
+  if (setup.guide)
+    note(
+        "memory: path guide {:.1f} MB ({} regions, {} directional nodes, learned over {} passes; "
+        "building it took {:.2f} s of the render's {:.1f} s)",
+        double(result.stats.guide_bytes) * 1e-6, result.stats.guide_regions,
+        result.stats.guide_nodes, result.stats.guide_passes, result.stats.guide_seconds,
+        result.stats.render_seconds);
   result.color = result.film.color();
   return result;
 }

@@ -3,6 +3,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/environment_sampler.cpp
   ${CMAKE_CURRENT_LIST_DIR}/film.cpp
   ${CMAKE_CURRENT_LIST_DIR}/geometry.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/guiding.cpp
   ${CMAKE_CURRENT_LIST_DIR}/integrator.cpp
   ${CMAKE_CURRENT_LIST_DIR}/light_bvh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lights.cpp
