@@ -15,7 +15,9 @@ namespace pbrkit {
 enum class Interpolation { kStep, kLinear, kCubicSpline };
 
 /// What a channel animates.
-enum class AnimatedProperty { kTranslation, kRotation, kScale, kWeights };
+/// What a channel animates: a node's transform or morph weights (glTF 2.0), or another
+/// property named by a JSON pointer (KHR_animation_pointer).
+enum class AnimatedProperty { kTranslation, kRotation, kScale, kWeights, kPointer };
 
 /// Keyframes: `times` (seconds, strictly increasing) and per key `width` floats (3 for a
 /// translation or scale, 4 for a rotation quaternion (x, y, z, w), the morph target count
@@ -32,8 +34,9 @@ struct AnimationSampler {
 /// samplers).
 struct AnimationChannel {
   int sampler = -1;
-  int node = -1;
+  int node = -1;  ///< -1 for a pointer
   AnimatedProperty property = AnimatedProperty::kTranslation;
+  int pointer = -1;  ///< kPointer: the index in SceneMotion::pointers (scene/pose.h)
 };
 
 struct Animation {

@@ -6,6 +6,7 @@
 // cameras and lights, exactly as the loader placed them at rest, so that both renderers
 // draw the same pose from the same Scene.
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -14,11 +15,14 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "pbrkit/scene/animation.h"
+#include "pbrkit/scene/scene.h"
 
 namespace pbrkit {
 
 struct Scene;
 struct Bounds;
+struct Instance;
+struct Light;
 
 /// A node's rest transform (glTF 2.0 section 3.5.2): a matrix, or translation, rotation
 /// and scale, which animations replace property by property.
@@ -71,6 +75,30 @@ struct DeformingMesh {
   std::vector<float> weights;
 };
 
+/// A property a KHR_animation_pointer channel animates, resolved from its JSON pointer
+/// through the glTF 2.0 Asset Object Model: a material factor (the core material's, or any
+/// of the material schema's extensions'), a texture's KHR_texture_transform, a punctual
+/// light's or a camera's parameter.
+struct PointerTarget {
+  enum class Kind { kMaterial, kTextureTransform, kLight, kCamera };
+  std::string pointer;  ///< the JSON pointer, for messages
+  Kind kind = Kind::kMaterial;
+  int index = -1;  ///< the material, or the file's light or camera
+  int components = 1;
+  /// kMaterial: the value's components in a material (whose extension the loader added).
+  float* (*material_value)(Material& m) = nullptr;
+  /// kMaterial: the valid range of each component (the schema's), which poses clamp to.
+  float min = -std::numeric_limits<float>::infinity();
+  float max = std::numeric_limits<float>::infinity();
+  /// kTextureTransform: the texture (its transform added by the loader when absent).
+  TextureSlot slot = TextureSlot::kBaseColor;
+  /// kTextureTransform: 0 offset, 1 rotation, 2 scale. kLight: 0 color, 1 intensity,
+  /// 2 range, 3 spot.innerConeAngle, 4 spot.outerConeAngle. kCamera: 0 yfov, 1 znear,
+  /// 2 zfar, 3 aspectRatio, 4 xmag, 5 ymag.
+  int field = 0;
+  std::vector<float> rest;  ///< the value at rest, restored where a pose does not animate it
+};
+
 /// An instance placed by its node's world transform times `offset` (EXT_mesh_gpu_instancing's
 /// rows; identity for ordinary nodes).
 struct NodePlacement {
@@ -88,6 +116,9 @@ struct SceneMotion {
   std::vector<NodePlacement> placements;  ///< instances that are not deforming meshes
   std::vector<int> camera_nodes;          ///< per Scene::cameras entry, its node
   std::vector<int> light_nodes;           ///< per Scene::lights entry, its node
+  std::vector<int> camera_sources;        ///< per Scene::cameras entry, the file's camera
+  std::vector<int> light_sources;         ///< per Scene::lights entry, the file's light
+  std::vector<PointerTarget> pointers;    ///< KHR_animation_pointer targets
 };
 
 /// Which animation at which time; `animation` -1 is the rest pose.
@@ -102,6 +133,30 @@ int find_animation(const Scene& scene, std::string_view name_or_index);
 
 /// The nodes' world transforms at `pose` (SceneMotion::nodes' order).
 std::vector<glm::mat4> posed_node_transforms(const SceneMotion& motion, const PoseTime& pose);
+
+/// posed_node_transforms, checked as pose_scene checks a pose: throws pbrkit::Error (naming
+/// `source`, the scene's file) for an animation out of range, a time that is not finite, or
+/// a node transform that is not finite.
+std::vector<glm::mat4> checked_node_transforms(const SceneMotion& motion, std::string_view source,
+                                               const PoseTime& pose);
+
+/// The nodes' morph weights at `pose` (per node: its rest weights unless a channel of the
+/// animation drives them; glTF 2.0 section 3.7.2.2).
+std::vector<std::vector<float>> posed_morph_weights(const SceneMotion& motion,
+                                                    const PoseTime& pose);
+
+/// A skin's joint matrices at the nodes' world transforms `world`: each joint's world
+/// transform times its inverse bind matrix (glTF 2.0 section 3.7.3.1), the matrices that
+/// linear blend skinning blends per vertex.
+std::vector<glm::mat4> joint_matrices(const Skin& skin, const std::vector<glm::mat4>& world);
+
+/// What a pose changes besides the deforming meshes' vertices and the cameras, at the
+/// nodes' world transforms `world`: the instances' transforms (a skinned mesh's identity,
+/// its vertices being in world space; another deforming mesh's its node's) and the lights'
+/// positions and directions. pose_scene calls it; so does a renderer that deforms the
+/// meshes itself (gl::Renderer::set_pose).
+void place_instances_and_lights(const SceneMotion& motion, const std::vector<glm::mat4>& world,
+                                std::vector<Instance>& instances, std::vector<Light>& lights);
 
 /// A scene's motion over a camera shutter, for motion blur: the instances' transforms and
 /// the deforming meshes' vertices at `steps` equally spaced times from the shutter's

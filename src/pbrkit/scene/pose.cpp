@@ -2,12 +2,15 @@
 // morph targets (section 3.7.2.2) and linear blend skinning (section 3.7.3).
 #include "pbrkit/scene/pose.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <optional>
 
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "pbrkit/scene/material_schema.h"
 #include "pbrkit/scene/scene.h"
 #include "pbrkit/util/error.h"
 
@@ -28,26 +31,10 @@ struct LocalPose {
   glm::vec3 scale;
 };
 
-std::string describe(const Scene& scene, const PoseTime& pose) {
+std::string describe(const SceneMotion& motion, const PoseTime& pose) {
   if (pose.animation < 0) return "the rest pose";
-  const auto& a = scene.motion->animations[std::size_t(pose.animation)];
+  const auto& a = motion.animations[std::size_t(pose.animation)];
   return fmt::format("animation {} ('{}') at {} s", pose.animation, a.name, pose.time);
-}
-
-// The nodes' posed morph weights (the rest weights unless a channel drives them).
-std::vector<std::vector<float>> posed_weights(const SceneMotion& motion, const PoseTime& pose) {
-  std::vector<std::vector<float>> weights(motion.nodes.size());
-  for (std::size_t i = 0; i < motion.nodes.size(); ++i) weights[i] = motion.nodes[i].weights;
-  if (pose.animation < 0) return weights;
-  const Animation& a = motion.animations[std::size_t(pose.animation)];
-  for (const AnimationChannel& ch : a.channels) {
-    if (ch.property != AnimatedProperty::kWeights) continue;
-    const AnimationSampler& s = a.samplers[std::size_t(ch.sampler)];
-    std::vector<float>& w = weights[std::size_t(ch.node)];
-    w.resize(std::size_t(s.width), 0.0f);
-    sample_animation(s, pose.time, false, w.data());
-  }
-  return weights;
 }
 
 // Rigid part of a node transform: glTF cameras ignore scale (section 3.10.1).
@@ -91,10 +78,7 @@ void deform(const SceneMotion& motion, const DeformingMesh& d,
     // Linear blend skinning: the joint matrix of joint j is world(joint j) times its
     // inverse bind matrix, and the skinned mesh's own node transform is ignored
     // (section 3.7.3.1): the vertices come out in world space.
-    const Skin& skin = motion.skins[std::size_t(d.skin)];
-    std::vector<glm::mat4> joint(skin.joints.size());
-    for (std::size_t j = 0; j < joint.size(); ++j)
-      joint[j] = world[std::size_t(skin.joints[j])] * skin.inverse_bind[j];
+    const std::vector<glm::mat4> joint = joint_matrices(motion.skins[std::size_t(d.skin)], world);
     const std::size_t k = std::size_t(d.influences);
     for (std::size_t i = 0; i < n; ++i) {
       glm::mat4 m(0.0f);
@@ -135,11 +119,74 @@ void deform(const SceneMotion& motion, const DeformingMesh& d,
   }
 }
 
-void check_finite(const Scene& scene, const PoseTime& pose, const std::vector<glm::mat4>& world) {
-  for (const int node : scene.motion->order)
+// One KHR_animation_pointer value into the scene: a material's factor (clamped to its
+// range), a texture transform, or every placement of a light or camera.
+void write_pointer(Scene& scene, const SceneMotion& motion, const PointerTarget& p,
+                   const float* v) {
+  switch (p.kind) {
+    case PointerTarget::Kind::kMaterial: {
+      float* dst = p.material_value(scene.materials[std::size_t(p.index)]);
+      for (int c = 0; c < p.components; ++c) dst[c] = std::clamp(v[c], p.min, p.max);
+      return;
+    }
+    case PointerTarget::Kind::kTextureTransform: {
+      TextureRef& ref = texture_in(scene.materials[std::size_t(p.index)], p.slot);
+      if (!ref.transform) ref.transform = TextureTransform{};
+      if (p.field == 0) ref.transform->offset = {v[0], v[1]};
+      if (p.field == 1) ref.transform->rotation = v[0];
+      if (p.field == 2) ref.transform->scale = {v[0], v[1]};
+      return;
+    }
+    case PointerTarget::Kind::kLight:
+      for (std::size_t i = 0; i < motion.light_sources.size() && i < scene.lights.size(); ++i) {
+        if (motion.light_sources[i] != p.index) continue;
+        Light& l = scene.lights[i];
+        if (p.field == 0) l.color = glm::max(glm::vec3(v[0], v[1], v[2]), glm::vec3(0.0f));
+        if (p.field == 1) l.intensity = std::max(v[0], 0.0f);
+        if (p.field == 2)
+          l.range = v[0] > 0.0f && std::isfinite(v[0]) ? std::optional(v[0]) : std::nullopt;
+        // The cones keep 0 <= inner < outer <= pi/2 (KHR_lights_punctual, "Spot").
+        if (p.field == 3) l.inner_cone_angle = std::clamp(v[0], 0.0f, l.outer_cone_angle * 0.999f);
+        if (p.field == 4)
+          l.outer_cone_angle = std::clamp(v[0], l.inner_cone_angle * 1.001f + 1e-6f, 1.5707964f);
+      }
+      return;
+    case PointerTarget::Kind::kCamera:
+      for (std::size_t i = 0; i < motion.camera_sources.size() && i < scene.cameras.size(); ++i) {
+        if (motion.camera_sources[i] != p.index) continue;
+        Camera& c = scene.cameras[i];
+        const float tiny = 1e-6f;
+        if (p.field == 0) c.yfov = std::clamp(v[0], 1e-4f, 3.1415f);  // (0, pi)
+        if (p.field == 1)
+          c.znear = std::max(v[0], c.type == Camera::Type::kPerspective ? tiny : 0.0f);
+        if (p.field == 2 && v[0] > c.znear && std::isfinite(v[0])) c.zfar = v[0];
+        if (p.field == 3) c.aspect_ratio = v[0] > 0.0f ? std::optional(v[0]) : std::nullopt;
+        if (p.field == 4 && std::abs(v[0]) > tiny) c.xmag = v[0];
+        if (p.field == 5 && std::abs(v[0]) > tiny) c.ymag = v[0];
+      }
+      return;
+  }
+}
+
+// KHR_animation_pointer: every target at rest, then the animation's channels on top.
+void pose_pointers(Scene& scene, const SceneMotion& motion, const PoseTime& pose) {
+  for (const PointerTarget& p : motion.pointers) write_pointer(scene, motion, p, p.rest.data());
+  if (pose.animation < 0) return;
+  const Animation& a = motion.animations[std::size_t(pose.animation)];
+  float v[4];
+  for (const AnimationChannel& ch : a.channels) {
+    if (ch.property != AnimatedProperty::kPointer) continue;
+    sample_animation(a.samplers[std::size_t(ch.sampler)], pose.time, false, v);
+    write_pointer(scene, motion, motion.pointers[std::size_t(ch.pointer)], v);
+  }
+}
+
+void check_finite(const SceneMotion& motion, std::string_view source, const PoseTime& pose,
+                  const std::vector<glm::mat4>& world) {
+  for (const int node : motion.order)
     if (!finite(world[std::size_t(node)]))
-      throw Error(fmt::format("{}: {} gives nodes[{}] a transform that is not finite", scene.source,
-                              describe(scene, pose), node));
+      throw Error(fmt::format("{}: {} gives nodes[{}] a transform that is not finite", source,
+                              describe(motion, pose), node));
 }
 
 }  // namespace
@@ -189,7 +236,9 @@ std::vector<glm::mat4> posed_node_transforms(const SceneMotion& motion, const Po
           l.scale = {v[0], v[1], v[2]};
           break;
         case AnimatedProperty::kWeights:
-          break;  // posed_weights()
+          break;  // posed_morph_weights()
+        case AnimatedProperty::kPointer:
+          break;  // pose_pointers()
       }
     }
   }
@@ -212,28 +261,15 @@ void pose_scene(Scene& scene, const PoseTime& pose) {
     return;
   }
   const SceneMotion& motion = *scene.motion;
-  if (pose.animation >= int(motion.animations.size()))
-    throw Error(fmt::format("{}: animation {} does not exist ({} animations)", scene.source,
-                            pose.animation, motion.animations.size()));
-  if (!std::isfinite(pose.time))
-    throw Error(fmt::format("{}: the animation time is not finite", scene.source));
-  const std::vector<glm::mat4> world = posed_node_transforms(motion, pose);
-  check_finite(scene, pose, world);
-  for (const NodePlacement& p : motion.placements)
-    scene.instances[std::size_t(p.instance)].transform = world[std::size_t(p.node)] * p.offset;
+  const std::vector<glm::mat4> world = checked_node_transforms(motion, scene.source, pose);
+  place_instances_and_lights(motion, world, scene.instances, scene.lights);
   for (std::size_t i = 0; i < motion.camera_nodes.size() && i < scene.cameras.size(); ++i)
     scene.cameras[i].camera_to_world =
         rigid(world[std::size_t(motion.camera_nodes[i])],
-              fmt::format("{}: {}, nodes[{}]", scene.source, describe(scene, pose),
+              fmt::format("{}: {}, nodes[{}]", scene.source, describe(motion, pose),
                           motion.camera_nodes[i]));
-  for (std::size_t i = 0; i < motion.light_nodes.size() && i < scene.lights.size(); ++i) {
-    const glm::mat4& m = world[std::size_t(motion.light_nodes[i])];
-    Light& l = scene.lights[i];
-    l.position = glm::vec3(m[3]);
-    const glm::vec3 d = glm::vec3(m * glm::vec4(0, 0, -1, 0));  // lights shine along -Z
-    l.direction = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0, 0, -1);
-  }
-  const std::vector<std::vector<float>> weights = posed_weights(motion, pose);
+  if (!motion.pointers.empty()) pose_pointers(scene, motion, pose);
+  const std::vector<std::vector<float>> weights = posed_morph_weights(motion, pose);
   Vertices v;
   for (const DeformingMesh& d : motion.deforming) {
     Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
@@ -241,8 +277,57 @@ void pose_scene(Scene& scene, const PoseTime& pose) {
     mesh.positions.swap(v.positions);
     mesh.normals.swap(v.normals);
     mesh.tangents.swap(v.tangents);
-    scene.instances[std::size_t(d.instance)].transform =
+  }
+}
+
+std::vector<glm::mat4> checked_node_transforms(const SceneMotion& motion, std::string_view source,
+                                               const PoseTime& pose) {
+  if (pose.animation >= int(motion.animations.size()))
+    throw Error(fmt::format("{}: animation {} does not exist ({} animations)", source,
+                            pose.animation, motion.animations.size()));
+  if (!std::isfinite(pose.time))
+    throw Error(fmt::format("{}: the animation time is not finite", source));
+  std::vector<glm::mat4> world = posed_node_transforms(motion, pose);
+  check_finite(motion, source, pose, world);
+  return world;
+}
+
+std::vector<std::vector<float>> posed_morph_weights(const SceneMotion& motion,
+                                                    const PoseTime& pose) {
+  std::vector<std::vector<float>> weights(motion.nodes.size());
+  for (std::size_t i = 0; i < motion.nodes.size(); ++i) weights[i] = motion.nodes[i].weights;
+  if (pose.animation < 0) return weights;
+  const Animation& a = motion.animations[std::size_t(pose.animation)];
+  for (const AnimationChannel& ch : a.channels) {
+    if (ch.property != AnimatedProperty::kWeights) continue;
+    const AnimationSampler& s = a.samplers[std::size_t(ch.sampler)];
+    std::vector<float>& w = weights[std::size_t(ch.node)];
+    w.resize(std::size_t(s.width), 0.0f);
+    sample_animation(s, pose.time, false, w.data());
+  }
+  return weights;
+}
+
+std::vector<glm::mat4> joint_matrices(const Skin& skin, const std::vector<glm::mat4>& world) {
+  std::vector<glm::mat4> joint(skin.joints.size());
+  for (std::size_t j = 0; j < joint.size(); ++j)
+    joint[j] = world[std::size_t(skin.joints[j])] * skin.inverse_bind[j];
+  return joint;
+}
+
+void place_instances_and_lights(const SceneMotion& motion, const std::vector<glm::mat4>& world,
+                                std::vector<Instance>& instances, std::vector<Light>& lights) {
+  for (const NodePlacement& p : motion.placements)
+    instances[std::size_t(p.instance)].transform = world[std::size_t(p.node)] * p.offset;
+  for (const DeformingMesh& d : motion.deforming)
+    instances[std::size_t(d.instance)].transform =
         d.skin >= 0 ? glm::mat4(1.0f) : world[std::size_t(d.node)];
+  for (std::size_t i = 0; i < motion.light_nodes.size() && i < lights.size(); ++i) {
+    const glm::mat4& m = world[std::size_t(motion.light_nodes[i])];
+    Light& l = lights[i];
+    l.position = glm::vec3(m[3]);
+    const glm::vec3 d = glm::vec3(m * glm::vec4(0, 0, -1, 0));  // lights shine along -Z
+    l.direction = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0, 0, -1);
   }
 }
 
@@ -276,10 +361,10 @@ ShutterMotion shutter_motion(const Scene& scene, int animation, float open, floa
   for (int k = 0; k < steps; ++k) {
     const PoseTime pose{animation, open + (close - open) * float(k) / float(steps - 1)};
     const std::vector<glm::mat4> world = posed_node_transforms(motion, pose);
-    check_finite(scene, pose, world);
+    check_finite(motion, scene.source, pose, world);
     for (const NodePlacement& p : motion.placements)
       transforms[std::size_t(p.instance)].push_back(world[std::size_t(p.node)] * p.offset);
-    const std::vector<std::vector<float>> weights = posed_weights(motion, pose);
+    const std::vector<std::vector<float>> weights = posed_morph_weights(motion, pose);
     for (std::size_t i = 0; i < motion.deforming.size(); ++i) {
       const DeformingMesh& d = motion.deforming[i];
       Vertices& v = vertices[i].emplace_back();

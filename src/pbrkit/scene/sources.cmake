@@ -11,6 +11,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/camera.cpp
   ${CMAKE_CURRENT_LIST_DIR}/coincident_faces.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/accessors.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/gltf/animation_pointer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/animations.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/cameras.cpp
   ${CMAKE_CURRENT_LIST_DIR}/gltf/draco.cpp

@@ -1,7 +1,8 @@
 // Animations (glTF 2.0 section 3.11): every sampler's keyframes read and checked (times
 // finite and strictly increasing, values finite and as many as the keys ask), every
 // channel's target checked (the node exists, is not a matrix node, and has morph targets
-// when its weights are animated), before a pose trusts any of it.
+// when its weights are animated; a KHR_animation_pointer resolved, animation_pointer.cpp),
+// before a pose trusts any of it.
 #include <cmath>
 
 #include "pbrkit/scene/gltf/loader.h"
@@ -35,46 +36,51 @@ void Loader::read_animations() {
     for (std::size_t ci = 0; ci < ga.channels.size(); ++ci) {
       const auto& gc = ga.channels[ci];
       const std::string cpath = fmt::format("{}.channels[{}]", apath, ci);
-      if (gc.target_path == "pointer") {
-        // KHR_animation_pointer targets material, light and camera properties by JSON
-        // pointer; only node transforms and morph weights are posed here.
-        warning(
-            fmt::format("{}: KHR_animation_pointer channels are not played yet; ignored", cpath));
-        continue;
-      }
       if (gc.sampler < 0 || std::size_t(gc.sampler) >= ga.samplers.size())
         error(cpath + ".sampler", fmt::format("sampler {} does not exist ({} samplers)", gc.sampler,
                                               ga.samplers.size()));
-      if (gc.target_node < 0) {
-        // A channel without a node "SHOULD be ignored" (section 3.11, "target.node").
-        warning(fmt::format("{}.target: no node; ignored", cpath));
-        continue;
-      }
-      if (std::size_t(gc.target_node) >= model_.nodes.size())
-        error(cpath + ".target.node", fmt::format("node {} does not exist ({} nodes)",
-                                                  gc.target_node, model_.nodes.size()));
       AnimationChannel ch;
       ch.sampler = gc.sampler;
-      ch.node = gc.target_node;
-      if (gc.target_path == "translation")
-        ch.property = AnimatedProperty::kTranslation;
-      else if (gc.target_path == "rotation")
-        ch.property = AnimatedProperty::kRotation;
-      else if (gc.target_path == "scale")
-        ch.property = AnimatedProperty::kScale;
-      else if (gc.target_path == "weights")
-        ch.property = AnimatedProperty::kWeights;
-      else
-        error(cpath + ".target.path", fmt::format("'{}' is not translation, rotation, scale, "
-                                                  "weights or pointer",
-                                                  gc.target_path));
-      const auto& node = model_.nodes[std::size_t(ch.node)];
-      if (node.matrix.size() == 16 && ch.property != AnimatedProperty::kWeights)
+      int pointer_width = 0;
+      if (const auto pointer = animation_pointers_.find({int(ai), int(ci)});
+          pointer != animation_pointers_.end()) {
+        // KHR_animation_pointer (animation_pointer.cpp): a node's property, or another one.
+        if (!resolve_pointer(pointer->second,
+                             cpath + ".target.extensions.KHR_animation_pointer.pointer", ch,
+                             pointer_width))
+          continue;
+      } else {
+        if (gc.target_node < 0) {
+          // A channel without a node "SHOULD be ignored" (section 3.11, "target.node").
+          warning(fmt::format("{}.target: no node; ignored", cpath));
+          continue;
+        }
+        if (std::size_t(gc.target_node) >= model_.nodes.size())
+          error(cpath + ".target.node", fmt::format("node {} does not exist ({} nodes)",
+                                                    gc.target_node, model_.nodes.size()));
+        ch.node = gc.target_node;
+        if (gc.target_path == "translation")
+          ch.property = AnimatedProperty::kTranslation;
+        else if (gc.target_path == "rotation")
+          ch.property = AnimatedProperty::kRotation;
+        else if (gc.target_path == "scale")
+          ch.property = AnimatedProperty::kScale;
+        else if (gc.target_path == "weights")
+          ch.property = AnimatedProperty::kWeights;
+        else
+          error(cpath + ".target.path", fmt::format("'{}' is not translation, rotation, scale, "
+                                                    "weights or pointer",
+                                                    gc.target_path));
+      }
+      const bool on_node = ch.property != AnimatedProperty::kPointer;
+      if (on_node && model_.nodes[std::size_t(ch.node)].matrix.size() == 16 &&
+          ch.property != AnimatedProperty::kWeights)
         error(cpath + ".target.node",
               fmt::format("nodes[{}] has a matrix, which animations cannot target (section "
                           "3.5.2: it MUST be given as TRS)",
                           ch.node));
       int width = 3;
+      if (ch.property == AnimatedProperty::kPointer) width = pointer_width;
       if (ch.property == AnimatedProperty::kRotation) width = 4;
       if (ch.property == AnimatedProperty::kWeights) {
         width = int(morph_target_count(model_, ch.node));

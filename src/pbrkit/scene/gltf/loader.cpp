@@ -25,6 +25,7 @@ Scene Loader::load() {
   read_variants(root);                              // variants.cpp
   read_node_visibility(root);                       // visibility.cpp
   bool modified = prepare_meshopt_fallbacks(root);  // meshopt.cpp
+  modified = prepare_animation_pointers(root) || modified;  // animation_pointer.cpp
   check_uris(root);
   modified = drop_draco_indices(root) || modified;  // draco.cpp
   if (modified) {
@@ -43,17 +44,19 @@ Scene Loader::load() {
   decode_meshopt_views();     // meshopt.cpp
   decode_draco_primitives();  // draco.cpp
 
-  // What poses the scene: skins and animations, checked before the nodes use them.
+  // Whether the scene can move (animations or skins): the loader then keeps what poses it.
   keep_motion_ = !model_.animations.empty() || !model_.skins.empty();
   weights_animated_.assign(model_.nodes.size(), 0);
-  if (keep_motion_) {
-    read_skins();       // skins.cpp
-    read_animations();  // animations.cpp
-  }
 
   // The scene: materials (with their textures) first, since meshes generate tangents
   // for normal-mapped materials; then the nodes, which build meshes, cameras and lights.
   build_materials();  // materials.cpp, textures.cpp
+  // Skins and animations, checked before the nodes use them (after the materials, which
+  // KHR_animation_pointer channels may animate).
+  if (keep_motion_) {
+    read_skins();       // skins.cpp
+    read_animations();  // animations.cpp, animation_pointer.cpp
+  }
   build_nodes();  // nodes.cpp, instancing.cpp, meshes.cpp, accessors.cpp, cameras.cpp, lights.cpp
   scene_.node_count = model_.nodes.size();
   if (keep_motion_) {

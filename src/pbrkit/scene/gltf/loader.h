@@ -134,6 +134,12 @@ class Loader {
 
   // animations.cpp: every animation's samplers and channels, checked, into motion_.
   void read_animations();
+  // animation_pointer.cpp: KHR_animation_pointer's pointers taken out of the JSON (tinygltf
+  // requires a node in every channel target), then each resolved into the channel (a node's
+  // property, or a PointerTarget; `width` its floats per key); false: not played (warned).
+  bool prepare_animation_pointers(json& root);
+  bool resolve_pointer(const std::string& pointer, const std::string& where, AnimationChannel& ch,
+                       int& width);
   // skins.cpp: skins (joints, inverse bind matrices) into motion_; a deforming primitive's
   // morph targets and joint influences (`vertices` as the file has them).
   void read_skins();
@@ -177,6 +183,7 @@ class Loader {
   bool keep_motion_ = false;
   SceneMotion motion_;
   std::vector<char> weights_animated_;  // per node: an animation drives its morph weights
+  std::map<std::pair<int, int>, std::string> animation_pointers_;  // (animation, channel)
   std::map<std::pair<int, bool>, int> texture_cache_;
   std::size_t texture_bytes_ = 0;
   std::size_t triangles_ = 0;

@@ -159,9 +159,10 @@ void Loader::build_nodes() {
           motion_.deforming[d].instance = int(scene_.instances.size() + (d - first));
         meshes = &morphed;
         if (instancing != node_instancing_.end())
-          warning(fmt::format("{}: EXT_mesh_gpu_instancing on a skinned or morph-animated node is "
-                              "not supported; one instance drawn",
-                              where));
+          warning(
+              fmt::format("{}: EXT_mesh_gpu_instancing on a skinned or morph-animated node is "
+                          "not supported; one instance drawn",
+                          where));
       } else if (!n.weights.empty() && n.weights != gmesh.weights) {
         morphed = build_mesh(n.mesh, n.weights);
         meshes = &morphed;
@@ -193,13 +194,18 @@ void Loader::build_nodes() {
     }
     if (n.camera >= 0) {
       add_camera(n.camera, world, where);  // cameras.cpp
-      if (keep_motion_) motion_.camera_nodes.push_back(node);
+      if (keep_motion_) {
+        motion_.camera_nodes.push_back(node);
+        motion_.camera_sources.push_back(n.camera);
+      }
     }
     if (const auto it = n.extensions.find("KHR_lights_punctual");
-        !hidden && it != n.extensions.end())
-    {
+        !hidden && it != n.extensions.end()) {
       add_light(it->second, world, where);  // lights.cpp
-      if (keep_motion_) motion_.light_nodes.push_back(node);
+      if (keep_motion_) {
+        motion_.light_nodes.push_back(node);
+        motion_.light_sources.push_back(it->second.Get("light").GetNumberAsInt());
+      }
     }
     for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) {
       if (hidden) node_hidden_[std::size_t(*c)] = 1;
@@ -240,12 +246,13 @@ void Loader::keep_rest_pose(const std::vector<int>& parent) {
     if (w->empty() && n.mesh >= 0 && std::size_t(n.mesh) < model_.meshes.size())
       w = &model_.meshes[std::size_t(n.mesh)].weights;
     for (std::size_t k = 0; k < w->size(); ++k) {
-      if (!std::isfinite((*w)[k]))
-        error(fmt::format("{}.weights[{}]", where, k), "is not finite");
+      if (!std::isfinite((*w)[k])) error(fmt::format("{}.weights[{}]", where, k), "is not finite");
       rest.weights.push_back(float((*w)[k]));
     }
-    if (parent[i] < 0) roots.push_back(int(i));
-    else children[std::size_t(parent[i])].push_back(int(i));
+    if (parent[i] < 0)
+      roots.push_back(int(i));
+    else
+      children[std::size_t(parent[i])].push_back(int(i));
   }
   // Parents before children (build_nodes checked that the hierarchy is a forest).
   std::vector<int> stack(roots.rbegin(), roots.rend());
@@ -253,7 +260,8 @@ void Loader::keep_rest_pose(const std::vector<int>& parent) {
     const int node = stack.back();
     stack.pop_back();
     motion_.order.push_back(node);
-    for (auto c = children[std::size_t(node)].rbegin(); c != children[std::size_t(node)].rend(); ++c)
+    for (auto c = children[std::size_t(node)].rbegin(); c != children[std::size_t(node)].rend();
+         ++c)
       stack.push_back(*c);
   }
 }
