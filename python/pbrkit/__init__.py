@@ -71,8 +71,8 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
            env="builtin", env_rotation=0.0, env_intensity=1.0, camera=None,
            model="reference", multiscatter=None, max_bounces=None, time=None,
            noise_threshold=None, threads=None, denoise=None, denoiser=None, aovs=None,
-           light_sampler=None, variant=None, animation=None, animation_time=0.0,
-           progress=None):
+           light_sampler=None, guiding=None, variant=None, animation=None,
+           animation_time=0.0, progress=None):
     """Renders ``scene`` (a Scene, a file path or a built-in name) and returns the linear
     RGB image as a float32 (H, W, 3) array; with ``aovs`` (any of "albedo", "normal",
     "depth", "samples", "noise") returns ``(image, {name: array})``.
@@ -87,7 +87,7 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
     command line): ``spp`` (1024), ``seed`` (0), ``max_bounces`` (24), ``time`` (seconds,
     0: no limit), ``noise_threshold`` (adaptive sampling, 0.02; 0 turns it off),
     ``threads`` (0: all cores), ``light_sampler`` ("bvh", the light BVH, or "power"),
-    ``denoise``, ``denoiser`` ("classic", the default: the feature-guided filter of
+    ``guiding`` ("off", the default, or "on": path guiding, docs/MODEL.md), ``denoise``, ``denoiser`` ("classic", the default: the feature-guided filter of
     docs/DENOISER.md; or "learned", the trained network of docs/LEARNED_DENOISER.md) and
     ``aovs`` (with ``denoise``, the raw image is the AOV "raw"). ``variant`` is a material
     variant of the file (KHR_materials_variants; ``Scene.variants`` lists them), by name or
@@ -102,7 +102,7 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
     for name, value in (("spp", spp), ("seed", seed), ("max_bounces", max_bounces),
                         ("time", time), ("noise_threshold", noise_threshold),
                         ("threads", threads), ("denoise", denoise), ("denoiser", denoiser),
-                        ("light_sampler", light_sampler)):
+                        ("light_sampler", light_sampler), ("guiding", guiding)):
         if value is not None:
             setattr(path, name, value)
     if aovs is not None:

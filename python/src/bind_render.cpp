@@ -99,6 +99,7 @@ struct PathArgs {
   std::optional<std::string> denoiser;
   std::optional<std::vector<std::string>> aovs;
   std::optional<std::string> light_sampler;
+  std::optional<std::string> guiding;
   std::vector<std::string> given() const {
     std::vector<std::string> names;
     if (spp) names.push_back("spp");
@@ -111,6 +112,7 @@ struct PathArgs {
     if (denoiser) names.push_back("denoiser");
     if (aovs) names.push_back("aovs");
     if (light_sampler) names.push_back("light_sampler");
+    if (guiding) names.push_back("guiding");
     return names;
   }
 };
@@ -158,6 +160,11 @@ py::object render_path_tracer(const Scene& scene, const std::optional<Environmen
       throw py::value_error("light_sampler must be 'bvh' or 'power', got '" + *a.light_sampler +
                             "'");
     s.light_sampler = parse_light_sampler(*a.light_sampler);
+  }
+  if (a.guiding) {
+    if (*a.guiding != "off" && *a.guiding != "on")
+      throw py::value_error("guiding must be 'off' or 'on', got '" + *a.guiding + "'");
+    s.guiding = parse_guiding(*a.guiding);
   }
   const std::vector<std::string> aovs = a.aovs.value_or(std::vector<std::string>{});
   for (const std::string& name : aovs)
@@ -290,7 +297,8 @@ void bind_render(py::module_& m) {
       .def_readwrite("denoise", &PathArgs::denoise)
       .def_readwrite("denoiser", &PathArgs::denoiser)
       .def_readwrite("aovs", &PathArgs::aovs)
-      .def_readwrite("light_sampler", &PathArgs::light_sampler);
+      .def_readwrite("light_sampler", &PathArgs::light_sampler)
+      .def_readwrite("guiding", &PathArgs::guiding);
 }
 
 }  // namespace pbrkit::python

@@ -72,6 +72,15 @@ def test_light_sampler_matches_the_cli(cli, tmp_path):
     assert not np.array_equal(pbrkit.render("lights", **kwargs), expected)  # bvh by default
 
 
+def test_guiding_matches_the_cli(cli, tmp_path):
+    cli("render", "interior", "--spp", 8, "--width", 24, "--height", 24, "--float",
+        "--noise-threshold", 0, "--guiding", "on", "-o", tmp_path / "g.png")
+    expected = pbrkit.read_image(tmp_path / "g.exr")
+    kwargs = dict(spp=8, width=24, height=24, noise_threshold=0)
+    assert np.array_equal(pbrkit.render("interior", guiding="on", **kwargs), expected)
+    assert not np.array_equal(pbrkit.render("interior", **kwargs), expected)  # off by default
+
+
 def test_look_at_camera_and_camera_index():
     s = pbrkit.load("cornell")
     cam = s.cameras[0]
@@ -103,6 +112,8 @@ def test_look_at_camera_and_camera_index():
     (dict(progress=42), TypeError, "progress"),
     (dict(light_sampler="uniform"), ValueError, "light_sampler"),
     (dict(renderer="gl", light_sampler="bvh"), ValueError, "light_sampler"),
+    (dict(guiding="yes"), ValueError, "guiding"),
+    (dict(renderer="gl", guiding="on"), ValueError, "guiding"),
 ])
 def test_bad_arguments_raise_clear_errors(kwargs, error, words):
     args = dict(width=8, height=8)
