@@ -8,7 +8,8 @@
 //
 // renderer.cpp is the frame: what is drawn in which order with which state. Its parts
 // have files of their own: what a frame shows (render_settings.h), the IBL maps
-// (ibl_maps.h), and, private to the renderer, the scene on the GPU (gpu_scene.h), the
+// (ibl_maps.h), and, private to the renderer, the scene on the GPU (gpu_scene.h), its
+// deforming meshes posed in the vertex shader (gpu_deformation.h), the
 // shader permutations (shader_permutations.h), the framebuffers (render_targets.h), the
 // environment light's shadows (occluder_pass.h), the software rasteriser's draw queue
 // (draw_queue.h) and the GPU timer (gpu_timer.h).
@@ -20,6 +21,7 @@
 #include "pbrkit/gl/render_settings.h"
 #include "pbrkit/image/environment.h"
 #include "pbrkit/image/image.h"
+#include "pbrkit/scene/pose.h"
 #include "pbrkit/scene/scene.h"
 
 namespace pbrkit::gl {
@@ -32,8 +34,22 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  /// Uploads meshes, materials and textures (replacing any previous scene).
+  /// Uploads meshes, materials and textures (replacing any previous scene). The scene is
+  /// drawn as given (a scene posed by pose_scene as posed) until set_pose().
   void set_scene(const Scene& scene);
+  /// Poses the scene of the last set_scene() cheaply: uploads only the skins' joint
+  /// matrices, the morph weights and the instance transforms at `pose` (and moves the
+  /// lights; the first call after set_scene also uploads the deforming meshes' rest data,
+  /// scene/pose.h's DeformingMesh: rest vertices, joint influences, morph targets); from
+  /// then on the deforming meshes are morphed and skinned in the vertex
+  /// shader from their rest data, whatever pose the vertices given to set_scene were in,
+  /// with pose_scene's math (scene/pose.cpp), so the image is the one of set_scene with
+  /// the scene pose_scene posed at `pose`. The cameras are the caller's (pose_scene poses
+  /// them). What stays as set_scene computed it: the meshes' bounds (the transmissive pass's
+  /// order and the environment shadows' proxies). Throws pbrkit::Error for an animation out
+  /// of range, a time or a pose that is not finite (as pose_scene); a scene without motion
+  /// takes only the rest pose.
+  void set_pose(const PoseTime& pose);
   /// Replaces the scene's materials (same count and order; textures stay) without
   /// uploading anything: what the viewer's material overrides change per frame.
   void set_materials(const std::vector<Material>& materials);

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "pbrkit/gl/context.h"
+#include "pbrkit/gl/gpu_deformation.h"
 #include "pbrkit/util/available_memory.h"
 #include "pbrkit/util/error.h"
 
@@ -164,6 +165,7 @@ GlSceneBytes gl_scene_bytes(const Scene& scene) {
     b.textures += texel_bytes(t.empty() ? GL_RGBA32F : upload_format(t)) * texels;
   }
   b.instances = 2 * sizeof(glm::mat4) * scene.instances.size();
+  b.deforming = gl_deformation_bytes(scene);
   return b;
 }
 
@@ -192,9 +194,10 @@ void GpuScene::upload(const Scene& scene, std::size_t memory_limit) {
   if (memory_limit > 0 && need.total() > memory_limit)
     fail(
         "{}: the OpenGL renderer's copy of the scene needs {} (vertex buffers {}, indices {}, "
-        "textures {}, instances {}) but {} is available{}{}",
+        "textures {}, instances {}, deforming meshes {}) but {} is available{}{}",
         scene.source, megabytes(need.total()), megabytes(need.vertices), megabytes(need.indices),
-        megabytes(need.textures), megabytes(need.instances), megabytes(memory_limit),
+        megabytes(need.textures), megabytes(need.instances), megabytes(need.deforming),
+        megabytes(memory_limit),
         frame_reserve > 0 ? fmt::format(" ({} more kept for the frame)", megabytes(frame_reserve))
                           : "",
         software ? "; a software rasteriser keeps them in this process's memory" : "");
@@ -320,9 +323,32 @@ void GpuScene::upload_instances() {
     else
       runs.push_back({slot, 1});
   }
+  if (instance_buffer) glDeleteBuffers(1, &instance_buffer);
   glCreateBuffers(1, &instance_buffer);
+  // Dynamic: a pose rewrites the transforms (update_instances).
   glNamedBufferStorage(instance_buffer, GLsizeiptr(matrices.size() * sizeof(glm::mat4)),
-                       matrices.data(), 0);
+                       matrices.data(), GL_DYNAMIC_STORAGE_BIT);
+}
+
+void GpuScene::update_instances(const std::vector<Instance>& posed) {
+  bool flipped = false;
+  for (std::size_t i = 0; i < instances.size() && i < posed.size(); ++i) {
+    flipped = flipped || (glm::determinant(glm::mat3(instances[i].transform)) < 0.0f) !=
+                             (glm::determinant(glm::mat3(posed[i].transform)) < 0.0f);
+    instances[i].transform = posed[i].transform;
+  }
+  if (flipped) {
+    upload_instances();
+    return;
+  }
+  std::vector<glm::mat4> matrices(2 * std::max<std::size_t>(instances.size(), 1), glm::mat4(1.0f));
+  for (std::size_t slot = 0; slot < at_slot.size(); ++slot) {
+    const glm::mat4& m = instances[at_slot[slot]].transform;
+    matrices[2 * slot] = m;
+    matrices[2 * slot + 1] = glm::mat4(glm::inverseTranspose(glm::mat3(m)));
+  }
+  glNamedBufferSubData(instance_buffer, 0, GLsizeiptr(matrices.size() * sizeof(glm::mat4)),
+                       matrices.data());
 }
 
 void GpuScene::release() {

@@ -45,9 +45,11 @@ struct InstanceRun {
 
 /// The bytes GpuScene::upload allocates for `scene`: its meshes' vertex and index buffers,
 /// its textures' mip chains in the formats they are uploaded in, and the instance buffer.
+/// With the deforming meshes' rest data (gpu_deformation.h), which the renderer uploads
+/// beside.
 struct GlSceneBytes {
-  std::size_t vertices = 0, indices = 0, textures = 0, instances = 0;
-  std::size_t total() const { return vertices + indices + textures + instances; }
+  std::size_t vertices = 0, indices = 0, textures = 0, instances = 0, deforming = 0;
+  std::size_t total() const { return vertices + indices + textures + instances + deforming; }
 };
 GlSceneBytes gl_scene_bytes(const Scene& scene);
 
@@ -87,6 +89,10 @@ struct GpuScene {
   void release();
   /// The instance buffer, slots and runs of `instances` (upload() calls it).
   void upload_instances();
+  /// The instances' transforms of a pose (`posed`: the scene's instances, moved): rewrites
+  /// the instance buffer in place, or lays out the slots and runs again when an instance's
+  /// winding flipped (a mirroring transform cannot share a run with the others).
+  void update_instances(const std::vector<Instance>& posed);
   /// The mesh's material, or the glTF default material when it has none.
   const Material& material_of(const GpuMesh& mesh) const;
 };

@@ -15,6 +15,7 @@
 #include "pbrkit/gl/context.h"
 #include "pbrkit/gl/draw_queue.h"
 #include "pbrkit/gl/energy_texture.h"
+#include "pbrkit/gl/gpu_deformation.h"
 #include "pbrkit/gl/gpu_scene.h"
 #include "pbrkit/gl/gpu_timer.h"
 #include "pbrkit/gl/light_clusters.h"
@@ -24,6 +25,7 @@
 #include "pbrkit/gl/surface_bindings.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/material_schema.h"
+#include "pbrkit/scene/pose.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
 
@@ -140,7 +142,8 @@ bool refracts_thick(const Material& m, bool closed) {
 // shader and returns the rectangle in texture coordinates: the shader reads back faces only
 // inside it (outside, the target holds other objects'). `program` is made on first use;
 // the draw goes through `queue` (the software rasteriser's waits).
-glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuScene& scene,
+glm::vec4 draw_back_faces(std::array<Program, 3>& programs, RenderTargets& targets,
+                          const GpuScene& scene, const GpuDeformation& deformation,
                           std::size_t index, glm::vec2 lo, glm::vec2 hi,
                           const glm::mat4& view_projection, DrawQueue& queue) {
   const glm::vec2 size(float(targets.width), float(targets.height));
@@ -152,13 +155,19 @@ glm::vec4 draw_back_faces(Program& program, RenderTargets& targets, const GpuSce
       glm::clamp(glm::ceil((hi * 0.5f + 0.5f) * size) + 1.0f, glm::vec2(0.0f), size));
   const Instance& inst = scene.instances[index];
   const GpuMesh& mesh = scene.meshes[std::size_t(inst.mesh)];
+  // By the mesh's DEFORM: a deforming mesh's back faces are its deformed ones.
+  const GpuDeformingMesh* deforming = deformation.of_mesh(inst.mesh);
+  Program& program = programs[std::size_t(deforming ? deforming->deform() : 0)];
   if (!program.id())
-    program = Program::graphics("pbr_vertex.glsl", "back_face_fragment.glsl",
-                                surface_prelude() + "#define HAS_COLOR_0 0\n");
+    program = Program::graphics(
+        "pbr_vertex.glsl", "back_face_fragment.glsl",
+        surface_prelude() + fmt::format("#define HAS_COLOR_0 0\n#define DEFORM {}\n",
+                                        deforming ? deforming->deform() : 0));
   targets.begin_back_faces(p0.x, p0.y, p1.x, p1.y);
   program.use();
   program.set("uViewProjection", view_projection);
   program.set("uInstanceBase", GLint(scene.slot_of[index]));
+  if (deforming) GpuDeformation::bind(program, *deforming);
   glEnable(GL_CULL_FACE);
   glCullFace(GL_FRONT);
   glFrontFace(glm::determinant(glm::mat3(inst.transform)) < 0.0f ? GL_CW : GL_CCW);
@@ -209,6 +218,12 @@ struct Renderer::State {
   ShaderPermutations programs;
   std::array<GLuint, 3> energy{};  // per GeometryModel
   GpuScene scene;
+  // The deforming meshes' rest data, drawn deformed in the vertex shader once posed
+  // (Renderer::set_pose).
+  GpuDeformation deformation;
+  // What set_pose poses: the scene's motion (null: none) and its file, for errors.
+  std::shared_ptr<const SceneMotion> motion;
+  std::string source;
   GpuEnvironment environment;
   GLuint white_texture = 0;
   GLuint sheen_lut = 0;  // core/sheen.h's SheenTable
@@ -222,9 +237,9 @@ struct Renderer::State {
   // Whether a frame has needed more than kMaxTransmissionCaptures captures (warned once per
   // renderer: the viewer draws the same scene every frame).
   bool capture_limit_warned = false;
-  // The back-face pass's program (pbr_vertex.glsl, back_face_fragment.glsl), made on the
-  // first frame with a thick transmissive object.
-  Program back_faces;
+  // The back-face pass's programs (pbr_vertex.glsl, back_face_fragment.glsl) by DEFORM, made
+  // on the first frame with a thick transmissive object (of that kind).
+  std::array<Program, 3> back_faces;
   // Every draw goes through it: on a software rasteriser it bounds the queue (draw_queue.h).
   DrawQueue queue;
 
@@ -357,6 +372,8 @@ void Renderer::State::draw(Frame& f, std::size_t index, GLenum cull, std::size_t
   SurfaceFeatures features = f.features;
   features.alpha_mode = mesh.alpha_mode;
   features.colors = mesh.has_colors;
+  const GpuDeformingMesh* deforming = deformation.of_mesh(inst.mesh);
+  features.deform = deforming ? deforming->deform() : 0;
   for (int t = 0; t < kTextureSlotCount; ++t) {
     const TextureRef& ref = *refs[std::size_t(t)];
     if (ref.valid() && std::size_t(ref.texture) < scene.textures.size())
@@ -375,6 +392,7 @@ void Renderer::State::draw(Frame& f, std::size_t index, GLenum cull, std::size_t
   prepare(f, p);
   p.use();
   p.set("uInstanceBase", GLint(scene.slot_of[index]));
+  if (deforming) GpuDeformation::bind(p, *deforming);
   p.set("uBaseColorFactor", m.base_color_factor);
   p.set("uMetallicFactor", m.metallic_factor);
   p.set("uRoughnessFactor", m.roughness_factor);
@@ -432,6 +450,7 @@ QueuedDraws Renderer::State::draw_opaque(Frame& f) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kInstanceBufferBinding, scene.instance_buffer);
+  deformation.bind_pose();
   QueuedDraws queued;
   for (const InstanceRun& run : scene.runs) {
     const GpuMesh& mesh =
@@ -533,8 +552,8 @@ void Renderer::State::draw_transmissive(Frame& f, QueuedDraws& queued) {
     const GpuMesh& mesh = scene.meshes[std::size_t(scene.instances[t.index].mesh)];
     f.back_faces_drawn = refracts_thick(scene.material_of(mesh), mesh.closed);
     if (f.back_faces_drawn)
-      f.back_face_rect = draw_back_faces(back_faces, targets, scene, t.index, t.lo, t.hi,
-                                         f.view_projection, queue);
+      f.back_face_rect = draw_back_faces(back_faces, targets, scene, deformation, t.index, t.lo,
+                                         t.hi, f.view_projection, queue);
     draw(f, t.index);
     f.back_faces_drawn = false;
   }
@@ -596,7 +615,28 @@ Renderer::~Renderer() {
 
 void Renderer::set_scene(const Scene& scene) {
   state_->scene.upload(scene);
+  state_->deformation.set_scene(scene);
+  state_->motion = scene.motion;
+  state_->source = scene.source;
   state_->occluders.scene_changed(state_->scene);
+}
+
+void Renderer::set_pose(const PoseTime& pose) {
+  State& s = *state_;
+  const std::shared_ptr<const SceneMotion>& motion = s.motion;
+  if (!motion) {
+    if (pose.animation >= 0) fail("OpenGL: set_pose: the scene has no animations");
+    return;
+  }
+  const std::vector<glm::mat4> world = checked_node_transforms(*motion, s.source, pose);
+  std::vector<Instance> instances = s.scene.instances;
+  std::vector<Light> lights = s.scene.lights;
+  place_instances_and_lights(*motion, world, instances, lights);
+  s.scene.update_instances(instances);
+  s.scene.lights = std::move(lights);
+  s.deformation.pose(world, posed_morph_weights(*motion, pose));
+  // The proxies of the environment light's shadows follow their instances.
+  s.occluders.scene_changed(s.scene);
 }
 
 void Renderer::set_materials(const std::vector<Material>& materials) {

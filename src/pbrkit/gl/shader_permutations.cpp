@@ -55,6 +55,11 @@ std::vector<SurfaceDefine> SurfaceFeatures::define_list() const {
        "the mesh has COLOR_0 (without it a varying fewer: llvmpipe sets up and interpolates "
        "every varying of every small triangle)"},
       {"ALPHA_MODE", alpha_mode, "glTF's alpha mode: 0 opaque, 1 mask, 2 blend"},
+      {"DEFORM", deform,
+       "the vertices deform in the vertex shader (deformation.glsl): 0 drawn as uploaded, 1 "
+       "morphed then skinned from the mesh's rest data (scene/pose.h's DeformingMesh) at the "
+       "pose's weights and joint matrices, 2 the same with flat normals from each deformed "
+       "triangle's three corners"},
       {"IBL", int(ibl),
        "1: the environment's split-sum light (surface_light_indirect.glsl, ibl.glsl)"},
       {"IRRADIANCE_SH", int(irradiance_sh),

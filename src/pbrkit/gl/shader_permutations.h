@@ -71,6 +71,10 @@ struct SurfaceFeatures {
   /// A thick transmissive surface's specular reflection reads the opaque frame where the
   /// mirror direction meets it on the screen (pbr_fragment.glsl's GLASS_REFLECTIONS).
   bool glass_reflections = false;
+  /// The mesh deforms in the vertex shader (deformation.glsl's DEFORM): 0 no, 1 morphed and
+  /// skinned from its rest data (gpu_deformation.h), 2 the same with flat normals made from
+  /// each deformed triangle's corners.
+  int deform = 0;
 
   /// Where key() holds the occluder counts (kOccluderKeyBits): occluder_bits() is not 0
   /// for a program that compiles occluders in.
@@ -86,13 +90,13 @@ struct SurfaceFeatures {
            std::uint64_t(irradiance_sh) << 22 | std::uint64_t(multiscatter) << 23 |
            std::uint64_t(geometry) << 24 | std::uint64_t(fresnel) << 26 |
            std::uint64_t(lights) << 27 | std::uint64_t(occluder_bounce) << 29 |
-           std::uint64_t(colors) << 32 | std::uint64_t(specular) << 33 |
-           std::uint64_t(anisotropy) << 34 | std::uint64_t(iridescence) << 35 |
-           std::uint64_t(clearcoat) << 36 | std::uint64_t(sheen) << 37 |
-           std::uint64_t(unlit) << 38 | std::uint64_t(transmission) << 39 |
-           std::uint64_t(volume) << 40 | std::uint64_t(dispersion) << 41 |
-           std::uint64_t(diffuse_transmission) << 42 | std::uint64_t(light_count + 1) << 43 |
-           std::uint64_t(debug_channel) << 48 |
+           std::uint64_t(deform) << 30 | std::uint64_t(colors) << 32 |
+           std::uint64_t(specular) << 33 | std::uint64_t(anisotropy) << 34 |
+           std::uint64_t(iridescence) << 35 | std::uint64_t(clearcoat) << 36 |
+           std::uint64_t(sheen) << 37 | std::uint64_t(unlit) << 38 |
+           std::uint64_t(transmission) << 39 | std::uint64_t(volume) << 40 |
+           std::uint64_t(dispersion) << 41 | std::uint64_t(diffuse_transmission) << 42 |
+           std::uint64_t(light_count + 1) << 43 | std::uint64_t(debug_channel) << 48 |
            std::uint64_t(sphere_occluders) << kOccluderKeyShift |
            std::uint64_t(box_occluders) << (kOccluderKeyShift + 5) |
            std::uint64_t(glass_reflections) << (kOccluderKeyShift + kOccluderKeyBits);

@@ -20,6 +20,7 @@ target_sources(pbrkit PRIVATE
   ${_pbrkit_gl_dir}/energy_texture.cpp
   ${_pbrkit_gl_dir}/ibl_maps.cpp
   ${_pbrkit_gl_dir}/gpu_scene.cpp
+  ${_pbrkit_gl_dir}/gpu_deformation.cpp
   ${_pbrkit_gl_dir}/light_clusters.cpp
   ${_pbrkit_gl_dir}/occluders.cpp
   ${_pbrkit_gl_dir}/occluder_pass.cpp

@@ -6,8 +6,8 @@
 // the shaders read by name, so no GLSL file types a slot, a unit or a binding point, and
 // adding a texture slot to scene.h's TextureSlot names its defines without touching this
 // file. It is the one list of every unit and binding point, handed out in order, and it
-// sits at the bottom of the module: gpu_scene, light_clusters and occluders read their
-// binding points from it, and it includes none of the renderer's other parts
+// sits at the bottom of the module: gpu_scene, gpu_deformation, light_clusters and occluders
+// read their binding points from it, and it includes none of the renderer's other parts
 // (tests/gl/source_includes_test.cpp).
 #include <epoxy/gl.h>
 
@@ -45,7 +45,7 @@ inline constexpr GLuint kLastSurfaceUnit = kAnisotropicAlbedoUnit;
 
 // The surface program's buffers, each kind numbered from 0 in this order (GL numbers
 // shader storage and uniform buffer binding points apart). The files that fill them read
-// their points from here: gpu_scene.h, light_clusters.h, occluders.h.
+// their points from here: gpu_scene.h, light_clusters.h, occluders.h, gpu_deformation.h.
 /// GpuScene::instance_buffer (pbr_vertex.glsl's InstanceTransforms).
 inline constexpr GLuint kInstanceBufferBinding = 0;
 /// The light buffers (surface_light_punctual.glsl's PunctualLights, LightClusterRanges and
@@ -53,6 +53,12 @@ inline constexpr GLuint kInstanceBufferBinding = 0;
 inline constexpr GLuint kLightBufferBinding = kInstanceBufferBinding + 1;
 inline constexpr GLuint kClusterRangeBufferBinding = kLightBufferBinding + 1;
 inline constexpr GLuint kListedLightBufferBinding = kClusterRangeBufferBinding + 1;
+/// A deforming mesh's rest vertices, joint influences, triangle corners and morph targets,
+/// and the pose's joint matrices and morph weights (deformation.glsl's DeformVertices,
+/// JointMatrices and MorphWeights; gpu_deformation.h's GpuDeformation).
+inline constexpr GLuint kDeformVertexBufferBinding = kListedLightBufferBinding + 1;
+inline constexpr GLuint kJointMatrixBufferBinding = kDeformVertexBufferBinding + 1;
+inline constexpr GLuint kMorphWeightBufferBinding = kJointMatrixBufferBinding + 1;
 /// The occluder block (occluders.glsl's Occluders; occluders.h's GpuOccluderBuffer), the
 /// only uniform buffer.
 inline constexpr GLuint kOccluderBufferBinding = 0;

@@ -9,6 +9,14 @@ layout(location = 4) in vec2 aTexcoord1;
 #define HAS_COLOR_0 1
 #endif
 layout(location = 5) in vec4 aColor;  // COLOR_0 (HAS_COLOR_0)
+#ifndef DEFORM
+#define DEFORM 0
+#endif
+#if DEFORM
+// A deforming mesh reads its positions, normals and tangents from its rest data by
+// gl_VertexID (the index the element buffer gives), not from the attributes above.
+#include "deformation.glsl"
+#endif
 
 // Every instance's model matrix and normal matrix (the inverse transpose of the model's
 // upper 3x3, in a mat4's columns), two per slot (gpu_scene.h, GpuScene::instance_buffer);
@@ -37,10 +45,18 @@ void main() {
   int slot = uInstanceBase + gl_InstanceID;
   mat4 model = uInstanceMatrices[2 * slot];
   mat3 normal_matrix = mat3(uInstanceMatrices[2 * slot + 1]);
-  vec4 world = model * vec4(aPosition, 1.0);
+#if DEFORM
+  DeformedVertex d = deformed_vertex(gl_VertexID);
+  vec3 position = d.position, normal = d.normal;
+  vec4 tangent = d.tangent;
+#else
+  vec3 position = aPosition, normal = aNormal;
+  vec4 tangent = aTangent;
+#endif
+  vec4 world = model * vec4(position, 1.0);
   vPosition = world.xyz;
-  vNormal = normal_matrix * aNormal;
-  vTangent = vec4(mat3(model) * aTangent.xyz, aTangent.w);
+  vNormal = normal_matrix * normal;
+  vTangent = vec4(mat3(model) * tangent.xyz, tangent.w);
   vTexcoord0 = aTexcoord0;
   vTexcoord1 = aTexcoord1;
 #if HAS_COLOR_0
