@@ -110,6 +110,7 @@ const std::map<std::string, std::string> kValidValues = {
     {"--denoiser-weights", ""},  // a file: set below
     {"--filter", "box"},
     {"--light-sampler", "power"},
+    {"--guiding", "on"},
     {"--irradiance", "cube"},
     {"--msaa", "2"},
     {"--background", "color:1,0,0"},

@@ -292,8 +292,8 @@ bad_json("child_out_of_range.gltf", lambda g, b: g["nodes"][0].update(children=[
 bad_json("scene_node_out_of_range.gltf", lambda g, b: g["scenes"][0].update(nodes=[4]), "node 4 does not exist")
 bad_json("mesh_out_of_range.gltf", lambda g, b: g["nodes"][0].update(mesh=3), "mesh")
 bad_json("unsupported_required_extension.gltf",
-         lambda g, b: g.update(extensionsUsed=["KHR_animation_pointer"], extensionsRequired=["KHR_animation_pointer"]),
-         "required extension 'KHR_animation_pointer' is not supported")
+         lambda g, b: g.update(extensionsUsed=["KHR_physics_rigid_bodies"], extensionsRequired=["KHR_physics_rigid_bodies"]),
+         "required extension 'KHR_physics_rigid_bodies' is not supported")
 bad_json("material_out_of_range.gltf", lambda g, b: g["meshes"][0]["primitives"][0].update(material=5),
          "material")
 bad_json("texture_out_of_range.gltf", lambda g, b: g.update(materials=[{"pbrMetallicRoughness": {
