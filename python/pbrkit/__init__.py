@@ -72,7 +72,7 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
            model="reference", multiscatter=None, max_bounces=None, time=None,
            noise_threshold=None, threads=None, denoise=None, denoiser=None, aovs=None,
            light_sampler=None, guiding=None, variant=None, animation=None,
-           animation_time=0.0, progress=None):
+           animation_time=0.0, shutter=None, progress=None):
     """Renders ``scene`` (a Scene, a file path or a built-in name) and returns the linear
     RGB image as a float32 (H, W, 3) array; with ``aovs`` (any of "albedo", "normal",
     "depth", "samples", "noise") returns ``(image, {name: array})``.
@@ -94,7 +94,10 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
     index; None renders each primitive's own material. ``animation`` (a name or index of
     ``Scene.animations``) and ``animation_time`` (seconds, clamped to its keys) pose a copy
     of the scene for this render, as ``pbrkit render --animation --animation-time`` does;
-    None renders the Scene as it is (its rest pose, or ``Scene.pose()``'s).
+    None renders the Scene as it is (its rest pose, or ``Scene.pose()``'s). ``shutter``
+    (with ``animation``): ``(open, close)`` seconds around ``animation_time``, as
+    ``--shutter OPEN:CLOSE``: the path tracer renders the motion blur, the OpenGL renderer
+    the shutter's centre.
     """
     if not isinstance(scene, Scene):
         scene = load(scene)
@@ -109,7 +112,7 @@ def render(scene, renderer="path", *, width=None, height=None, spp=None, seed=No
         path.aovs = [aovs] if isinstance(aovs, str) else list(aovs)
     return _pbrkit._render(scene, renderer, width, height, _env_arg(env), float(env_rotation),
                            float(env_intensity), camera, model, multiscatter, progress, path,
-                           variant, animation, float(animation_time))
+                           variant, animation, float(animation_time), shutter)
 
 
 def denoise(color, albedo, normal, depth, *, denoiser=None, progress=None):

@@ -124,8 +124,10 @@ const std::vector<std::string>& aov_names() {
 
 py::object render_path_tracer(const Scene& scene, const std::optional<Environment>& env,
                               const RenderView& view, const BrdfOptions& brdf, const PathArgs& a,
-                              const py::object& progress) {
+                              const py::object& progress,
+                              const PathTracerSettings::Shutter& shutter) {
   PathTracerSettings s;
+  s.shutter = shutter;
   s.width = view.size.width;
   s.height = view.size.height;
   if (a.spp) {
@@ -240,12 +242,31 @@ void bind_render(py::module_& m) {
          std::optional<int> height, const py::object& env, float env_rotation, float env_intensity,
          const py::object& camera, const std::string& model, std::optional<bool> multiscatter,
          const py::object& progress, PathArgs path, const py::object& variant,
-         const py::object& animation, double animation_time) {
+         const py::object& animation, double animation_time, const py::object& shutter) {
         // A variant switches the materials of a copy, and an animation poses a copy: the
         // Scene object is shared, and keeps its own materials and pose.
         std::shared_ptr<const Scene> varied = handle.scene;
-        const PoseTime pose =
+        PoseTime pose =
             pose_argument(*handle.scene, animation, animation_time, "animation", "animation_time");
+        // shutter=(open, close): seconds around animation_time, as --shutter OPEN:CLOSE; the
+        // scene is posed at its centre, the path tracer samples a time per path.
+        PathTracerSettings::Shutter blur;
+        if (!shutter.is_none()) {
+          if (animation.is_none()) throw py::value_error("shutter: needs animation");
+          double open = 0.0, close = 0.0;
+          try {
+            const auto pair = shutter.cast<std::pair<double, double>>();
+            open = pair.first;
+            close = pair.second;
+          } catch (const py::cast_error&) {
+            throw py::type_error("shutter: expected None or (open, close) in seconds");
+          }
+          if (!std::isfinite(open) || !std::isfinite(close) || !(open < close))
+            throw py::value_error("shutter: (open, close) must be finite with open < close");
+          blur = {pose.animation, float(animation_time + open), float(animation_time + close),
+                  blur.steps};
+          pose.time = float(animation_time + 0.5 * (open + close));
+        }
         if (!variant.is_none() || !animation.is_none()) {
           auto copy = std::make_shared<Scene>(*handle.scene);
           if (!variant.is_none()) {
@@ -279,12 +300,12 @@ void bind_render(py::module_& m) {
         const BrdfOptions brdf = brdf_options(model, multiscatter);
         if (renderer == "gl")
           return render_gl(scene, environment, view, brdf, env_rotation, env_intensity, progress);
-        return render_path_tracer(scene, environment, view, brdf, path, progress);
+        return render_path_tracer(scene, environment, view, brdf, path, progress, blur);
       },
       py::arg("scene"), py::arg("renderer"), py::arg("width"), py::arg("height"), py::arg("env"),
       py::arg("env_rotation"), py::arg("env_intensity"), py::arg("camera"), py::arg("model"),
       py::arg("multiscatter"), py::arg("progress"), py::arg("path"), py::arg("variant"),
-      py::arg("animation"), py::arg("animation_time"));
+      py::arg("animation"), py::arg("animation_time"), py::arg("shutter"));
 
   py::class_<PathArgs>(m, "_PathArgs")
       .def(py::init<>())

@@ -166,3 +166,33 @@ def test_bad_animation_arguments_name_the_argument(tmp_path):
         pbrkit.load("spheres").pose("walk")
     # A failed pose leaves the Scene as it was.
     _assert_bounds(scene, (-1, -1, 0), (1, 1, 0))
+
+
+def test_shutter_blurs_the_path_tracers_image_around_the_pose(tmp_path):
+    scene = pbrkit.load(_animated_file(tmp_path))
+    kw = dict(width=48, height=48, env=None, spp=64, noise_threshold=0)
+    still = pbrkit.render(scene, "path", animation="slide", animation_time=2.0, **kw)
+    # slide moves at (2, 1) units/s = (8, -4) pixels/s: a 1 s shutter centred on 2 s smears
+    # the triangle over 8 pixels sideways, symmetric about the still pose.
+    blurred = pbrkit.render(scene, "path", animation="slide", animation_time=2.0,
+                            shutter=(-0.5, 0.5), **kw)
+    # The intensity-weighted centroid (a threshold's would not be a translate of the blur).
+    def weighted(image):
+        w = image[..., 1]
+        ys, xs = np.mgrid[0:w.shape[0], 0:w.shape[1]]
+        return np.array([(w * xs).sum(), (w * ys).sum()]) / w.sum()
+    np.testing.assert_allclose(weighted(blurred), weighted(still), atol=0.15)
+    partial = lambda image: int(np.sum((image[..., 1] > 0.2) & (image[..., 1] < 0.8)))
+    assert partial(blurred) > 2 * partial(still) + 20  # 67 against 16 when written
+    # The OpenGL renderer draws the shutter's centre: here the still pose at 2 s.
+    centre = pbrkit.render(scene, "gl", width=48, height=48, env=None, animation="slide",
+                           animation_time=1.75, shutter=(0.0, 0.5))
+    gl_still = pbrkit.render(scene, "gl", width=48, height=48, env=None, animation="slide",
+                             animation_time=2.0)
+    np.testing.assert_allclose(centre, gl_still, atol=1e-6)
+    with pytest.raises(ValueError, match="^shutter: needs animation"):
+        pbrkit.render(scene, "gl", width=8, height=8, shutter=(0, 1))
+    with pytest.raises(ValueError, match="^shutter: .* open < close"):
+        pbrkit.render(scene, "gl", width=8, height=8, animation=0, shutter=(1, 0))
+    with pytest.raises(TypeError, match="^shutter: expected"):
+        pbrkit.render(scene, "gl", width=8, height=8, animation=0, shutter="0:1")
