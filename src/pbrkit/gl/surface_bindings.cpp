@@ -53,8 +53,7 @@ std::vector<SurfaceBinding> surface_bindings() {
   b.push_back({"LISTED_LIGHTS", kListedLightBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
   b.push_back(
       {"DEFORM_VERTICES", kDeformVertexBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
-  b.push_back(
-      {"JOINT_MATRICES", kJointMatrixBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
+  b.push_back({"JOINT_MATRICES", kJointMatrixBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
   b.push_back({"MORPH_WEIGHTS", kMorphWeightBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
   b.push_back({"OCCLUDERS", kOccluderBufferBinding, SurfaceBinding::Kind::kUniformBuffer});
   return b;

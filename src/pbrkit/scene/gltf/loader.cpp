@@ -22,9 +22,9 @@ Scene Loader::load() {
   // The JSON, checked with nlohmann: types, version, extensions, URIs and their sizes.
   json root = parse_json();  // validation.cpp
   check_json(root);
-  read_variants(root);                              // variants.cpp
-  read_node_visibility(root);                       // visibility.cpp
-  bool modified = prepare_meshopt_fallbacks(root);  // meshopt.cpp
+  read_variants(root);                                      // variants.cpp
+  read_node_visibility(root);                               // visibility.cpp
+  bool modified = prepare_meshopt_fallbacks(root);          // meshopt.cpp
   modified = prepare_animation_pointers(root) || modified;  // animation_pointer.cpp
   check_uris(root);
   modified = drop_draco_indices(root) || modified;  // draco.cpp

@@ -20,11 +20,10 @@ namespace {
 // KHR_materials_* ones are the material schema's.
 const std::set<std::string>& supported_extensions() {
   static const std::set<std::string> kNames = [] {
-    std::set<std::string> names = {"KHR_texture_transform",   "KHR_lights_punctual",
-                                   "KHR_mesh_quantization",   "KHR_draco_mesh_compression",
-                                   "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
-                                   "KHR_materials_variants",  "KHR_node_visibility",
-                                   "KHR_animation_pointer"};
+    std::set<std::string> names = {
+        "KHR_texture_transform",      "KHR_lights_punctual",     "KHR_mesh_quantization",
+        "KHR_draco_mesh_compression", "EXT_meshopt_compression", "EXT_mesh_gpu_instancing",
+        "KHR_materials_variants",     "KHR_node_visibility",     "KHR_animation_pointer"};
     for (const MaterialExtension& e : material_schema()) names.insert(e.name);
     return names;
   }();
