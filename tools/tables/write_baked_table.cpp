@@ -3,6 +3,7 @@
 //
 //   write_baked_table anisotropic-albedo src/pbrkit/ibl/anisotropic_albedo_data.inc  (~1 s)
 //   write_baked_table dielectric-energy  src/pbrkit/core/dielectric_energy_data.inc  (~20 s)
+//   write_baked_table anisotropic-energy src/pbrkit/core/anisotropic_energy_data.inc (~15 s)
 //
 // on two cores. The tests check the baked values against the computation they come from
 // (tests/ibl/anisotropic_albedo_test.cpp, tests/core/transmission_test.cpp); this program
@@ -13,6 +14,7 @@
 
 #include <fmt/format.h>
 
+#include "pbrkit/core/anisotropic_energy.h"
 #include "pbrkit/core/energy.h"
 #include "pbrkit/ibl/anisotropic_albedo.h"
 #include "pbrkit/util/atomic_file.h"
@@ -46,18 +48,33 @@ std::string dielectric_energy() {
          array("kBakedE", E) + array("kBakedRavg", R_avg);
 }
 
+std::string anisotropic_energy() {
+  return fmt::format(
+             "// The anisotropic GGX lobe's multiple-scattering compensation (E_ss, h, E_tot a "
+             "node, then\n// E_ss_avg, E_tot_avg a slice), baked by "
+             "AnisotropicEnergyTable::compute ({} x {} VNDF points\n// an integral, {} "
+             "Sinkhorn iterations), written by tools/tables/write_baked_table.cpp. Layout:\n// "
+             "core/anisotropic_energy.h. Do not edit.\n",
+             pbrkit::AnisotropicEnergyTable::kLattice, pbrkit::AnisotropicEnergyTable::kLattice,
+             pbrkit::AnisotropicEnergyTable::kIterations) +
+         array("kBakedAnisotropicEnergy", pbrkit::AnisotropicEnergyTable::compute());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   const std::string which = argc == 3 ? argv[1] : "";
-  if (which != "anisotropic-albedo" && which != "dielectric-energy") {
+  if (which != "anisotropic-albedo" && which != "dielectric-energy" &&
+      which != "anisotropic-energy") {
     std::fprintf(stderr,
-                 "usage: write_baked_table anisotropic-albedo|dielectric-energy OUTPUT.inc\n");
+                 "usage: write_baked_table "
+                 "anisotropic-albedo|dielectric-energy|anisotropic-energy OUTPUT.inc\n");
     return 2;
   }
   try {
-    const std::string text =
-        which == "anisotropic-albedo" ? anisotropic_albedo() : dielectric_energy();
+    const std::string text = which == "anisotropic-albedo"   ? anisotropic_albedo()
+                             : which == "anisotropic-energy" ? anisotropic_energy()
+                                                             : dielectric_energy();
     pbrkit::write_bytes_atomically(argv[2], text);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "write_baked_table: %s\n", e.what());

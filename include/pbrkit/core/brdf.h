@@ -18,6 +18,7 @@
 
 #include <glm/glm.hpp>
 
+#include "pbrkit/core/anisotropic_energy.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/core/energy.h"
 #include "pbrkit/core/iridescence.h"
@@ -163,6 +164,11 @@ class Brdf {
   glm::vec3 Fms_{0.0f};     // Fms of the whole specular (the dielectric's weighted + the metal's)
   glm::vec3 Fms_d_{0.0f};   // reference: the dielectric's Fms (times its weight)
   glm::vec3 Es_avg_{0.0f};  // classic: Es_avg per channel; reference: the dielectric's
+  // Anisotropic compensation (reference, alpha_x != alpha_y; core/anisotropic_energy.h): the
+  // table, the broadened lobe's alphas and 1 / (pi (1 - E_tot_avg)).
+  const AnisotropicEnergyTable* aniso_table_ = nullptr;
+  float bx_ = 1.0f, by_ = 1.0f;
+  float aniso_rest_norm_ = 0.0f;
 };
 
 /// A Brdf with wo fixed (Brdf::at): the lobe-selection probability (with its albedo table
@@ -223,6 +229,9 @@ class BoundBrdf {
   float schlick_o_ = 0.0f;   // Schlick-GGX G1(n.v) (classic G)
   float diffuse_o_ = 1.0f;   // compensation: the diffuse lobe's factor at wo
   float E_o_ = 0.0f;         // E(wo.z) (compensation)
+  // Anisotropic compensation: the broadened lobe's choice probability, h(wo), 1 - E_tot(wo),
+  // and Smith's Lambda(wo) and G1(wo) at the broadened alphas.
+  float p_b_ = 0.0f, h_o_ = 0.0f, rest_o_ = 0.0f, lambda_b_o_ = 0.0f, G1_b_o_ = 0.0f;
 };
 
 // ---- Definitions. Inline because BoundBrdf runs at every path vertex: the path tracer's
@@ -271,9 +280,24 @@ inline BoundBrdf::BoundBrdf(const Brdf& brdf, glm::vec3 wo)
     spec = luminance(brdf.F0_ * ab.x + ab.y);
     rest = (1.0f - brdf.metallic_) * luminance(brdf.base_color_) * (1.0f - spec);
   }
-  if (brdf.options_.multiscatter) rest += luminance(brdf.Fms_) * (1.0f - E);
-  albedo_est_ = spec + rest;
+  float broadened = 0.0f;
+  if (brdf.aniso_table_ && wo.z > 0.0f) {
+    // The anisotropic compensation's two lobes: the broadened GGX lobe (its own VNDF
+    // strategy) carries E_tot - E_ss, the Kulla-Conty rest (cosine) 1 - E_tot.
+    const AnisotropicEnergyTable::Entry e =
+        brdf.aniso_table_->lookup(wo, brdf.alpha_x_, brdf.alpha_y_);
+    h_o_ = e.h;
+    rest_o_ = 1.0f - e.E_tot;
+    broadened = luminance(brdf.Fms_) * std::max(e.E_tot - e.E_ss, 0.0f);
+    rest += luminance(brdf.Fms_) * rest_o_;
+    lambda_b_o_ = SmithLambdaGGXAniso(wo, brdf.bx_, brdf.by_);
+    G1_b_o_ = 1.0f / (1.0f + lambda_b_o_);
+  } else if (brdf.options_.multiscatter) {
+    rest += luminance(brdf.Fms_) * (1.0f - E);
+  }
+  albedo_est_ = spec + rest + broadened;
   p_spec_ = albedo_est_ > 0.0f ? spec / albedo_est_ : 1.0f;
+  p_b_ = albedo_est_ > 0.0f ? broadened / albedo_est_ : 0.0f;
   if (wo.z <= 0.0f) return;  // eval, pdf and sample are zero
   const float ax = brdf_.alpha_x_, ay = brdf_.alpha_y_;
   if (brdf_.geometry_ == GeometryModel::kReference) {
@@ -345,6 +369,16 @@ inline glm::vec3 BoundBrdf::eval_diffuse_and_ms(glm::vec3 wi, glm::vec3 diffuse_
     diffuse =
         lambert_ * (1.0f - Es_o) * (1.0f - Es_i) / glm::max(1.0f - b.Es_avg_, glm::vec3(1e-6f));
   }
+  if (b.aniso_table_) {
+    // Anisotropic: h(wo) h(wi) f_b(wo, wi), the single-scattering lobe at the broadened
+    // alphas scaled symmetrically, plus Kulla & Conty 2017's lobe on what is left,
+    // (1 - E_tot(wo))(1 - E_tot(wi)) / (pi (1 - E_tot_avg)) (core/anisotropic_energy.h).
+    const AnisotropicEnergyTable::Entry e = b.aniso_table_->lookup(wi, b.alpha_x_, b.alpha_y_);
+    const glm::vec3 h = glm::normalize(wo_ + wi);
+    const float G2 = 1.0f / (1.0f + lambda_b_o_ + SmithLambdaGGXAniso(wi, b.bx_, b.by_));
+    const float f_b = DistributionGGXAniso(h, b.bx_, b.by_) * G2 / (4.0f * wo_.z * wi.z);
+    return diffuse + b.Fms_ * (h_o_ * e.h * f_b + rest_o_ * (1.0f - e.E_tot) * b.aniso_rest_norm_);
+  }
   // Kulla & Conty 2017: f_ms = Fms (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)).
   const glm::vec3 ms =
       b.Fms_ * ((1.0f - E_o_) * (1.0f - E_i) / (kPi * std::max(1.0f - b.E_avg_, 1e-6f)));
@@ -356,7 +390,15 @@ inline float BoundBrdf::pdf(glm::vec3 wi, float WOdotH, float D) const {
   // taken to the reflected direction, mixed with the cosine lobe by the lobe choice.
   const float pdf_h = WOdotH <= 0.0f ? 0.0f : G1_o_ * WOdotH * D / wo_.z;
   const float pdf_spec = reflected_pdf(pdf_h, WOdotH);
-  return p_spec_ * pdf_spec + (1.0f - p_spec_) * cosine_hemisphere_pdf(wi.z);
+  float pdf_b = 0.0f;
+  if (p_b_ > 0.0f && WOdotH > 0.0f) {
+    // The broadened lobe's visible normals, the same pdf at its alphas.
+    const glm::vec3 h = glm::normalize(wo_ + wi);
+    pdf_b = reflected_pdf(G1_b_o_ * WOdotH * DistributionGGXAniso(h, brdf_.bx_, brdf_.by_) / wo_.z,
+                          WOdotH);
+  }
+  return p_spec_ * pdf_spec + p_b_ * pdf_b +
+         std::max(1.0f - p_spec_ - p_b_, 0.0f) * cosine_hemisphere_pdf(wi.z);
 }
 
 inline glm::vec3 BoundBrdf::eval(glm::vec3 wi, float* pdf) const {
@@ -393,6 +435,8 @@ inline glm::vec3 BoundBrdf::sample_direction(float u_lobe, glm::vec2 u) const {
   if (wo_.z <= 0.0f) return glm::vec3(0.0f);
   if (u_lobe < p_spec_)
     return reflect_about(wo_, sample_ggx_visible_normal(wo_, u, brdf_.alpha_x_, brdf_.alpha_y_));
+  if (u_lobe < p_spec_ + p_b_)
+    return reflect_about(wo_, sample_ggx_visible_normal(wo_, u, brdf_.bx_, brdf_.by_));
   return sample_cosine_hemisphere(u).direction;
 }
 

@@ -76,6 +76,16 @@ Brdf::Brdf(const BaseLayer& layer, const BrdfOptions& options)
       Fms_ = multiscatter_fresnel(F0_, E_avg_);
       Es_avg_ = F0_ * ab_avg.x + ab_avg.y + Fms_ * (1.0f - E_avg_);
     }
+    if (aniso > 0.0f && geometry_ == GeometryModel::kReference) {
+      // The anisotropic lobe's own compensation (core/anisotropic_energy.h), which keeps the
+      // walk's elongation; Fms (1 for white) and the diffuse weight stay the isotropic tables'.
+      aniso_table_ = &AnisotropicEnergyTable::get();
+      const glm::vec2 b = AnisotropicEnergyTable::broadened_alphas(alpha_x_, alpha_y_);
+      bx_ = b.x;
+      by_ = b.y;
+      const float E_tot_avg = aniso_table_->averages(alpha_x_, alpha_y_).y;
+      aniso_rest_norm_ = 1.0f / (kPi * std::max(1.0f - E_tot_avg, 1e-6f));
+    }
   }
 }
 

@@ -2,6 +2,7 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/sampling.cpp
   ${CMAKE_CURRENT_LIST_DIR}/microfacet.cpp
   ${CMAKE_CURRENT_LIST_DIR}/energy.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/anisotropic_energy.cpp
   ${CMAKE_CURRENT_LIST_DIR}/sheen.cpp
   ${CMAKE_CURRENT_LIST_DIR}/brdf.cpp
   ${CMAKE_CURRENT_LIST_DIR}/bsdf.cpp
