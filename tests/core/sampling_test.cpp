@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pbrkit/core/sampling.h"
+#include "pbrkit/core/sobol.h"
 #include "support/chi2.h"
 
 namespace pbrkit {

@@ -3,7 +3,7 @@
 // have converged), where the average since the start would promise too early an end.
 #include <gtest/gtest.h>
 
-#include "pbrkit/util/progress.h"
+#include "pbrkit/util/eta_estimator.h"
 
 namespace pbrkit {
 namespace {

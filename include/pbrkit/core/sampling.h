@@ -91,12 +91,6 @@ class OwenSobolPixel {
   BlockSeeds seeds_[kCachedBlocks];
 };
 
-/// Plain (unscrambled) Sobol point `index` in dimension `dim` (0..3), as a 32-bit integer
-/// fraction. Exposed for tests (the first dimensions are known in closed form).
-std::uint32_t sobol_u32(std::uint32_t index, std::uint32_t dim);
-/// Burley 2020's hash-based nested uniform (Owen) scramble of a 32-bit fraction.
-std::uint32_t nested_uniform_scramble(std::uint32_t x, std::uint32_t seed);
-
 /// A direction and its pdf.
 struct DirectionSample {
   glm::vec3 direction;

@@ -4,11 +4,10 @@
 // bar with percent and ETA on a TTY, plain periodic lines otherwise.
 #include <chrono>
 #include <cstdio>
-#include <deque>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <string>
-#include <utility>
 
 namespace pbrkit {
 
@@ -28,30 +27,13 @@ namespace pbrkit {
 /// snapshot, the same rule. Bad input is still an Error, stopped or not.
 using ProgressCallback = std::function<bool(double fraction, const std::string& detail)>;
 
-/// Time left from the recent rate of progress, not the average since the start: work
-/// often gets slower as it goes (an adaptive render's cheap pixels converge first and
-/// stop, leaving the expensive ones), and the average then promises too early an end.
-/// The rate is measured over the last `window` of progress reports: max(min_window, 25%
-/// of the elapsed time).
-class EtaEstimator {
- public:
-  double min_window = 3.0;  ///< seconds
-  /// Records progress `fraction` (in [0, 1]) at time `t` (seconds since the start).
-  void add(double t, double fraction);
-  /// Seconds left after the last add(); negative when unknown (no progress yet, or less
-  /// than a second of it).
-  double eta() const;
-  /// Reports kept (at most about 64 per window, for tests).
-  std::size_t history_size() const { return history_.size(); }
-
- private:
-  std::deque<std::pair<double, double>> history_;  ///< (t, fraction), oldest first
-};
+class EtaEstimator;
 
 class ProgressBar {
  public:
   /// `label` is printed before the bar. `stream` is normally stderr.
   explicit ProgressBar(std::string label, std::FILE* stream = stderr);
+  ~ProgressBar();
   /// Thread-safe; redraws at most ~10 times a second on a TTY and every `plain_interval`
   /// seconds (and at 100%) otherwise.
   void update(double fraction, const std::string& detail = {});
@@ -68,7 +50,7 @@ class ProgressBar {
   bool tty_;
   std::mutex mutex_;
   std::chrono::steady_clock::time_point start_, last_;
-  EtaEstimator eta_;
+  std::unique_ptr<EtaEstimator> eta_;  ///< the time left, from the recent rate
   bool finished_ = false;
 };
 

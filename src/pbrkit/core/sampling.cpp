@@ -8,6 +8,7 @@
 #endif
 
 #include "pbrkit/core/math.h"
+#include "pbrkit/core/sobol.h"
 
 namespace pbrkit {
 

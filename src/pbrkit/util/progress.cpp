@@ -1,5 +1,7 @@
 #include "pbrkit/util/progress.h"
 
+#include "pbrkit/util/eta_estimator.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -12,7 +14,10 @@ ProgressBar::ProgressBar(std::string label, std::FILE* stream)
       stream_(stream),
       tty_(::isatty(::fileno(stream)) != 0),
       start_(std::chrono::steady_clock::now()),
-      last_(start_ - std::chrono::hours(1)) {}
+      last_(start_ - std::chrono::hours(1)),
+      eta_(std::make_unique<EtaEstimator>()) {}
+
+ProgressBar::~ProgressBar() = default;
 
 static std::string format_seconds(double s) {
   if (!std::isfinite(s) || s < 0) return "?";
@@ -59,10 +64,10 @@ void ProgressBar::update(double fraction, const std::string& detail) {
   const auto now = std::chrono::steady_clock::now();
   const double since_last = std::chrono::duration<double>(now - last_).count();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  eta_.add(elapsed, fraction);
+  eta_->add(elapsed, fraction);
   if (since_last < (tty_ ? 0.1 : plain_interval) && fraction < 1.0) return;
   last_ = now;
-  const double eta = eta_.eta();
+  const double eta = eta_->eta();
   if (tty_) {
     constexpr int kWidth = 30;
     const int filled = int(std::lround(fraction * kWidth));
