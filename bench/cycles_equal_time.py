@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""The denoiser at equal time against Blender Cycles (BENCHMARKS.md, "The denoiser at equal
-time against Cycles"): the built-in `spheres` under the default environment, 256x256, 8
+"""The denoiser at equal time against Blender Cycles (docs/benchmarks_archive.md, "The
+denoiser at equal time against Cycles"): the built-in `spheres` under the default environment, 256x256, 8
 bounces, 2 threads. Cycles renders 256 spp; its render call's wall time T is the budget.
 pbrkit gets T for its whole process (start-up, render, denoise, write): `pbrkit render
 --denoise --time t` with t = T less its measured overhead. Each image is compared with its

@@ -1,8 +1,8 @@
-// The denoiser's quality and speed, the figures of BENCHMARKS.md's "the denoiser"
-// sections: relative MSE of the raw and the denoised image against converged references,
-// at 16 and 64 spp and at equal time, for the built-in spheres and cornell and for two
-// shared models under two shared HDRIs; the mean of every 1/8 x 1/8 block against the
-// reference; the time to denoise 512x512. Also writes a grid of crops (raw, each
+// The denoiser's quality and speed, the figures of BENCHMARKS.md's "Denoiser" (and of the
+// "the denoiser" sections of docs/benchmarks_archive.md): relative MSE of the raw and the denoised
+// image against converged references, at 16 and 64 spp and at equal time, for the built-in spheres
+// and cornell and for two shared models under two shared HDRIs; the mean of every 1/8 x 1/8 block
+// against the reference; the time to denoise 512x512. Also writes a grid of crops (raw, each
 // denoiser's image, reference) as a PNG. Each row names its denoiser: the classic
 // feature-guided filter (denoise/denoiser.h) or the learned network
 // (denoise/learned_denoiser.h, docs/LEARNED_DENOISER.md).

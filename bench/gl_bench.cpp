@@ -145,10 +145,10 @@ BENCHMARK(BM_GlFrameBreakdown)
     ->UseRealTime()
     ->MinTime(2.0);
 
-// The cost of the layered material (BENCHMARKS.md, "the material extensions"). The 1280x720 frame
-// (MSAA 1) of `spheres` as is (0) and with KHR_materials_clearcoat and KHR_materials_sheen on every
-// sphere (1: its own shader permutation, the coat's and the sheen's lobes per light and their IBL
-// lookups). Goal: 1 at most 1.3x 0.
+// The cost of the layered material (docs/benchmarks_archive.md, "the material extensions"). The
+// 1280x720 frame (MSAA 1) of `spheres` as is (0) and with KHR_materials_clearcoat and
+// KHR_materials_sheen on every sphere (1: its own shader permutation, the coat's and the sheen's
+// lobes per light and their IBL lookups). Goal: 1 at most 1.3x 0.
 void BM_GlFrameLayers(benchmark::State& state) {
   constexpr int kWidth = 1280, kHeight = 720;
   gl::HeadlessContext context;
@@ -200,18 +200,18 @@ void BM_GlFrameSheen(benchmark::State& state) {
 }
 BENCHMARK(BM_GlFrameSheen)->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(3.0);
 
-// The cost of the transmission pass (BENCHMARKS.md, "glass and liquids"). The 1280x720 frame (MSAA
-// 1) of `spheres` as is (0: no transmissive material, so no capture and no mip chain), with every
-// other sphere thin-walled glass (1: the opaque frame captured, its mip chain built, the glass
-// spheres drawn after it reading it), and with those spheres a thick dispersive volume
-// (2: three refracted reads per fragment). Goal: 1 and 2 cost at most one extra opaque
-// pass plus the mip chain over 0. 3 and 4: the built-in `glass` and `liquid` scenes (their
-// own cameras; `liquid` captures the frame twice: its amber behind its glass); 5 and 6: the
-// same without the transmissive objects' shadows in the environment light (what they cost);
-// 7 and 8: without thick glass's reflections of the frame (what they cost); 9 and 10: with the
-// opaque objects' shadows too (RenderSettings::opaque_shadows, off by default); 11 and 12:
-// with neither the transmissive objects' shadows nor the reflections, the two-interface
-// refraction alone against the frame before it.
+// The cost of the transmission pass (docs/benchmarks_archive.md, "glass and liquids"). The 1280x720
+// frame (MSAA 1) of `spheres` as is (0: no transmissive material, so no capture and no mip chain),
+// with every other sphere thin-walled glass (1: the opaque frame captured, its mip chain built, the
+// glass spheres drawn after it reading it), and with those spheres a thick dispersive volume (2:
+// three refracted reads per fragment). Goal: 1 and 2 cost at most one extra opaque pass plus the
+// mip chain over 0. 3 and 4: the built-in `glass` and `liquid` scenes (their own cameras; `liquid`
+// captures the frame twice: its amber behind its glass); 5 and 6: the same without the transmissive
+// objects' shadows in the environment light (what they cost); 7 and 8: without thick glass's
+// reflections of the frame (what they cost); 9 and 10: with the opaque objects' shadows too
+// (RenderSettings::opaque_shadows, off by default); 11 and 12: with neither the transmissive
+// objects' shadows nor the reflections, the two-interface refraction alone against the frame before
+// it.
 void BM_GlFrameTransmission(benchmark::State& state) {
   constexpr int kWidth = 1280, kHeight = 720;
   gl::HeadlessContext context;

@@ -128,7 +128,8 @@ struct DenoiseOptions {
   /// heavy-tailed benchmark scenes, so it is off)
   bool cross_selection = false;
   /// Also offer the unfiltered image as a candidate (last in DenoiseStats::candidate_share);
-  /// off: it changed no scene of denoise_bench measurably (BENCHMARKS.md, "the denoiser")
+  /// off: it changed no scene of denoise_bench measurably (docs/benchmarks_archive.md, "the
+  /// denoiser")
   bool raw_candidate = false;
   /// Pass through the pixels whose every sample saw the environment directly (depth 0 in
   /// both halves: no sample hit the scene). Their colour is a lookup of the environment,

@@ -29,7 +29,7 @@ enum class FresnelMode { kSchlick, kSphericalGaussian };
 /// The grid of clustered shading (gl/light_clusters.h): square tiles of `tile_pixels` over
 /// the viewport, `slices` depth slices exponential in view depth. Smaller clusters hold
 /// fewer lights that miss their fragments, at more binning work per frame on the CPU
-/// (BENCHMARKS.md, "Many punctual lights", measures both on llvmpipe).
+/// (docs/benchmarks_archive.md, "Many punctual lights", measures both on llvmpipe).
 struct LightClusterGrid {
   int tile_pixels = 16;
   int slices = 32;
@@ -71,7 +71,7 @@ struct RenderSettings {
   /// triangles and draws a run of instances in chunks of at most that many (at least one
   /// instance each; a mesh of more in index ranges of that many): it bounds the memory the
   /// queue holds (a frame of 57 million instanced triangles: 1.5 GB at its peak without,
-  /// 0.44 GB with 2 million; BENCHMARKS.md, "The OpenGL frame's memory at production
+  /// 0.44 GB with 2 million; docs/benchmarks_archive.md, "The OpenGL frame's memory at production
   /// scale"). The same image either way. 0: never wait.
   /// A GPU's driver needs no such wait, and there it is not made.
   std::size_t software_queue_triangles = 2'000'000;

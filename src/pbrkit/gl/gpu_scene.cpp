@@ -185,7 +185,7 @@ void GpuScene::upload(const Scene& scene, std::size_t memory_limit) {
     // What the frame needs besides the scene, kept free: llvmpipe's queue of binned
     // triangles (bounded by RenderSettings::software_queue_triangles; about 100 MB on an
     // 8 M-triangle mesh) and the render targets (about 115 MB more at 1280x720 than at
-    // 128x128); BENCHMARKS.md, "The OpenGL renderer's memory check".
+    // 128x128); docs/benchmarks_archive.md, "The OpenGL renderer's memory check".
     constexpr std::size_t kFrameBytes = std::size_t(224) << 20;
     const std::size_t available = available_memory();
     frame_reserve = std::min(available, kFrameBytes);

@@ -95,8 +95,8 @@ std::vector<Occluder> select_occluders(std::span<const Occluder> all, glm::ivec2
 /// OCCLUDER_TERM(i) (OCCLUDER_TRANSMISSIVE_SPHERES, _OPAQUE_SPHERES, _TRANSMISSIVE_BOXES,
 /// _OPAQUE_BOXES), compiled into the surface program: a software rasteriser (llvmpipe) reads
 /// a uniform buffer lane by lane and does not unroll a loop over many proxies, and the
-/// geometry changes only with the scene (BENCHMARKS.md, "Shadows of transmissive objects"
-/// and "The proxies' terms written out").
+/// geometry changes only with the scene (docs/benchmarks_archive.md, "Shadows of transmissive
+/// objects" and "The proxies' terms written out").
 std::string occluder_geometry_define(std::span<const Occluder> selected);
 
 /// The selected occluders' transmittances on the GPU (occluders.glsl's Occluders block, one

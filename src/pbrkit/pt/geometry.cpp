@@ -17,17 +17,16 @@ namespace pbrkit {
 namespace {
 
 // What Embree 3.13 allocates at RTC_BUILD_QUALITY_MEDIUM on an AVX2 machine, rounded up
-// (BENCHMARKS.md, "instanced geometry"; bench/instancing_bench.cpp): per triangle, the peak of a
-// build as its memory monitor (rtcSetDeviceMemoryMonitorFunction) sees it, the BVH and the
-// build's temporary arrays (about 104 bytes; 67 stay); per instance, its share of the
-// top-level BVH (about 90 bytes by the monitor) and its geometry object and transform,
-// which Embree allocates outside the monitor (about 300 more by the peak RSS of 10^6
-// instances).
+// (docs/benchmarks_archive.md, "instanced geometry"; bench/instancing_bench.cpp): per triangle, the
+// peak of a build as its memory monitor (rtcSetDeviceMemoryMonitorFunction) sees it, the BVH and
+// the build's temporary arrays (about 104 bytes; 67 stay); per instance, its share of the top-level
+// BVH (about 90 bytes by the monitor) and its geometry object and transform, which Embree allocates
+// outside the monitor (about 300 more by the peak RSS of 10^6 instances).
 constexpr double kBvhBytesPerTriangle = 128.0;
 // The same with RTC_SCENE_FLAG_COMPACT (BvhLayout::kCompact), whose leaves index the mesh's
 // vertices instead of copying them. By the monitor, its peak is 70-81 bytes per triangle on
 // meshes of 5,696 to 194,432 triangles and 36-47 on meshes of 8 and 24 million, against
-// the fast layout's 99-117; 35-47 stay after the build, against 65-71 (BENCHMARKS.md,
+// the fast layout's 99-117; 35-47 stay after the build, against 65-71 (docs/benchmarks_archive.md,
 // "Embree's compact layout for scenes that do not fit").
 constexpr double kCompactBvhBytesPerTriangle = 88.0;
 constexpr double kBvhBytesPerInstance = 640.0;
@@ -202,8 +201,8 @@ SceneGeometry::SceneGeometry(const Scene& scene, const GeometryOptions& options)
   // At most AVX2 kernels: on AVX-512 machines Embree 3 otherwise picks its AVX-512 ones,
   // which traced this path tracer's rays (single rays, incoherent after the first bounce)
   // more slowly on the development VM: 5-11% more samples per CPU second on the built-in
-  // `spheres` with AVX2 (BENCHMARKS.md, "spheres throughput"), although Embree then has no
-  // 16-wide packet kernel and passes the camera packets to its ray-stream code. Machines
+  // `spheres` with AVX2 (docs/benchmarks_archive.md, "spheres throughput"), although Embree then
+  // has no 16-wide packet kernel and passes the camera packets to its ray-stream code. Machines
   // without AVX2 keep their best kernels (a maximum, not a choice).
   device_ = rtcNewDevice("max_isa=avx2");
   if (!device_)

@@ -16,7 +16,7 @@
 // copy replaces the padded copy Embree's 16-byte vertex loads need anyway). Measured on the
 // built-in `spheres` (49 meshes, each used once), the same rays trace about 18% faster
 // flattened than with each mesh behind an instance (bench/instancing_bench.cpp `flatten`;
-// BENCHMARKS.md, "instanced geometry").
+// docs/benchmarks_archive.md, "instanced geometry").
 //
 // Before anything is built the memory is estimated against what the system has: a scene
 // that fits only with Embree's compact layout (BvhLayout) is built with it, one that fits

@@ -16,8 +16,8 @@ layout(binding = BINDING_IRRADIANCE_CUBE) uniform samplerCube uIrradianceCube;
 // irradiance cube): what the diffuse lobe is lit by, and (occluders.glsl) the light a proxy
 // hides and its sides send, so that those are what that lobe would have from the
 // environment. With the proxies' terms written out the SH sums cost llvmpipe less than the
-// cube's fetches; in a loop over the proxies they cost more (BENCHMARKS.md, "The proxies'
-// terms written out").
+// cube's fetches; in a loop over the proxies they cost more (docs/benchmarks_archive.md,
+// "The proxies' terms written out").
 vec3 environment_irradiance(vec3 n) {
 #if IRRADIANCE_SH
   return max(eval_sh_irradiance(uSH, world_to_env(n, uIblRotation)), vec3(0.0));

@@ -86,8 +86,8 @@ vec3 punctual_lights(MaterialInputs m, Shading s, float transmission, float thic
     // is beyond a light either way; llvmpipe masks the lanes of a branch and runs its body
     // all the same, so there the loop over the listed lights cost a whole light's read and
     // BRDF per listed light, where it now costs one per light the SIMD group's fragments
-    // need: BENCHMARKS.md "Many punctual lights".) The order is unchanged: the global
-    // lights, then the cluster's (both ascending: the unclustered loop's order).
+    // need: docs/benchmarks_archive.md, "Many punctual lights".) The order is unchanged: the
+    // global lights, then the cluster's (both ascending: the unclustered loop's order).
     int found = -1;  // the entry of the next light that reaches the fragment; none yet
     float d = 0.0;
     vec3 to_light = vec3(0.0);
