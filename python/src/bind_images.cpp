@@ -2,6 +2,8 @@
 // library functions as `pbrkit compare`, the PNG outputs and `pbrkit denoise`.
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string>
 
@@ -13,6 +15,8 @@
 #include "pbrkit/image/compare.h"
 #include "pbrkit/image/display.h"
 #include "pbrkit/image/image_io.h"
+#include "pbrkit/image/output_paths.h"
+#include "pbrkit/util/error.h"
 
 namespace py = pybind11;
 
@@ -24,6 +28,19 @@ std::string extension_of(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   return ext;
+}
+
+// A display image (sRGB-encoded colour in [0, 1], alpha last for 2 and 4 channels) in
+// linear light: what read_image() returns for its PNG, before the quantisation.
+Image linear_from_display(const Image& display) {
+  Image linear = display;
+  const bool alpha = display.channels == 2 || display.channels == 4;
+  const int colour = display.channels - (alpha ? 1 : 0);
+  for (std::size_t i = 0; i < linear.data.size(); ++i) {
+    const float v = std::clamp(linear.data[i], 0.0f, 1.0f);
+    linear.data[i] = int(i % std::size_t(linear.channels)) < colour ? srgb_decode(v) : v;
+  }
+  return linear;
 }
 
 void check_readable(const std::string& path) {
@@ -75,30 +92,49 @@ void bind_images(py::module_& m) {
       "Every layer of an EXR (e.g. a render's AOVs) as {name: array}; the main layer is ''.");
   m.def(
       "write_image",
-      [](const std::string& path, const py::handle& array, bool half, int bits) {
-        const std::string ext = extension_of(path);
-        if (ext == ".exr") {
-          Image image = image_from_array(array, "image", {1, 4, false, false});
-          py::gil_scoped_release release;
-          write_exr(path, image, half ? ExrPixelType::kHalf : ExrPixelType::kFloat);
-        } else if (ext == ".png") {
-          if (bits != 8 && bits != 16) throw py::value_error("bits must be 8 or 16");
-          Image image = image_from_array(array, "image", {1, 4, true, false});
-          py::gil_scoped_release release;
-          write_png(path, image, bits);
-        } else if (ext == ".hdr") {
+      [](const std::string& path, const py::handle& array, bool half, int bits, float exposure,
+         const std::string& tonemapper) {
+        if (extension_of(path) == ".hdr") {
           Image image = image_from_array(array, "image", {3, 3, true, false});
           py::gil_scoped_release release;
           write_hdr(path, image);
+          return;
+        }
+        // The one rule of every image output (image/output_paths.h), checked before any work.
+        ImageOutputPaths outputs;
+        try {
+          outputs = image_output_paths(path, "path");
+        } catch (const Error& e) {
+          throw py::value_error(std::string(e.what()) + "; or .hdr, written alone");
+        }
+        if (bits != 8 && bits != 16) throw py::value_error("bits must be 8 or 16");
+        if (!std::isfinite(exposure)) throw py::value_error("exposure must be finite");
+        const ExrPixelType exr_type = half ? ExrPixelType::kHalf : ExrPixelType::kFloat;
+        if (extension_of(path) == ".exr") {
+          const DisplaySettings settings{exposure, parse_tone_mapper(tonemapper)};
+          Image linear = image_from_array(array, "image", {1, 4, false, false});
+          py::gil_scoped_release release;
+          create_output_directory(outputs);
+          write_exr(outputs.exr, linear, exr_type);
+          write_png(outputs.png, display_image(linear, settings), bits);
         } else {
-          throw py::value_error(path + ": unknown image format '" + ext +
-                                "' (write .exr, .png or .hdr)");
+          Image display = image_from_array(array, "image", {1, 4, true, false});
+          py::gil_scoped_release release;
+          create_output_directory(outputs);
+          write_png(outputs.png, display, bits);
+          write_exr(outputs.exr, linear_from_display(display), exr_type);
         }
       },
       py::arg("path"), py::arg("image"), py::arg("half") = false, py::arg("bits") = 8,
-      "Writes an image atomically. .exr: linear values (32-bit floats, or halves with "
-      "half=True); .png: display-referred values in [0, 1] (clamped; tonemap() makes them "
-      "from linear ones), 8 or 16 bits; .hdr: linear RGB.");
+      py::arg("exposure") = 0.0f, py::arg("tonemapper") = "pbr-neutral",
+      "Writes an image atomically, named as `pbrkit render -o` names its outputs: a .exr or "
+      ".png path writes that file and the other beside it, with the same stem (any other name "
+      "is a ValueError, but .hdr). .exr: `image` holds linear values, written as 32-bit floats "
+      "(halves with half=True), and the PNG beside it is their display transform (exposure "
+      "and tonemapper as tonemap() takes them). .png: `image` holds display-referred values "
+      "in [0, 1] (clamped; tonemap() makes them from linear ones), 8 or 16 bits, and the EXR "
+      "beside it the same image in linear light (the sRGB curve undone, as read_image() reads "
+      "the PNG, without the quantisation). .hdr: linear RGB, that file alone.");
   m.def(
       "compare",
       [](const py::handle& a, const py::handle& b, const py::object& mask) {

@@ -29,6 +29,40 @@ def test_png_stores_display_values_that_read_back_through_the_srgb_curve(tmp_pat
     assert np.allclose(back[0, :, 0], srgb_to_linear, atol=2e-6)
 
 
+def srgb_to_linear(q):
+    return np.where(q <= 0.04045, q / 12.92, ((q + 0.055) / 1.055) ** 2.4)
+
+
+def test_write_image_names_its_files_as_the_cli_does(tmp_path):
+    # An .exr name writes the linear EXR and, beside it, the PNG of its display transform;
+    # a .png name (any case) the display PNG and, beside it, the same image in linear light.
+    rng = np.random.default_rng(2)
+    linear = rng.random((5, 6, 3), dtype=np.float32) * 4
+    pbrkit.write_image(str(tmp_path / "out" / "r.exr"), linear, exposure=-1.0, tonemapper="aces")
+    assert np.array_equal(pbrkit.read_image(tmp_path / "out" / "r.exr"), linear)
+    display = pbrkit.tonemap(linear, -1.0, "aces")
+    png = pbrkit.read_image(tmp_path / "out" / "r.png")[..., :3]
+    assert np.allclose(png, srgb_to_linear(np.round(display * 255) / 255), atol=1e-6)
+
+    v = np.linspace(-0.5, 1.5, 12, dtype=np.float32)
+    img = np.repeat(v[None, :, None], 3, axis=2).copy()
+    pbrkit.write_image(str(tmp_path / "d.PNG"), img, bits=16)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d.PNG", "d.exr", "out"]
+    exr = pbrkit.read_image(tmp_path / "d.exr")
+    assert np.allclose(exr[0, :, 0], srgb_to_linear(np.clip(v, 0, 1)), atol=1e-6)
+    back = pbrkit.read_image(tmp_path / "d.PNG")[..., :3]
+    assert np.allclose(back[0, :, 0], exr[0, :, 0], atol=1e-4)  # the PNG, unquantised
+
+    pbrkit.write_image(str(tmp_path / "e.hdr"), linear)  # documented: that file alone
+    assert not (tmp_path / "e.png").exists() and not (tmp_path / "e.exr").exists()
+    for bad in ["x.jpg", "x", "x.exr.tmp"]:
+        with pytest.raises(ValueError, match=r"must end in \.png or \.exr"):
+            pbrkit.write_image(str(tmp_path / bad), linear)
+    with pytest.raises(ValueError, match="bits"):
+        pbrkit.write_image(str(tmp_path / "b.png"), img, bits=12)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["d.PNG", "d.exr", "e.hdr", "out"]
+
+
 def test_compare_metrics_closed_forms():
     a = np.full((4, 5, 3), 0.5, np.float32)
     m = pbrkit.compare(a, a)
