@@ -6,6 +6,7 @@
 
 #include <epoxy/gl.h>
 
+#include "pbrkit/core/anisotropic_energy.h"
 #include "pbrkit/core/energy.h"
 #include "pbrkit/core/sheen.h"
 #include "pbrkit/ibl/anisotropic_albedo.h"
@@ -133,6 +134,52 @@ unsigned create_anisotropic_albedo_texture() {
                       texels.data());
   glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
   glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  return texture;
+}
+
+unsigned create_anisotropic_energy_texture() {
+  using T = AnisotropicEnergyTable;
+  const std::vector<float>& v = T::get().values();
+  constexpr int kWidth = 2 * T::kMu, kDepth = T::kR * T::kS + 1;
+  static_assert(kWidth >= T::kR && T::kPhi >= T::kS, "the last slice holds the averages");
+  std::vector<float> texels(std::size_t(kWidth) * T::kPhi * kDepth * 4, 0.0f);
+  auto texel = [&](int x, int y, int z) {
+    return &texels[((std::size_t(z) * T::kPhi + std::size_t(y)) * kWidth + std::size_t(x)) * 4];
+  };
+  // A node's (E_ss, h, E_tot), its index clamped to the table.
+  auto node = [&](int i, int j, int k, int l) {
+    return &v[3 * T::index(std::min(i, T::kMu - 1), j, std::min(k, T::kR - 1), l)];
+  };
+  for (int l = 0; l < T::kS; ++l)
+    for (int k = 0; k < T::kR; ++k)
+      for (int j = 0; j < T::kPhi; ++j)
+        for (int i = 0; i < T::kMu; ++i) {
+          const float *n0 = node(i, j, k, l), *n1 = node(i + 1, j, k, l);
+          float* a = texel(2 * i, j, l * T::kR + k);
+          a[0] = n0[1], a[1] = n0[2], a[2] = n1[1], a[3] = n1[2];
+          float* b = texel(2 * i + 1, j, l * T::kR + k);
+          b[0] = n0[0], b[1] = n1[0];
+        }
+  // (E_ss_avg, E_tot_avg) of slice (k, l), at (l kR + k) after the nodes.
+  auto average = [&](int k, int l) {
+    return &v[3 * T::kNodes + 2 * (std::size_t(l) * T::kR + std::size_t(std::min(k, T::kR - 1)))];
+  };
+  for (int l = 0; l < T::kS; ++l)
+    for (int k = 0; k < T::kR; ++k) {
+      const float *a0 = average(k, l), *a1 = average(k + 1, l);
+      float* t = texel(k, l, kDepth - 1);
+      t[0] = a0[1], t[1] = a1[1], t[2] = a0[0], t[3] = a1[0];
+    }
+  GLuint texture = 0;
+  glCreateTextures(GL_TEXTURE_3D, 1, &texture);
+  glTextureStorage3D(texture, 1, GL_RGBA32F, kWidth, T::kPhi, kDepth);
+  glTextureSubImage3D(texture, 0, 0, 0, 0, kWidth, T::kPhi, kDepth, GL_RGBA, GL_FLOAT,
+                      texels.data());
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glTextureParameteri(texture, GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);

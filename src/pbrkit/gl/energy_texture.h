@@ -26,4 +26,14 @@ unsigned create_sheen_lut_texture();
 /// neighbours along s. The caller owns the texture name.
 unsigned create_anisotropic_albedo_texture();
 
+/// The anisotropic GGX lobe's multiple-scattering compensation (core/anisotropic_energy.h
+/// AnisotropicEnergyTable) for brdf.glsl (anisotropic_energy, anisotropic_energy_averages):
+/// a 2 kMu x kPhi x (kR kS + 1) GL_RGBA32F 3D texture (nearest filtering; the shader
+/// interpolates by hand as AnisotropicEnergyTable::lookup does). Slice l kR + k holds node
+/// (i, j, k, l) at x = 2 i as (h, E_tot) in .xy and node i + 1's in .zw (clamped at the last
+/// node), and at x = 2 i + 1 its E_ss and node i + 1's in .xy; the last slice holds at (k, l)
+/// E_tot_avg at (k, l) and (k + 1, l) in .xy and E_ss_avg likewise in .zw. The caller owns
+/// the texture name.
+unsigned create_anisotropic_energy_texture();
+
 }  // namespace pbrkit::gl

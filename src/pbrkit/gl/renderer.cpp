@@ -227,8 +227,10 @@ struct Renderer::State {
   GpuEnvironment environment;
   GLuint white_texture = 0;
   GLuint sheen_lut = 0;  // core/sheen.h's SheenTable
-  // ibl/anisotropic_albedo.h's table, made for the first frame with an anisotropic material.
+  // ibl/anisotropic_albedo.h's and core/anisotropic_energy.h's tables, made for the first
+  // frame with an anisotropic material.
   GLuint anisotropic_albedo = 0;
+  GLuint anisotropic_energy = 0;
   GLuint empty_vao = 0;  // the background's full-screen triangle has no attributes
   RenderTargets targets;
   GpuTimer timer;
@@ -330,9 +332,12 @@ Frame Renderer::State::begin_frame(const Camera& camera, int width, int height,
   glBindTextureUnit(kSheenLutUnit, sheen_lut);
   if (!anisotropic_albedo &&
       std::any_of(scene.materials.begin(), scene.materials.end(),
-                  [](const Material& m) { return m.anisotropy.has_value(); }))
+                  [](const Material& m) { return m.anisotropy.has_value(); })) {
     anisotropic_albedo = create_anisotropic_albedo_texture();
+    anisotropic_energy = create_anisotropic_energy_texture();
+  }
   glBindTextureUnit(kAnisotropicAlbedoUnit, anisotropic_albedo);
+  glBindTextureUnit(kAnisotropicEnergyUnit, anisotropic_energy);
   f.inverse_view_projection = glm::inverse(f.view_projection);
   return f;
 }
@@ -610,6 +615,7 @@ Renderer::~Renderer() {
   glDeleteTextures(1, &s.white_texture);
   glDeleteTextures(1, &s.sheen_lut);
   glDeleteTextures(1, &s.anisotropic_albedo);
+  glDeleteTextures(1, &s.anisotropic_energy);
   glDeleteVertexArrays(1, &s.empty_vao);
 }
 

@@ -45,6 +45,7 @@ std::vector<SurfaceBinding> surface_bindings() {
   b.push_back({"BACK_NORMAL", kBackNormalUnit});
   b.push_back({"FRAME_DEPTH", kFrameDepthUnit});
   b.push_back({"ANISOTROPIC_ALBEDO", kAnisotropicAlbedoUnit});
+  b.push_back({"ANISOTROPIC_ENERGY", kAnisotropicEnergyUnit});
   b.push_back(
       {"INSTANCE_TRANSFORMS", kInstanceBufferBinding, SurfaceBinding::Kind::kStorageBuffer});
   b.push_back({"PUNCTUAL_LIGHTS", kLightBufferBinding, SurfaceBinding::Kind::kStorageBuffer});

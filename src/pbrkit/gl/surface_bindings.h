@@ -40,8 +40,10 @@ inline constexpr GLuint kBackPositionUnit = kTransmissionFrameUnit + 1;
 inline constexpr GLuint kBackNormalUnit = kBackPositionUnit + 1;
 inline constexpr GLuint kFrameDepthUnit = kBackNormalUnit + 1;
 inline constexpr GLuint kAnisotropicAlbedoUnit = kFrameDepthUnit + 1;  ///< AnisotropicAlbedoTable
+/// AnisotropicEnergyTable (core/anisotropic_energy.h): the anisotropic lobe's compensation.
+inline constexpr GLuint kAnisotropicEnergyUnit = kAnisotropicAlbedoUnit + 1;
 /// The highest unit the surface program samples.
-inline constexpr GLuint kLastSurfaceUnit = kAnisotropicAlbedoUnit;
+inline constexpr GLuint kLastSurfaceUnit = kAnisotropicEnergyUnit;
 
 // The surface program's buffers, each kind numbered from 0 in this order (GL numbers
 // shader storage and uniform buffer binding points apart). The files that fill them read

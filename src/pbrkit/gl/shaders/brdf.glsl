@@ -131,6 +131,80 @@ float SmithLambdaGGXAniso(vec3 w, float ax, float ay) {
   return 0.5 * (-1.0 + sqrt(1.0 + (x * x + y * y) / (w.z * w.z)));
 }
 
+// ---- The anisotropic lobe's multiple-scattering compensation (core/anisotropic_energy.h),
+// compiled in where the program binds its table at BINDING_ANISOTROPIC_ENERGY (the surface
+// program's prelude; a shader unit test defines it): without it an anisotropic lobe keeps
+// the isotropic Kulla-Conty lobe at the geometric-mean alpha.
+#ifdef BINDING_ANISOTROPIC_ENERGY
+// AnisotropicEnergyTable as gl/energy_texture.h's create_anisotropic_energy_texture lays it
+// out, interpolated by hand exactly as AnisotropicEnergyTable::lookup and ::averages do.
+layout(binding = BINDING_ANISOTROPIC_ENERGY) uniform sampler3D uAnisotropicEnergy;
+const int kAnisoEnergyMu = 16, kAnisoEnergyPhi = 8, kAnisoEnergyR = 16, kAnisoEnergyS = 8;
+
+// The nodes and weight of coordinate c in [0, 1] over n nodes (anisotropic_energy.cpp's bracket).
+void aniso_energy_bracket(float c, int n, out int i0, out float f) {
+  float x = clamp(c * float(n - 1), 0.0, float(n - 1));
+  i0 = min(int(x), n - 2);
+  f = x - float(i0);
+}
+
+// AnisotropicEnergyTable::coordinates: (sqrt(n.v), p, sqrt(alpha_y), sqrt(strength)).
+vec4 aniso_energy_coordinates(vec3 wo, float ax, float ay) {
+  vec2 xy = abs(wo.xy);
+  if (ay > ax) {
+    float t = ax;
+    ax = ay;
+    ay = t;
+    xy = xy.yx;
+  }
+  float p = xy.x + xy.y > 0.0 ? xy.y / (xy.x + xy.y) : 0.0;
+  float s = ay < 1.0 ? clamp((ax - ay) / (1.0 - ay), 0.0, 1.0) : 0.0;
+  return vec4(sqrt(clamp(wo.z, 0.0, 1.0)), p, sqrt(ay), sqrt(s));
+}
+
+// AnisotropicEnergyTable::lookup at wo: (h, E_tot) for column 0, (E_ss, -) for column 1.
+vec2 anisotropic_energy(vec3 wo, float ax, float ay, int column) {
+  vec4 c = aniso_energy_coordinates(wo, ax, ay);
+  int i, j, k, l;
+  float fi, fj, fk, fl;
+  aniso_energy_bracket(c.x, kAnisoEnergyMu, i, fi);
+  aniso_energy_bracket(c.y, kAnisoEnergyPhi, j, fj);
+  aniso_energy_bracket(c.z, kAnisoEnergyR, k, fk);
+  aniso_energy_bracket(c.w, kAnisoEnergyS, l, fl);
+  vec2 sum = vec2(0.0);
+  for (int d = 0; d < 8; ++d) {
+    int b = d & 1, e = (d >> 1) & 1, g = (d >> 2) & 1;
+    float w = (b != 0 ? fj : 1.0 - fj) * (e != 0 ? fk : 1.0 - fk) * (g != 0 ? fl : 1.0 - fl);
+    vec4 t = texelFetch(uAnisotropicEnergy,
+                        ivec3(2 * i + column, j + b, (l + g) * kAnisoEnergyR + k + e), 0);
+    sum += w * (column == 0 ? (1.0 - fi) * t.xy + fi * t.zw
+                            : vec2((1.0 - fi) * t.x + fi * t.y, 0.0));
+  }
+  return sum;
+}
+
+// AnisotropicEnergyTable::averages: (E_ss_avg, E_tot_avg).
+vec2 anisotropic_energy_averages(float ax, float ay) {
+  vec4 c = aniso_energy_coordinates(vec3(0.0, 0.0, 1.0), ax, ay);
+  int k, l;
+  float fk, fl;
+  aniso_energy_bracket(c.z, kAnisoEnergyR, k, fk);
+  aniso_energy_bracket(c.w, kAnisoEnergyS, l, fl);
+  int slice = kAnisoEnergyR * kAnisoEnergyS;
+  vec4 t0 = texelFetch(uAnisotropicEnergy, ivec3(k, l, slice), 0);
+  vec4 t1 = texelFetch(uAnisotropicEnergy, ivec3(k, l + 1, slice), 0);
+  return (1.0 - fl) * ((1.0 - fk) * t0.zx + fk * t0.wy) + fl * ((1.0 - fk) * t1.zx + fk * t1.wy);
+}
+#endif
+
+// AnisotropicEnergyTable::broadened_alphas: min(beta alpha, 1), beta(alpha_x / alpha_y)
+// 1.5 up to 4.4, then 1.5 - 0.87 ln(rho / 4.4), at least 0.5.
+vec2 aniso_broadened_alphas(float ax, float ay) {
+  float rho = max(ax, ay) / max(min(ax, ay), 1e-6);
+  float beta = max(1.5 - 0.87 * log(max(rho / 4.4, 1.0)), 0.5);
+  return min(beta * vec2(ax, ay), vec2(1.0));
+}
+
 // pbrkit::dielectric_f0: min(((ior - 1) / (ior + 1))^2 specularColor, 1); 0.04 exactly for
 // ior 1.5.
 vec3 dielectric_f0(float ior, vec3 specular_color) {
@@ -188,6 +262,18 @@ struct Brdf {
   float diffuse_o;
   vec3 Es_o;
   vec2 ab_o;  // the table's (A, B) at mu_o
+  // The anisotropic compensation (reference, anisotropic, compensated; Brdf's aniso_table_):
+  // the broadened lobe's alphas, 1 / (pi (1 - E_tot_avg)); at wo (brdf_at) h(wo),
+  // 1 - E_tot(wo), Smith's Lambda at the broadened alphas, and E_ss(wo), the lobe's albedo
+  // (the environment light's multiple scattering is Fms (1 - E_ss(wo))).
+  bool aniso_ms;
+  float bx;
+  float by;
+  float aniso_rest_norm;
+  float h_o;
+  float rest_o;
+  float lambda_b_o;
+  float E_ss_o;
 };
 
 // Brdf::Brdf. `table` is the EnergyTable of `geometry` (the direct-lighting G); the model
@@ -225,6 +311,14 @@ Brdf make_brdf(BaseLayer layer, int geometry, bool multiscatter, int fresnel, sa
   b.diffuse_o = 1.0;
   b.Es_o = vec3(0.0);
   b.ab_o = vec2(0.0);
+  b.aniso_ms = false;
+  b.bx = 1.0;
+  b.by = 1.0;
+  b.aniso_rest_norm = 0.0;
+  b.h_o = 0.0;
+  b.rest_o = 0.0;
+  b.lambda_b_o = 0.0;
+  b.E_ss_o = 1.0;
   if (multiscatter) {
     vec2 ab_avg = energy_AB_avg(table, b.table_roughness);
     b.E_avg = ab_avg.x + ab_avg.y;
@@ -236,6 +330,18 @@ Brdf make_brdf(BaseLayer layer, int geometry, bool multiscatter, int fresnel, sa
       b.Fms = multiscatter_fresnel(b.F0, b.E_avg);
       b.Es_avg = b.F0 * ab_avg.x + ab_avg.y + b.Fms * (1.0 - b.E_avg);
     }
+#ifdef BINDING_ANISOTROPIC_ENERGY
+    if (aniso > 0.0 && b.reference) {
+      // The anisotropic lobe's own compensation; Fms and the diffuse weight stay the
+      // isotropic tables'.
+      b.aniso_ms = true;
+      vec2 bb = aniso_broadened_alphas(b.alpha_x, b.alpha_y);
+      b.bx = bb.x;
+      b.by = bb.y;
+      float E_tot_avg = anisotropic_energy_averages(b.alpha_x, b.alpha_y).y;
+      b.aniso_rest_norm = 1.0 / (kPi * max(1.0 - E_tot_avg, 1e-6));
+    }
+#endif
   }
   return b;
 }
@@ -281,6 +387,15 @@ Brdf brdf_at(Brdf b, sampler2D table, vec3 wo) {
   } else {
     b.Es_o = brdf_specular_albedo(b, table, wo.z);
   }
+#ifdef BINDING_ANISOTROPIC_ENERGY
+  if (b.aniso_ms && wo.z > 0.0) {
+    vec2 e = anisotropic_energy(wo, b.alpha_x, b.alpha_y, 0);
+    b.h_o = e.x;
+    b.rest_o = 1.0 - e.y;
+    b.lambda_b_o = SmithLambdaGGXAniso(wo, b.bx, b.by);
+    b.E_ss_o = anisotropic_energy(wo, b.alpha_x, b.alpha_y, 1).x;
+  }
+#endif
   return b;
 }
 
@@ -330,6 +445,18 @@ vec3 brdf_eval_diffuse_and_ms(Brdf b, sampler2D table, vec3 wo, vec3 wi, vec3 di
     vec3 Es_i = brdf_specular_albedo(b, table, wi.z);
     diffuse = lambert * (1.0 - b.Es_o) * (1.0 - Es_i) / max(1.0 - b.Es_avg, vec3(1e-6));
   }
+#ifdef BINDING_ANISOTROPIC_ENERGY
+  if (b.aniso_ms) {
+    // Anisotropic: h(wo) h(wi) f_b(wo, wi), the single-scattering lobe at the broadened
+    // alphas scaled symmetrically, plus Kulla & Conty 2017's lobe on what is left,
+    // (1 - E_tot(wo))(1 - E_tot(wi)) / (pi (1 - E_tot_avg)) (core/anisotropic_energy.h).
+    vec2 e = anisotropic_energy(wi, b.alpha_x, b.alpha_y, 0);
+    vec3 h = normalize(wo + wi);
+    float G2 = 1.0 / (1.0 + b.lambda_b_o + SmithLambdaGGXAniso(wi, b.bx, b.by));
+    float f_b = DistributionGGXAniso(h, b.bx, b.by) * G2 / (4.0 * wo.z * wi.z);
+    return diffuse + b.Fms * (b.h_o * e.x * f_b + b.rest_o * (1.0 - e.y) * b.aniso_rest_norm);
+  }
+#endif
   // Kulla & Conty 2017: f_ms = Fms (1 - E(mu_o))(1 - E(mu_i)) / (pi (1 - E_avg)).
   vec3 ms = b.Fms * ((1.0 - b.E_o) * (1.0 - E_i) / (kPi * max(1.0 - b.E_avg, 1e-6)));
   return diffuse + ms;

@@ -76,7 +76,11 @@ vec3 ibl_shading_ab(Brdf b, sampler2D ibl_table, float mu, vec2 ab, vec3 prefilt
   if (!b.multiscatter) return specular + lambert * (1.0 - max3(b.spec_weight * Fd)) * irradiance * kInvPi;
   // b.Fms, b.Fms_d, b.E_avg are the IBL table's (make_brdf was given it).
   vec3 Es_d = brdf_dielectric_albedo(b, ab) + b.Fms_d * (1.0 - E);
-  return specular + (b.Fms * (1.0 - E) + lambert * (1.0 - max3(Es_d))) * irradiance * kInvPi;
+  // The anisotropic compensation (brdf.glsl) reflects Fms (E_tot - E_ss) + Fms (1 - E_tot) =
+  // Fms (1 - E_ss(wo)) of a uniform light, E_ss the anisotropic lobe's albedo at wo (its
+  // table's, looked up by brdf_at); the diffuse keeps the isotropic tables' weight.
+  float E_ms = b.aniso_ms ? b.E_ss_o : E;
+  return specular + (b.Fms * (1.0 - E_ms) + lambert * (1.0 - max3(Es_d))) * irradiance * kInvPi;
 }
 
 vec3 ibl_shading(Brdf b, sampler2D ibl_table, float NdotV, vec3 prefiltered, vec3 irradiance) {

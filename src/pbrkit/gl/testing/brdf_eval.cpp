@@ -26,14 +26,17 @@ std::vector<glm::vec3> eval_brdf_glsl(const std::vector<BrdfCase>& cases,
   for (const BrdfCase& c : cases) append_brdf_case(c, input);
   const GeometryModel geometry = direct_geometry(options.model);
   const GLuint energy = create_energy_texture(geometry);
+  const GLuint aniso_energy = create_anisotropic_energy_texture();
   program.use();
   program.set("uCount", int(cases.size()));
   program.set("uGeometry", int(geometry));
   program.set("uMultiscatter", options.multiscatter ? 1 : 0);
   program.set("uFresnel", fresnel == FresnelMode::kSchlick ? 0 : 1);
   glBindTextureUnit(0, energy);
+  glBindTextureUnit(1, aniso_energy);
   const std::vector<glm::vec4> output = detail::dispatch_cases(input, cases.size());
-  glDeleteTextures(1, &energy);
+  const GLuint textures[2] = {energy, aniso_energy};
+  glDeleteTextures(2, textures);
   std::vector<glm::vec3> result;
   result.reserve(output.size());
   for (const glm::vec4& v : output) result.emplace_back(v);

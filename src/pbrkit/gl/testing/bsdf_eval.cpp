@@ -25,6 +25,7 @@ std::vector<glm::vec3> eval_bsdf_glsl(const std::vector<BsdfCase>& cases,
   const GLuint energy = create_energy_texture(geometry);
   const GLuint coat_energy = create_energy_texture(GeometryModel::kReference);
   const GLuint sheen_lut = create_sheen_lut_texture();
+  const GLuint aniso_energy = create_anisotropic_energy_texture();
   program.use();
   program.set("uCount", int(cases.size()));
   program.set("uGeometry", int(geometry));
@@ -32,9 +33,10 @@ std::vector<glm::vec3> eval_bsdf_glsl(const std::vector<BsdfCase>& cases,
   glBindTextureUnit(0, energy);
   glBindTextureUnit(1, coat_energy);
   glBindTextureUnit(2, sheen_lut);
+  glBindTextureUnit(3, aniso_energy);
   const std::vector<glm::vec4> output = detail::dispatch_cases(input, cases.size());
-  const GLuint textures[3] = {energy, coat_energy, sheen_lut};
-  glDeleteTextures(3, textures);
+  const GLuint textures[4] = {energy, coat_energy, sheen_lut, aniso_energy};
+  glDeleteTextures(4, textures);
   std::vector<glm::vec3> result;
   result.reserve(output.size());
   for (const glm::vec4& v : output) result.emplace_back(v);

@@ -3,6 +3,7 @@
 // compiled in) for a batch of inputs (one invocation each) so tests/gl/brdf_glsl_test.cpp
 // can compare it with the C++ Brdf::eval.
 #define BRDF_IRIDESCENCE 1
+#define BINDING_ANISOTROPIC_ENERGY 1  // brdf.glsl's anisotropic compensation table
 #include "brdf.glsl"
 
 layout(local_size_x = 64) in;

@@ -3,6 +3,7 @@
 // for a batch of inputs so tests/gl/bsdf_glsl_test.cpp can compare it with the C++
 // Bsdf::eval.
 #define BRDF_IRIDESCENCE 1
+#define BINDING_ANISOTROPIC_ENERGY 3  // brdf.glsl's anisotropic compensation table
 #include "bsdf.glsl"
 
 layout(local_size_x = 64) in;
