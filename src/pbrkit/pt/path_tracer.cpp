@@ -30,6 +30,7 @@
 #include "pbrkit/pt/guiding.h"
 #include "pbrkit/pt/integrator.h"
 #include "pbrkit/pt/lights.h"
+#include "pbrkit/pt/pass_weighting.h"
 #include "pbrkit/pt/pixel_filter.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -163,6 +164,7 @@ class SampleLoop {
         total_(total),
         camera_rays_(camera, float(settings.width) / float(settings.height)),
         guide_(setup.guide.get()),
+        passes_(setup.guide ? std::make_unique<PassWeighting>(film) : nullptr),
         integrator_(scene, *setup.geometry, *setup.lights, settings,
                     camera_rays_.pixel_cone(settings.height), setup.guide.get()),
         sampler_(settings.seed),
@@ -197,6 +199,9 @@ class SampleLoop {
   const std::uint32_t begin_, total_;
   const CameraRays camera_rays_;
   PathGuide* const guide_;
+  // With guiding, the passes' samples are weighted by their sample counts before they reach
+  // the film's sums (pass_weighting.h).
+  const std::unique_ptr<PassWeighting> passes_;
   const Integrator integrator_;
   const OwenSobolSampler sampler_;
   const int tiles_x_, tiles_y_;
@@ -316,12 +321,15 @@ std::uint64_t SampleLoop::render_packet(int bx, int by, PathCounts& counts) {
                                            std::uint32_t(i), index, counts.rays, times[k]);
       counts.non_finite += ps.non_finite ? 1 : 0;
       counts.medium_overflows += ps.medium_overflow ? 1 : 0;
-      film_.sum[i] += ps.L;
+      if (passes_)
+        passes_->add(i, ps.L, in_half_buffer(index));
+      else
+        film_.sum[i] += ps.L;
       film_.albedo[i] += ps.albedo;
       film_.normal[i] += ps.normal;
       film_.depth[i] += ps.depth;
       if (in_half_buffer(index)) {
-        film_.sum_even[i] += ps.L;
+        if (!passes_) film_.sum_even[i] += ps.L;
         film_.albedo_even[i] += ps.albedo;
         film_.normal_even[i] += ps.normal;
         film_.depth_even[i] += ps.depth;
@@ -397,6 +405,9 @@ bool SampleLoop::run() {
       target_ = next_target(target_, total_, settings_.min_spp);
     }
     render_pass();
+    // With guiding, the pass's samples (a stopped pass's too) reach the film weighted by
+    // its planned sample count.
+    if (passes_) passes_->end_pass(film_, float(guided_step_ / 2));
     if (should_stop()) break;
     // The guide learns from the pass (between passes: the paths record into it with integer
     // atomics, read here in a fixed order).
