@@ -57,9 +57,9 @@ void register_denoise_command(CLI::App& app) {
   add_denoiser_options(*cmd, &o->denoiser);
   cmd->callback([o] {
     const ImageOutputPaths outputs = image_output_paths(o->output, "-o");
-    const DenoiserChoice choice = o->denoiser.choice();
+    const LoadedDenoiser denoiser = o->denoiser.load();
     const DenoiseInput input = read_input(o->input);
-    const std::optional<Image> denoised = run_denoiser(input, choice);
+    const std::optional<Image> denoised = run_denoiser(input, denoiser);
     create_output_directory(outputs);
     const auto type = o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;
     const Image raw = mean_of_halves(input.color);
@@ -72,7 +72,7 @@ void register_denoise_command(CLI::App& app) {
                                    {"normal", {"X", "Y", "Z"}, &normal, type},
                                    {"depth", {"Z"}, &depth, ExrPixelType::kFloat}});
     write_display_png(outputs.png, *denoised, {o->exposure, parse_tone_mapper(o->tonemap)});
-    note("denoised {} ({} denoiser) into {} and {}", o->input, denoiser_name(choice.kind),
+    note("denoised {} ({} denoiser) into {} and {}", o->input, denoiser_name(denoiser.choice.kind),
          outputs.png, outputs.exr);
   });
 }

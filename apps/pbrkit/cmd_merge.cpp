@@ -66,7 +66,7 @@ void register_merge_command(CLI::App& app) {
                   "also write the merged accumulation EXR here (to merge again later)");
   cmd->callback([o] {
     const ImageOutputPaths outputs = image_output_paths(o->output, "-o");
-    const DenoiserChoice choice = o->denoise ? o->denoiser.choice() : DenoiserChoice{};
+    const LoadedDenoiser denoiser = o->denoise ? o->denoiser.load() : LoadedDenoiser{};
     Film film = read_accumulation(o->parts.front());
     for (std::size_t i = 1; i < o->parts.size(); ++i) {
       const Film part = read_accumulation(o->parts[i]);
@@ -87,7 +87,7 @@ void register_merge_command(CLI::App& app) {
     if (!o->accumulation.empty()) write_film(o->accumulation, film);
     const auto type = o->full_float ? ExrPixelType::kFloat : ExrPixelType::kHalf;
     if (o->denoise) {
-      const Image denoised = *run_denoiser(denoise_input(film), choice);
+      const Image denoised = *run_denoiser(denoise_input(film), denoiser);
       write_render_exr(exr, film, with_denoise_aovs(o->aovs), type, &denoised);
       write_display_png(outputs.png, denoised, {o->exposure, parse_tone_mapper(o->tonemap)});
     } else {

@@ -260,8 +260,8 @@ RenderRunner add_path_render_options(CLI::App& render) {
             "samples go (use --adaptive noise for the per-pixel rule)");
       s.noise_threshold = 0.0f;
     }
-    // The weights are checked before the render, not after it.
-    const DenoiserChoice denoiser = po.denoise || driven ? po.denoiser.choice() : DenoiserChoice{};
+    // The weights are loaded before the render, not after it, and once.
+    const LoadedDenoiser denoiser = po.denoise || driven ? po.denoiser.load() : LoadedDenoiser{};
     if (partial && po.denoise)
       fail(
           "--denoise with --sample-range: a part cannot be denoised alone; denoise when "
@@ -324,7 +324,8 @@ RenderRunner add_path_render_options(CLI::App& render) {
       // Denoiser-driven passes choose their pixels from the classic denoiser's own error
       // estimate (docs/DENOISER.md); the learned denoiser then denoises the final film.
       std::optional<Image> denoised;
-      if (driven && denoiser.kind == DenoiserKind::kClassic) denoised = std::move(driven_denoised);
+      if (driven && denoiser.choice.kind == DenoiserKind::kClassic)
+        denoised = std::move(driven_denoised);
       if ((po.denoise || driven) && !denoised && !g_stop.load())
         denoised = run_denoiser(denoise_input(result.film), denoiser, &g_stop);
       if ((po.denoise || driven) && !denoised)

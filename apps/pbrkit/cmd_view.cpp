@@ -142,9 +142,11 @@ void register_view_command(CLI::App& app) {
     if (names->channel) parse_channel(*names->channel, *o);
     // A bad name is refused by its flag's name before a window opens.
     if (!o->screenshot.empty()) image_output_paths(o->screenshot, "--screenshot");
-    // With --denoise the weights are checked before the window opens; without it, a bad
-    // file is reported in the panel when the toggle is turned on.
-    o->denoiser = o->denoise ? names->denoiser.choice() : names->denoiser.unchecked_choice();
+    // With --denoise the weights are loaded before the window opens (a bad file is an
+    // error here); without it, they are loaded when the toggle is turned on, and a bad file
+    // is reported in the panel.
+    o->denoiser =
+        o->denoise ? names->denoiser.load() : LoadedDenoiser{names->denoiser.choice(), {}};
     run_viewer(*o);
   });
 }

@@ -7,17 +7,15 @@
 
 namespace pbrkit::cli {
 
-DenoiserChoice DenoiserFlags::unchecked_choice() const {
+DenoiserChoice DenoiserFlags::choice() const {
   DenoiserChoice c;
   c.kind = denoiser == "classic" ? DenoiserKind::kClassic : DenoiserKind::kLearned;
   c.weights = weights;
   return c;
 }
 
-DenoiserChoice DenoiserFlags::choice() const {
-  const DenoiserChoice c = unchecked_choice();
-  check_denoiser(c);
-  return c;
+LoadedDenoiser DenoiserFlags::load() const {
+  return load_denoiser(choice());
 }
 
 void add_denoiser_options(CLI::App& cmd, DenoiserFlags* flags, const std::string& group) {
@@ -34,11 +32,11 @@ void add_denoiser_options(CLI::App& cmd, DenoiserFlags* flags, const std::string
       ->group(group);
 }
 
-std::optional<Image> run_denoiser(const DenoiseInput& input, const DenoiserChoice& choice,
+std::optional<Image> run_denoiser(const DenoiseInput& input, const LoadedDenoiser& denoiser,
                                   const std::atomic<bool>* stop) {
-  ProgressBar bar(fmt::format("denoise ({})", denoiser_name(choice.kind)));
+  ProgressBar bar(fmt::format("denoise ({})", denoiser_name(denoiser.choice.kind)));
   auto update = bar.callback();
-  DenoiseRun run = denoise_render(input, choice, [&](double fraction, const std::string& detail) {
+  DenoiseRun run = denoise_render(input, denoiser, [&](double fraction, const std::string& detail) {
     update(fraction, detail);
     return !(stop && stop->load());
   });

@@ -17,17 +17,18 @@ namespace pbrkit::cli {
 struct DenoiserFlags {
   std::string denoiser = denoiser_name(kDefaultDenoiser);
   std::string weights;
-  /// The typed choice; checks the learned denoiser's weights file first (a clear error
-  /// naming it before a long render, not after).
+  /// The typed choice, its weights file unread.
   DenoiserChoice choice() const;
-  DenoiserChoice unchecked_choice() const;
+  /// The choice loaded (load_denoiser): the learned denoiser's weights file read and
+  /// checked once, a clear error naming it before a long render, not after.
+  LoadedDenoiser load() const;
 };
 
 /// Adds --denoiser and --denoiser-weights to a command, in `group`.
 void add_denoiser_options(CLI::App& cmd, DenoiserFlags* flags, const std::string& group = "");
 
 /// Denoises `input`; returns nothing when `stop` was set meanwhile.
-std::optional<Image> run_denoiser(const DenoiseInput& input, const DenoiserChoice& choice,
+std::optional<Image> run_denoiser(const DenoiseInput& input, const LoadedDenoiser& denoiser,
                                   const std::atomic<bool>* stop = nullptr);
 
 /// `aovs` plus the layers a denoised EXR always keeps beside the raw image (albedo,

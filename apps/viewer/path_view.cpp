@@ -64,8 +64,12 @@ void PathDenoiser::request(const ProgressiveSnapshot& snapshot, const DenoiserCh
   if (!snapshot.complete || !snapshot.film || running_.valid()) return;
   if (snapshot.serial == done_serial_) return;
   running_serial_ = snapshot.serial;
-  running_ = std::async(std::launch::async, [film = snapshot.film, choice] {
-    return denoise_render(denoise_input(*film), choice).image;
+  std::optional<LoadedDenoiser> loaded;
+  if (loaded_ && loaded_->choice == choice) loaded = loaded_;
+  running_ = std::async(std::launch::async, [film = snapshot.film, choice, loaded] {
+    Denoised out{Image(), loaded ? *loaded : load_denoiser(choice)};
+    out.image = denoise_render(denoise_input(*film), out.denoiser).image;
+    return out;
   });
 }
 
@@ -74,7 +78,9 @@ bool PathDenoiser::poll() {
     return false;
   done_serial_ = running_serial_;
   try {
-    done_ = running_.get();
+    Denoised denoised = running_.get();
+    done_ = std::move(denoised.image);
+    loaded_ = std::move(denoised.denoiser);
     error_.reset();
   } catch (const std::exception& e) {
     done_ = Image();

@@ -31,6 +31,8 @@ Image path_channel_display(const Image& linear, PathChannel channel,
 /// its film (pt/progressive_render.h), whose half buffers the denoiser reads; the work
 /// runs on a thread of its own so the window keeps drawing, and is done once per snapshot:
 /// a new one is computed only when the accumulation has advanced to another final image.
+/// The learned denoiser's weights are loaded once, by the first denoise (or given by
+/// use()), and kept for every later image of the same choice.
 class PathDenoiser {
  public:
   PathDenoiser() = default;
@@ -41,6 +43,8 @@ class PathDenoiser {
   /// Starts denoising `snapshot` unless it is not complete, has no film, or is the one
   /// denoised or being denoised (one at a time: a newer one waits for the next call).
   void request(const ProgressiveSnapshot& snapshot, const DenoiserChoice& choice);
+  /// Denoises with `loaded` (load_denoiser's) while its choice is the one requested.
+  void use(LoadedDenoiser loaded) { loaded_ = std::move(loaded); }
   /// Takes a finished result; true when a new denoised image (or an error) arrived.
   bool poll();
   /// The denoised colour of the snapshot numbered `serial`, once done; null otherwise.
@@ -50,7 +54,12 @@ class PathDenoiser {
   const std::optional<std::string>& error() const { return error_; }
 
  private:
-  std::future<Image> running_;
+  struct Denoised {
+    Image image;
+    LoadedDenoiser denoiser;  ///< what denoised it, kept for the next image
+  };
+  std::future<Denoised> running_;
+  std::optional<LoadedDenoiser> loaded_;
   std::uint64_t running_serial_ = 0, done_serial_ = 0;
   Image done_;
   std::optional<std::string> error_;

@@ -72,8 +72,9 @@ struct ViewerOptions {
   /// The path view's colour denoised once the path tracer has reached `spp` (the panel's
   /// toggle); the accumulated image until then.
   bool denoise = false;
-  /// Which denoiser (denoise/denoiser_choice.h): the learned one by default.
-  DenoiserChoice denoiser;
+  /// Which denoiser (denoise/denoiser_choice.h): the learned one by default; its network
+  /// when the caller loaded it (load_denoiser), otherwise loaded by the first denoise.
+  LoadedDenoiser denoiser;
   /// Automation: once the mode's image is final (the path tracer at `spp`; the raster view
   /// after `frames` frames, at least 2), save `screenshot` and quit.
   bool exit_when_done = false;

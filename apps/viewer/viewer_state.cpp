@@ -79,7 +79,8 @@ void init_state(ViewerState& s, const ViewerOptions& options) {
   s.channel = options.channel;
   s.path_channel = options.path_channel;
   s.denoise = options.denoise;
-  s.denoiser_choice = options.denoiser;
+  s.denoiser_choice = options.denoiser.choice;
+  if (options.denoiser.learned) s.denoiser.use(options.denoiser);
   s.split = std::clamp(options.split, 0.0f, 1.0f);
 }
 

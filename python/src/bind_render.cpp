@@ -174,7 +174,9 @@ py::object render_path_tracer(const Scene& scene, const std::optional<Environmen
       throw py::value_error("aovs: unknown '" + name +
                             "' (known: albedo, normal, depth, samples, noise)");
   const bool denoising = a.denoise.value_or(false);
+  // The weights are loaded before the render (a bad file fails first), once.
   const DenoiserChoice choice = denoiser_choice(a.denoiser);
+  const LoadedDenoiser denoiser = denoising ? load_denoiser(choice) : LoadedDenoiser{choice, {}};
 
   std::optional<PathTracerResult> result;
   std::optional<Image> denoised;
@@ -184,7 +186,8 @@ py::object render_path_tracer(const Scene& scene, const std::optional<Environmen
         result = render_path(scene, env ? &*env : nullptr, view.camera, s, control.callback());
         if (denoising && !control.stop.load()) {
           // Stopped while denoising: the raw image, as a stopped render returns its samples.
-          DenoiseRun run = denoise_render(denoise_input(result->film), choice, control.callback());
+          DenoiseRun run =
+              denoise_render(denoise_input(result->film), denoiser, control.callback());
           if (!run.interrupted) denoised = std::move(run.image);
         }
       },

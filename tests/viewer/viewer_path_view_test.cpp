@@ -79,5 +79,24 @@ TEST(PathDenoiser, DenoisesEachFinalImageOnce) {
   EXPECT_NE(d.result(3)->data, denoise_render(denoise_input(*snap.film), learned).image.data);
 }
 
+TEST(PathDenoiser, KeepsTheLoadedWeightsForEveryImage) {
+  // The weights are read once: the network given by use() (as `pbrkit view --denoise`
+  // loads it before the window opens) denoises every image of its choice, and is kept.
+  DenoiserChoice learned;
+  learned.kind = DenoiserKind::kLearned;
+  const LoadedDenoiser loaded = load_denoiser(learned);
+  PathDenoiser d;
+  d.use(loaded);
+  for (std::uint64_t serial : {2u, 3u}) {
+    ProgressiveSnapshot snap = finished(2);
+    snap.serial = serial;
+    d.request(snap, learned);
+    wait(d);
+    ASSERT_NE(d.result(serial), nullptr);
+    EXPECT_EQ(d.result(serial)->data, denoise_render(denoise_input(*snap.film), loaded).image.data);
+  }
+  EXPECT_EQ(loaded.learned.use_count(), 2);  // this test's and the view's: not read again
+}
+
 }  // namespace
 }  // namespace pbrkit

@@ -5,6 +5,7 @@
 // for every caller (`pbrkit render/merge/denoise`, the viewer's path view, Python), so
 // that the choice means the same everywhere.
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "pbrkit/denoise/denoiser.h"
@@ -33,6 +34,17 @@ struct DenoiserChoice {
   /// Threads of the learned denoiser's network (0: every core); the classic one runs on
   /// oneTBB's arena like the rest of the library.
   int threads = 0;
+
+  bool operator==(const DenoiserChoice&) const = default;
+};
+
+class LearnedDenoiser;
+
+/// A chosen denoiser ready to run (load_denoiser): the learned one's weights read and
+/// checked once, for every denoise_render the caller makes with it; copies share them.
+struct LoadedDenoiser {
+  DenoiserChoice choice;
+  std::shared_ptr<const LearnedDenoiser> learned;  ///< the network, for DenoiserKind::kLearned
 };
 
 struct DenoiseRun {
@@ -41,16 +53,21 @@ struct DenoiseRun {
   double seconds = 0.0;
 };
 
-/// Throws pbrkit::Error (naming the file and the problem) when `choice` is the learned
-/// denoiser and its weights file cannot be read; a caller checks before a long render.
-void check_denoiser(const DenoiserChoice& choice);
+/// Loads the chosen denoiser: reads and checks the learned denoiser's weights file
+/// (nothing for the classic one). Throws pbrkit::Error naming the file and the problem when
+/// it cannot be read, so a caller loads before a long render, not after it, and keeps what
+/// it loaded for the run.
+LoadedDenoiser load_denoiser(const DenoiserChoice& choice);
 
 /// Denoises a render's half buffers with the chosen denoiser. The learned denoiser reads
 /// the halves' mean colour, albedo and normal (the same as the film's own images but for
 /// the odd half's one sample fewer), and passes through, as the classic one does, the
 /// pixels whose every sample saw the environment directly (depth 0 in both halves); the
-/// classic one reads the halves themselves. Throws
-/// pbrkit::Error (naming the file) when the learned denoiser's weights cannot be read.
+/// classic one reads the halves themselves.
+DenoiseRun denoise_render(const DenoiseInput& input, const LoadedDenoiser& denoiser,
+                          const ProgressCallback& progress = {});
+/// denoise_render(input, load_denoiser(choice), progress), for a caller that denoises once:
+/// throws pbrkit::Error (naming the file) when the learned denoiser's weights cannot be read.
 DenoiseRun denoise_render(const DenoiseInput& input, const DenoiserChoice& choice,
                           const ProgressCallback& progress = {});
 

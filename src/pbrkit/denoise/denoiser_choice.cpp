@@ -3,6 +3,7 @@
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/denoise/learned/input_transform.h"
 #include "pbrkit/denoise/learned_denoiser.h"
+#include "pbrkit/util/error.h"
 
 namespace pbrkit {
 
@@ -10,27 +11,34 @@ const char* denoiser_name(DenoiserKind kind) {
   return kind == DenoiserKind::kLearned ? "learned" : "classic";
 }
 
-void check_denoiser(const DenoiserChoice& choice) {
-  if (choice.kind != DenoiserKind::kLearned) return;
-  LearnedDenoiserOptions options;
-  options.weights = choice.weights;
-  const LearnedDenoiser check(options);
+LoadedDenoiser load_denoiser(const DenoiserChoice& choice) {
+  LoadedDenoiser loaded{choice, nullptr};
+  if (choice.kind == DenoiserKind::kLearned) {
+    LearnedDenoiserOptions options;
+    options.weights = choice.weights;
+    options.threads = choice.threads;
+    loaded.learned = std::make_shared<const LearnedDenoiser>(options);
+  }
+  return loaded;
 }
 
 DenoiseRun denoise_render(const DenoiseInput& input, const DenoiserChoice& choice,
                           const ProgressCallback& progress) {
+  return denoise_render(input, load_denoiser(choice), progress);
+}
+
+DenoiseRun denoise_render(const DenoiseInput& input, const LoadedDenoiser& loaded,
+                          const ProgressCallback& progress) {
   DenoiseRun run;
-  if (choice.kind == DenoiserKind::kClassic) {
+  if (loaded.choice.kind == DenoiserKind::kClassic) {
     DenoiseStats stats;
     run.image = denoise(input, {}, progress, &stats);
     run.interrupted = stats.interrupted;
     run.seconds = stats.seconds;
     return run;
   }
-  LearnedDenoiserOptions options;
-  options.weights = choice.weights;
-  options.threads = choice.threads;
-  const LearnedDenoiser denoiser(options);
+  if (!loaded.learned) fail("the learned denoiser was not loaded (load_denoiser)");
+  const LearnedDenoiser& denoiser = *loaded.learned;
   validate_denoise_input(input);
   LearnedDenoiseStats stats;
   const Image color = mean_of_halves(input.color);
