@@ -2,6 +2,7 @@
 // material schema), a texture transform, a light's intensity, a camera's field of view and
 // a node's translation, each animated by pointer and checked at a time worked out by hand;
 // the rest pose restores them; bad pointers are refused or ignored as the README asks.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -115,6 +116,69 @@ TEST(AnimationPointer, EveryKindOfTargetMovesAndRestsAgain) {
   pose_scene(s, {0, 5.0f});
   EXPECT_FLOAT_EQ(s.materials[0].clearcoat->factor, 1.0f);
   EXPECT_FLOAT_EQ(s.lights[0].intensity, 20.0f);
+}
+
+TEST(AnimationPointer, VisibilityHidesANodeAndItsChildrenAndComesBack) {
+  // Node 0 (a triangle at x in [0, 1]) with child node 1 (a triangle 5 units up, and a
+  // light); node 2 (a triangle at x in [10, 11]) hidden by the file. Animation "blink",
+  // STEP: node 0 visible until 1 s, then hidden; node 2 hidden until 1 s, then visible.
+  test::GltfBuilder b;
+  const int mesh = b.mesh({b.primitive({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2})});
+  b.gltf["extensionsUsed"] = {"KHR_animation_pointer", "KHR_node_visibility",
+                              "KHR_lights_punctual"};
+  b.gltf["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 7}}};
+  b.node({{"mesh", mesh}, {"children", {1}}});
+  b.gltf["nodes"].push_back({{"mesh", mesh},
+                             {"translation", {0, 5, 0}},
+                             {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  b.node({{"mesh", mesh},
+          {"translation", {10, 0, 0}},
+          {"extensions", {{"KHR_node_visibility", {{"visible", false}}}}}});
+  b.gltf["scenes"][0]["nodes"] = {0, 2};
+  const std::vector<float> times = {0.0f, 1.0f}, on_off = {1.0f, 0.0f}, off_on = {0.0f, 1.0f};
+  const int t = b.accessor(times.data(), 8, 5126, "SCALAR", 2);
+  const int a = b.accessor(on_off.data(), 8, 5126, "SCALAR", 2);
+  const int c = b.accessor(off_on.data(), 8, 5126, "SCALAR", 2);
+  auto visible = [](int node) {
+    return json{
+        {"path", "pointer"},
+        {"extensions",
+         {{"KHR_animation_pointer",
+           {{"pointer", fmt::format("/nodes/{}/extensions/KHR_node_visibility/visible", node)}}}}}};
+  };
+  b.gltf["animations"] = {
+      {{"name", "blink"},
+       {"samplers",
+        {{{"input", t}, {"output", a}, {"interpolation", "STEP"}},
+         {{"input", t}, {"output", c}, {"interpolation", "STEP"}}}},
+       {"channels",
+        {{{"sampler", 0}, {"target", visible(0)}}, {{"sampler", 1}, {"target", visible(2)}}}}}};
+  CaptureLog quiet;
+  Scene s = load_scene(b.write("blink.glb").string());
+  ASSERT_EQ(s.instances.size(), 3u);  // every node's mesh kept: the animation shows node 2
+  ASSERT_EQ(s.lights.size(), 1u);
+  auto shown = [&](int node) {
+    for (const Instance& i : s.instances)
+      if (i.node == node) return i.transform != glm::mat4(0.0f);
+    return false;
+  };
+  // At rest: the file's visibility.
+  EXPECT_TRUE(shown(0));
+  EXPECT_TRUE(shown(1));
+  EXPECT_FALSE(shown(2));
+  EXPECT_FLOAT_EQ(s.world_bounds().max.x, 1.0f);
+  pose_scene(s, {0, 0.5f});
+  EXPECT_TRUE(shown(0) && shown(1) && !shown(2));
+  EXPECT_FLOAT_EQ(s.lights[0].intensity, 7.0f);
+  pose_scene(s, {0, 1.5f});  // node 0 hidden, and with it its child and the child's light
+  EXPECT_FALSE(shown(0));
+  EXPECT_FALSE(shown(1));
+  EXPECT_TRUE(shown(2));
+  EXPECT_FLOAT_EQ(s.lights[0].intensity, 0.0f);
+  EXPECT_FLOAT_EQ(s.world_bounds().min.x, 10.0f);  // the hidden nodes bound nothing
+  pose_scene(s, {0, 0.2f});
+  EXPECT_FLOAT_EQ(s.lights[0].intensity, 7.0f);
+  EXPECT_TRUE(shown(1));
 }
 
 TEST(AnimationPointer, BadPointersAreRefusedNamingTheJsonPath) {

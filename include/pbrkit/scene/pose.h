@@ -34,6 +34,7 @@ struct NodeRest {
   glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};
   glm::vec3 scale{1.0f};
   std::vector<float> weights;  ///< the morph weights at rest (the node's, else its mesh's)
+  bool visible = true;         ///< KHR_node_visibility's own `visible` (the ancestors' apply too)
 };
 
 /// glTF 2.0 section 3.7.3: joints (node indices) and their inverse bind matrices.
@@ -80,7 +81,9 @@ struct DeformingMesh {
 /// of the material schema's extensions'), a texture's KHR_texture_transform, a punctual
 /// light's or a camera's parameter.
 struct PointerTarget {
-  enum class Kind { kMaterial, kTextureTransform, kLight, kCamera };
+  /// kVisibility: a node's KHR_node_visibility `visible` (index: the node; a value >= 0.5
+  /// is true).
+  enum class Kind { kMaterial, kTextureTransform, kLight, kCamera, kVisibility };
   std::string pointer;  ///< the JSON pointer, for messages
   Kind kind = Kind::kMaterial;
   int index = -1;  ///< the material, or the file's light or camera
@@ -119,6 +122,12 @@ struct SceneMotion {
   std::vector<int> camera_sources;        ///< per Scene::cameras entry, the file's camera
   std::vector<int> light_sources;         ///< per Scene::lights entry, the file's light
   std::vector<PointerTarget> pointers;    ///< KHR_animation_pointer targets
+  /// An animation drives a node's visibility: the loader then kept every node's meshes and
+  /// lights, and a pose hides those of invisible nodes (an instance by a zero transform, which
+  /// no renderer draws or hits; a light by a zero intensity, restored from
+  /// `light_rest_intensity` when visible).
+  bool visibility_animated = false;
+  std::vector<float> light_rest_intensity;  ///< per Scene::lights entry
 };
 
 /// Which animation at which time; `animation` -1 is the rest pose.

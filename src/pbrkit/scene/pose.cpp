@@ -151,6 +151,8 @@ void write_pointer(Scene& scene, const SceneMotion& motion, const PointerTarget&
           l.outer_cone_angle = std::clamp(v[0], l.inner_cone_angle * 1.001f + 1e-6f, 1.5707964f);
       }
       return;
+    case PointerTarget::Kind::kVisibility:
+      return;  // hide_invisible()
     case PointerTarget::Kind::kCamera:
       for (std::size_t i = 0; i < motion.camera_sources.size() && i < scene.cameras.size(); ++i) {
         if (motion.camera_sources[i] != p.index) continue;
@@ -179,6 +181,40 @@ void pose_pointers(Scene& scene, const SceneMotion& motion, const PoseTime& pose
     sample_animation(a.samplers[std::size_t(ch.sampler)], pose.time, false, v);
     write_pointer(scene, motion, motion.pointers[std::size_t(ch.pointer)], v);
   }
+}
+
+// KHR_node_visibility when an animation drives it: a node is visible when its own flag
+// (the file's, or the animation's: a value >= 0.5 is true) and every ancestor's are. An
+// invisible node's instances get a zero transform (no area: the path tracer leaves them out
+// of its BVH, the rasteriser draws nothing) and its lights a zero intensity.
+void hide_invisible(Scene& scene, const SceneMotion& motion, const PoseTime& pose) {
+  std::vector<char> own(motion.nodes.size());
+  for (std::size_t i = 0; i < own.size(); ++i) own[i] = motion.nodes[i].visible;
+  if (pose.animation >= 0) {
+    const Animation& a = motion.animations[std::size_t(pose.animation)];
+    for (const AnimationChannel& ch : a.channels) {
+      if (ch.property != AnimatedProperty::kPointer) continue;
+      const PointerTarget& p = motion.pointers[std::size_t(ch.pointer)];
+      if (p.kind != PointerTarget::Kind::kVisibility) continue;
+      float v = 1.0f;
+      sample_animation(a.samplers[std::size_t(ch.sampler)], pose.time, false, &v);
+      own[std::size_t(p.index)] = v >= 0.5f;
+    }
+  }
+  std::vector<char> visible(own.size(), 1);
+  for (const int node : motion.order) {
+    const int parent = motion.nodes[std::size_t(node)].parent;
+    visible[std::size_t(node)] =
+        own[std::size_t(node)] && (parent < 0 || visible[std::size_t(parent)]);
+  }
+  for (const NodePlacement& p : motion.placements)
+    if (!visible[std::size_t(p.node)])
+      scene.instances[std::size_t(p.instance)].transform = glm::mat4(0.0f);
+  for (const DeformingMesh& d : motion.deforming)
+    if (!visible[std::size_t(d.node)])
+      scene.instances[std::size_t(d.instance)].transform = glm::mat4(0.0f);
+  for (std::size_t i = 0; i < motion.light_nodes.size() && i < scene.lights.size(); ++i)
+    if (!visible[std::size_t(motion.light_nodes[i])]) scene.lights[i].intensity = 0.0f;
 }
 
 void check_finite(const SceneMotion& motion, std::string_view source, const PoseTime& pose,
@@ -268,7 +304,11 @@ void pose_scene(Scene& scene, const PoseTime& pose) {
         rigid(world[std::size_t(motion.camera_nodes[i])],
               fmt::format("{}: {}, nodes[{}]", scene.source, describe(motion, pose),
                           motion.camera_nodes[i]));
+  if (motion.visibility_animated)  // a hidden light's intensity, back before the pointers
+    for (std::size_t i = 0; i < motion.light_rest_intensity.size() && i < scene.lights.size(); ++i)
+      scene.lights[i].intensity = motion.light_rest_intensity[i];
   if (!motion.pointers.empty()) pose_pointers(scene, motion, pose);
+  if (motion.visibility_animated) hide_invisible(scene, motion, pose);
   const std::vector<std::vector<float>> weights = posed_morph_weights(motion, pose);
   Vertices v;
   for (const DeformingMesh& d : motion.deforming) {

@@ -6,6 +6,8 @@ Bounds Scene::world_bounds() const {
   Bounds bounds;
   for (const Instance& instance : instances) {
     if (instance.mesh < 0 || instance.mesh >= int(meshes.size())) continue;
+    // A zero transform places nothing (a node hidden by an animation, scene/pose.h).
+    if (instance.transform == glm::mat4(0.0f)) continue;
     for (const glm::vec3& p : meshes[std::size_t(instance.mesh)].positions)
       bounds.extend(glm::vec3(instance.transform * glm::vec4(p, 1.0f)));
   }

@@ -91,6 +91,11 @@ bool Loader::prepare_animation_pointers(json& root) {
       if (!ext || !ext->is_object() || !ext->contains("pointer") || !(*ext)["pointer"].is_string())
         error(where + ".pointer", "a channel whose path is \"pointer\" needs a string pointer");
       animation_pointers_[{int(a), int(c)}] = (*ext)["pointer"].get<std::string>();
+      // Nodes whose visibility an animation drives keep their meshes and lights (nodes.cpp).
+      const std::string& pointer = animation_pointers_[{int(a), int(c)}];
+      if (pointer.rfind("/nodes/", 0) == 0 &&
+          pointer.find("/extensions/KHR_node_visibility/visible") != std::string::npos)
+        visibility_animated_ = true;
       // tinygltf requires a node; the channel is read from animation_pointers_ instead.
       target["node"] = 0;
       modified = true;
@@ -126,10 +131,19 @@ bool Loader::resolve_pointer(const std::string& pointer, const std::string& wher
       ch.property = AnimatedProperty::kScale;
     else if (t.size() == 3 && t[2] == "weights")
       ch.property = AnimatedProperty::kWeights;
-    else if (t.size() >= 3 && t[2] == "extensions")
-      return unsupported(
-          "animates a node extension, which is not played (KHR_node_visibility "
-          "is decided at load)");
+    else if (t.size() == 5 && t[2] == "extensions" && t[3] == "KHR_node_visibility" &&
+             t[4] == "visible") {
+      p.kind = PointerTarget::Kind::kVisibility;
+      p.index = ch.node;
+      p.rest = {node_hidden_[std::size_t(ch.node)] ? 0.0f : 1.0f};
+      ch.property = AnimatedProperty::kPointer;
+      ch.node = -1;
+      ch.pointer = int(motion_.pointers.size());
+      width = 1;
+      motion_.pointers.push_back(std::move(p));
+      return true;
+    } else if (t.size() >= 3 && t[2] == "extensions")
+      return unsupported("animates a node extension pbrkit does not play");
     else
       return unsupported("is not an animatable node property");
     width = ch.property == AnimatedProperty::kRotation  ? 4

@@ -60,10 +60,12 @@ Scene Loader::load() {
   build_nodes();  // nodes.cpp, instancing.cpp, meshes.cpp, accessors.cpp, cameras.cpp, lights.cpp
   scene_.node_count = model_.nodes.size();
   if (keep_motion_) {
-    const bool deforms = !motion_.deforming.empty();
+    motion_.visibility_animated = visibility_animated_;
+    const bool deforms = !motion_.deforming.empty() || visibility_animated_;
     scene_.motion = std::make_shared<const SceneMotion>(std::move(motion_));
-    // The rest pose skins the skinned meshes and morphs the morphing ones by their
-    // default weights (pose.cpp); the other nodes are where the walk put them.
+    // The rest pose skins the skinned meshes, morphs the morphing ones by their default
+    // weights and hides the invisible nodes of an animated visibility (pose.cpp); the other
+    // nodes are where the walk put them.
     if (deforms) pose_scene(scene_, PoseTime{});
   }
   report_progress(

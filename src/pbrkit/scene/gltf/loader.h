@@ -184,6 +184,7 @@ class Loader {
   SceneMotion motion_;
   std::vector<char> weights_animated_;  // per node: an animation drives its morph weights
   std::map<std::pair<int, int>, std::string> animation_pointers_;  // (animation, channel)
+  bool visibility_animated_ = false;  // a pointer animates a node's KHR_node_visibility
   std::map<std::pair<int, bool>, int> texture_cache_;
   std::size_t texture_bytes_ = 0;
   std::size_t triangles_ = 0;

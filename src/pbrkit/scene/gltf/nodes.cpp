@@ -142,7 +142,9 @@ void Loader::build_nodes() {
       error(fmt::format("nodes[{}]", node), "accumulated transform overflows");
     const std::string where = fmt::format("nodes[{}]", node);
     const auto instancing = node_instancing_.find(node);
-    const bool hidden = node_hidden_[std::size_t(node)];  // KHR_node_visibility
+    // KHR_node_visibility; when an animation drives it, every node is built and poses hide
+    // what is invisible (scene/pose.h).
+    const bool hidden = !visibility_animated_ && node_hidden_[std::size_t(node)];
     if (n.mesh >= 0 && !hidden) {
       if (std::size_t(n.mesh) >= model_.meshes.size())
         error(where + ".mesh", fmt::format("mesh {} does not exist", n.mesh));
@@ -205,6 +207,7 @@ void Loader::build_nodes() {
       if (keep_motion_) {
         motion_.light_nodes.push_back(node);
         motion_.light_sources.push_back(it->second.Get("light").GetNumberAsInt());
+        motion_.light_rest_intensity.push_back(scene_.lights.back().intensity);
       }
     }
     for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) {
@@ -224,6 +227,7 @@ void Loader::keep_rest_pose(const std::vector<int>& parent) {
     const std::string where = fmt::format("nodes[{}]", i);
     NodeRest& rest = motion_.nodes[i];
     rest.parent = parent[i];
+    rest.visible = i >= node_hidden_.size() || !node_hidden_[i];  // its own flag
     // Every node, in the scene or not: a skin's joints need not be under its roots.
     const glm::mat4 m = local_transform(int(i));  // checks the numbers
     if (n.matrix.size() == 16) {
