@@ -132,6 +132,7 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
   // Path guiding: the vertices whose continuation is recorded once the path is done.
   GuideVertex guide_vertices[kMaxGuideVertices];
   int guide_count = 0;
+  float rr_boost = 1.0f;  // the product of p_mixture / p_bsdf over the guided bounces
   for (int depth = 0;; ++depth) {
     const Material* material = nullptr;
     const glm::vec3 segment_start = origin;
@@ -241,9 +242,10 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 
     // Continue the path by sampling the BSDF (visible-normal GGX, cosine, the dielectric),
     // or at a guided vertex the mixture of the BSDF and the guide.
-    const BrdfSample bs =
-        guide ? sample_guided(brdf, frame, *guide, u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y))
-              : brdf.sample(u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y));
+    float guided_boost = 1.0f;
+    const BrdfSample bs = guide ? sample_guided(brdf, frame, *guide, u_nee.w,
+                                                glm::vec2(u_bsdf.x, u_bsdf.y), guided_boost)
+                                : brdf.sample(u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y));
     if (!bs.valid) break;
     const glm::vec3 wi = frame.to_world(bs.wi);
     // The shading frame's side must agree with the geometric one: a direction on the other
@@ -257,9 +259,18 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
       else
         media.remove(hit.geom);
     }
-    // Russian roulette (pbrt-v4): survive with probability max(beta), at most 1.
+    // Russian roulette (pbrt-v4): survive with probability max(beta), at most 1. After
+    // guided bounces, with the throughput BSDF sampling alone would have given the same
+    // vertices (beta times the product of p_mixture / p_bsdf): a guided bounce towards
+    // bright light has a small f cos / p, and roulette on that would end most of the paths
+    // the guide sent where the light is and multiply the survivors (the variance guiding
+    // removed, back as fireflies; Vorba & Krivanek 2016, "Adjoint-Driven Russian Roulette
+    // and Splitting", make the same point for roulette against a learned radiance).
+    // Only raised: a guided bounce into light the guide thinks dim keeps the plain
+    // throughput's roulette (lowering its survival made fireflies where the guide is wrong).
+    rr_boost = std::min(rr_boost * std::max(guided_boost, 1.0f), 1e6f);
     if (depth + 1 >= settings_.rr_start) {
-      const float q = std::max(beta.x, std::max(beta.y, beta.z));
+      const float q = rr_boost * std::max(beta.x, std::max(beta.y, beta.z));
       if (!(q > 0.0f) || (q < 1.0f && u_bsdf.z >= q)) break;
       if (q < 1.0f) beta /= q;
     }
@@ -309,8 +320,8 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 }
 
 BrdfSample Integrator::sample_guided(const BoundBsdf& brdf, const Frame& frame,
-                                     const DirectionalQuadtree& guide, float u_choice,
-                                     glm::vec2 u) const {
+                                     const DirectionalQuadtree& guide, float u_choice, glm::vec2 u,
+                                     float& boost) const {
   // One-sample MIS (Veach 1997, section 9.2.4) with the balance heuristic: whichever
   // strategy drew the direction, its weight is f cos / (a p_bsdf + (1 - a) p_guide), the
   // mixture's pdf (Mueller et al. 2017 mix the two so, with a = 0.5). The choice reuses the
@@ -320,6 +331,7 @@ BrdfSample Integrator::sample_guided(const BoundBsdf& brdf, const Frame& frame,
     BrdfSample s = brdf.sample(std::min(u_choice / a, 0x1.fffffep-1f), u);
     if (!s.valid || s.delta) return s;
     const float p = a * s.pdf + (1.0f - a) * guide.pdf(frame.to_world(s.wi));
+    boost = p / s.pdf;
     s.weight *= s.pdf / p;
     s.pdf = p;
     return s;
@@ -331,6 +343,8 @@ BrdfSample Integrator::sample_guided(const BoundBsdf& brdf, const Frame& frame,
   const glm::vec3 f = brdf.eval(s.wi, &p_bsdf);
   const float p = a * p_bsdf + (1.0f - a) * p_guide;
   if (!(p > 0.0f) || f == glm::vec3(0.0f)) return s;
+  // Where BSDF sampling could not have drawn it, roulette takes the path as it is.
+  boost = p_bsdf > 0.0f ? p / p_bsdf : 1.0f;
   s.weight = f * (std::abs(s.wi.z) / p);
   s.pdf = p;
   s.valid = true;

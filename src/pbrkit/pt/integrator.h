@@ -148,9 +148,11 @@ class Integrator {
                                    const DirectionalQuadtree* guide) const;
   /// One direction at a guided vertex: from the BSDF (with probability kGuideBsdfFraction)
   /// or from the guide, weighted f cos / pdf by the mixture's pdf (one-sample MIS, the
-  /// balance heuristic); `pdf` the mixture's, what MIS with light sampling needs.
+  /// balance heuristic); `pdf` the mixture's, what MIS with light sampling needs. `boost`:
+  /// p_mixture / p_bsdf for the direction drawn, which Russian roulette undoes.
   BrdfSample sample_guided(const BoundBsdf& brdf, const Frame& frame,
-                           const DirectionalQuadtree& guide, float u_choice, glm::vec2 u) const;
+                           const DirectionalQuadtree& guide, float u_choice, glm::vec2 u,
+                           float& boost) const;
   /// A guided vertex's record: where it was, the direction it continued in and that
   /// direction's pdf, the throughput after it and the path's radiance before it.
   struct GuideVertex {
