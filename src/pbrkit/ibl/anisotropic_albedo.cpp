@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iterator>
 
+#include "pbrkit/core/anisotropic_energy.h"
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/ibl/anisotropic_taps.h"
@@ -33,11 +34,6 @@ float anisotropic_albedo(glm::vec3 wo, float alpha_x, float alpha_y, int radii, 
 
 namespace {
 
-// A node's parameter: i / (n - 1).
-float node_at(int i, int n) {
-  return float(i) / float(n - 1);
-}
-
 // The nodes and weight of coordinate c in [0, 1] over n nodes.
 void bracket(float c, int n, int& i0, int& i1, float& f) {
   const float x = std::clamp(c * float(n - 1), 0.0f, float(n - 1));
@@ -50,20 +46,12 @@ void bracket(float c, int n, int& i0, int& i1, float& f) {
 
 void AnisotropicAlbedoTable::node_lobe(int i, int j, int k, int l, glm::vec3& wo, float& alpha_x,
                                        float& alpha_y) {
-  // mu = c^2 (nodes dense towards grazing, where the albedo changes fastest), and at least
-  // 1e-4 (at 0 the view lies in the plane and G1 vanishes); p = y / (x + y) on the unit
-  // circle's first quadrant: (1 - p, p) normalized.
-  const float c = node_at(i, kMu);
-  const float mu = std::max(c * c, 1e-4f), p = node_at(j, kPhi);
-  const float s = std::sqrt(std::max(1.0f - mu * mu, 0.0f));
-  const glm::vec2 xy = s * glm::normalize(glm::vec2(1.0f - p, p));
-  wo = glm::vec3(xy, mu);
-  // r's first node stands for the renderers' smallest roughness, kMinRoughness (at 0 the
-  // lobe is a mirror, whose D is no function).
-  const float r = std::max(node_at(k, kR), kMinRoughness);
-  alpha_y = r * r;
-  const float strength = node_at(l, kS);
-  alpha_x = alpha_y + (1.0f - alpha_y) * strength * strength;
+  // One grid for both tables: the multiple-scattering table the path tracer reads
+  // (core/anisotropic_energy.h) says where the nodes are (mu = c^2, dense towards grazing;
+  // p = y / (x + y) on the unit circle's first quadrant; r from kMinRoughness).
+  static_assert(kMu == AnisotropicEnergyTable::kMu && kPhi == AnisotropicEnergyTable::kPhi &&
+                kR == AnisotropicEnergyTable::kR && kS == AnisotropicEnergyTable::kS);
+  AnisotropicEnergyTable::node_lobe(i, j, k, l, wo, alpha_x, alpha_y);
 }
 
 std::vector<float> AnisotropicAlbedoTable::compute() {
