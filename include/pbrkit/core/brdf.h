@@ -74,7 +74,7 @@ inline glm::vec3 dielectric_f0(float ior, glm::vec3 specular_color) {
   return glm::min(r2 * specular_color, glm::vec3(1.0f));
 }
 
-/// The base layer's inputs at one shading point, after textures (MODEL.md, "Revision 2").
+/// The base layer's inputs at one shading point, after textures (MODEL.md, "The base layer").
 struct BaseLayer {
   glm::vec3 base_color{1.0f};
   float metallic = 1.0f;

@@ -106,7 +106,7 @@ struct TextureRef {
 
 enum class AlphaMode { kOpaque, kMask, kBlend };
 
-// The KHR_materials_* surface extensions (docs/MODEL.md, "Revision 2"). Each is absent
+// The KHR_materials_* surface extensions (docs/MODEL.md, "Inputs"). Each is absent
 // (std::nullopt) when the material does not use it; the values are the extension's own
 // factors with its README's defaults, and the textures hold the channels the README names.
 
@@ -153,7 +153,7 @@ struct IridescenceExtension {
   TextureRef thickness_texture;  ///< iridescenceThicknessTexture, G channel
 };
 
-// The transmission extensions (docs/MODEL.md, "Revision 2": glass and volumes).
+// The transmission extensions (docs/MODEL.md, "The dielectric interface and transmission").
 
 /// KHR_materials_transmission: the dielectric's specular transmission (a rough dielectric
 /// BTDF with the base roughness), mixed with the diffuse base by the factor.
