@@ -12,8 +12,8 @@
 
 #include <gtest/gtest.h>
 
+#include "gl/harness/anisotropy_eval.h"
 #include "gl_test_context.h"
-#include "pbrkit/gl/testing/anisotropy_eval.h"
 #include "pbrkit/ibl/anisotropic_albedo.h"
 #include "pbrkit/ibl/anisotropic_taps.h"
 

@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "gl/harness/brdf_eval.h"
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/energy.h"
-#include "pbrkit/gl/testing/brdf_eval.h"
 
 namespace pbrkit::gl::testing {
 

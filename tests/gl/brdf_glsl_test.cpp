@@ -11,9 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "brdf_conditioning.h"
+#include "gl/harness/brdf_eval.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/brdf.h"
-#include "pbrkit/gl/testing/brdf_eval.h"
 
 namespace pbrkit::gl {
 namespace {

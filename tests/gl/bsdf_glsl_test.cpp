@@ -11,9 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "brdf_conditioning.h"
+#include "gl/harness/bsdf_eval.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/bsdf.h"
-#include "pbrkit/gl/testing/bsdf_eval.h"
 
 namespace pbrkit::gl {
 namespace {

@@ -12,10 +12,10 @@
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
+#include "gl/harness/display_eval.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/color.h"
 #include "pbrkit/gl/renderer.h"
-#include "pbrkit/gl/testing/display_eval.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/load.h"
 

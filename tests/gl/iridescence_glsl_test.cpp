@@ -10,9 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include "gl/harness/iridescence_eval.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/iridescence.h"
-#include "pbrkit/gl/testing/iridescence_eval.h"
 
 namespace pbrkit::gl {
 namespace {

@@ -14,11 +14,11 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gl/harness/occluder_eval.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/equirect.h"
 #include "pbrkit/gl/occluders.h"
 #include "pbrkit/gl/renderer.h"
-#include "pbrkit/gl/testing/occluder_eval.h"
 #include "pbrkit/ibl/bake.h"
 #include "pbrkit/scene/camera.h"
 #include "pbrkit/scene/primitives.h"

@@ -9,9 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include "gl/harness/sheen_eval.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/sheen.h"
-#include "pbrkit/gl/testing/sheen_eval.h"
 #include "pbrkit/ibl/sheen_sh.h"
 
 namespace pbrkit::gl {

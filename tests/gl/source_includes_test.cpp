@@ -36,7 +36,7 @@ std::map<std::string, std::set<std::string>> part_includes() {
         const std::size_t close = line.find('"', prefix.size());
         if (close == std::string::npos) continue;
         const std::string name = line.substr(prefix.size(), close - prefix.size());
-        if (name.find('/') != std::string::npos) continue;  // testing/: not the renderer's
+        if (name.find('/') != std::string::npos) continue;  // a subfolder's: not one of the parts
         const std::string included = fs::path(name).stem().string();
         if (included != part) graph[part].insert(included);
       }

@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gl/harness/transmission_eval.h"
 #include "gl_test_context.h"
-#include "pbrkit/gl/testing/transmission_eval.h"
 
 namespace pbrkit::gl {
 namespace {

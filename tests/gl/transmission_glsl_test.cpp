@@ -15,12 +15,12 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "gl/harness/transmission_eval.h"
 #include "gl_test_context.h"
 #include "pbrkit/core/brdf.h"
 #include "pbrkit/core/dispersion.h"
 #include "pbrkit/core/microfacet.h"
 #include "pbrkit/core/transmission.h"
-#include "pbrkit/gl/testing/transmission_eval.h"
 
 namespace pbrkit::gl {
 namespace {

@@ -1,7 +1,7 @@
-#include "pbrkit/gl/testing/display_eval.h"
+#include "gl/harness/display_eval.h"
 
+#include "gl/harness/compute_eval.h"
 #include "pbrkit/gl/program.h"
-#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 

@@ -13,7 +13,7 @@
 
 namespace pbrkit::gl::detail {
 
-/// The compute program of a shader unit test, `file` one of testing/shaders/*_test.glsl:
+/// The compute program of a shader unit test, `file` one of harness/shaders/*_test.glsl:
 /// those are embedded in this test-support library, not in libpbrkit, and are added to the
 /// shaders that shader_source() finds on first use.
 Program test_program(std::string_view file);

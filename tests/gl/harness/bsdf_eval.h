@@ -7,8 +7,8 @@
 
 #include <glm/glm.hpp>
 
+#include "gl/harness/brdf_eval.h"
 #include "pbrkit/core/bsdf.h"
-#include "pbrkit/gl/testing/brdf_eval.h"
 
 namespace pbrkit::gl {
 

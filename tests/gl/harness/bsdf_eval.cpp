@@ -1,10 +1,10 @@
-#include "pbrkit/gl/testing/bsdf_eval.h"
+#include "gl/harness/bsdf_eval.h"
 
 #include <epoxy/gl.h>
 
+#include "gl/harness/compute_eval.h"
 #include "pbrkit/gl/energy_texture.h"
 #include "pbrkit/gl/program.h"
-#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 

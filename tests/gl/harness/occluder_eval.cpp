@@ -1,8 +1,8 @@
-#include "pbrkit/gl/testing/occluder_eval.h"
+#include "gl/harness/occluder_eval.h"
 
+#include "gl/harness/compute_eval.h"
 #include "pbrkit/gl/occluders.h"
 #include "pbrkit/gl/program.h"
-#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 

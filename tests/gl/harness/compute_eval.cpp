@@ -1,4 +1,4 @@
-#include "pbrkit/gl/testing/compute_eval.h"
+#include "gl/harness/compute_eval.h"
 
 #include <epoxy/gl.h>
 
@@ -12,7 +12,7 @@ namespace pbrkit::gl {
 
 namespace detail {
 
-// testing/shaders/*_test.glsl (embed_shaders.cmake, as the library's own shaders).
+// harness/shaders/*_test.glsl (embed_shaders.cmake, as the library's own shaders).
 extern const std::pair<std::string_view, std::string_view> kTestShaders[];
 
 Program test_program(std::string_view file) {

@@ -1,9 +1,9 @@
-#include "pbrkit/gl/testing/transmission_eval.h"
+#include "gl/harness/transmission_eval.h"
 
 #include <epoxy/gl.h>
 
+#include "gl/harness/compute_eval.h"
 #include "pbrkit/gl/program.h"
-#include "pbrkit/gl/testing/compute_eval.h"
 
 namespace pbrkit::gl {
 
