@@ -101,7 +101,7 @@ TEST(DenoiserHeavyTails, MeanIsKeptAndFirefliesAreGone) {
 
 TEST(DenoiserHeavyTails, BlockMeansStayWithinTheRawNoise) {
   // Every 16x16 block's denoised mean stays within 2 raw standard errors (estimated from
-  // the halves, include/pbrkit/denoise/energy.h) of the raw one: the rare samples' energy
+  // the halves, src/pbrkit/denoise/energy.h) of the raw one: the rare samples' energy
   // is moved over a few pixels, never removed (a clamp would leave every block about
   // 0.2 / 0.05 = 4 standard errors dark).
   for (std::uint32_t seed : {4u, 5u}) {

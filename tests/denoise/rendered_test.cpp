@@ -83,7 +83,7 @@ std::vector<int> object_ids(const Scene& scene, int size) {
 // across a region's border, never removes it.
 // Renders `scene` under `hdri` (a shared asset) at `size` x `size`, 16 spp, seed 1,
 // denoises it and expects the frame, every 16x16 block and every object of at least 16
-// pixels within 2 raw standard errors of the raw image (include/pbrkit/denoise/energy.h).
+// pixels within 2 raw standard errors of the raw image (src/pbrkit/denoise/energy.h).
 void expect_every_region_keeps_energy(const Scene& scene, const std::string& hdri,
                                       std::size_t min_objects, int size) {
   const Environment env =

@@ -1,5 +1,5 @@
 // Region means of a denoised image against the raw image's, in raw standard errors
-// (include/pbrkit/denoise/energy.h).
+// (src/pbrkit/denoise/energy.h).
 #include "pbrkit/denoise/energy.h"
 
 #include <algorithm>

@@ -1,4 +1,4 @@
-// The layered material of include/pbrkit/core/bsdf.h in GLSL, mirrored line by line:
+// The layered material of src/pbrkit/core/bsdf.h in GLSL, mirrored line by line:
 // KHR_materials_clearcoat's coat over KHR_materials_sheen's sheen over the base (brdf.glsl),
 //
 //   f = f_coat + A_coat (f_sheen + A_sheen f_base)
