@@ -103,10 +103,16 @@ inline constexpr float kGuideBsdfFraction = 0.5f;
 /// BSDF sampling misses, diffuse and rough surfaces. A narrow lobe (smooth metal, smooth
 /// glass) is sampled better by itself than by a guide of a few degrees' resolution, and a
 /// delta lobe cannot be guided at all. A smooth dielectric over a diffuse base is guided for
-/// its diffuse part (its specular lobe then gets half the samples it had).
+/// its diffuse part (its specular lobe then gets half the samples it had). Transmissive
+/// dielectrics are not guided, rough ones included: a path inside rough glass reflects
+/// internally many times, along directions the guide (learned over the region from both
+/// sides of the surface, mostly of light leaving it) thinks dark, and each such bounce
+/// drawn from the mixture has twice BSDF sampling's weight, f cos / (a p_bsdf) with
+/// a = 0.5: 2^10 after ten internal bounces. On `glass` that made fireflies that put the
+/// guided relative MSE far above the unguided one (BENCHMARKS.md, "Path guiding").
 inline bool guided_vertex(const SurfaceParams& p, const Bsdf& bsdf) {
-  if (bsdf.has_delta_lobe()) return false;
-  return p.base.roughness >= 0.3f || (p.base.metallic < 0.5f && p.transmission.weight < 0.5f);
+  if (bsdf.has_delta_lobe() || p.transmission.weight > 0.0f) return false;
+  return p.base.roughness >= 0.3f || p.base.metallic < 0.5f;
 }
 
 class Integrator {
