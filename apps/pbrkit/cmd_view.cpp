@@ -29,6 +29,7 @@ struct ViewNames {
   std::string background = "env";
   std::string mode{view_mode_name(ViewerOptions{}.mode)};
   std::optional<std::string> channel;
+  std::string guiding{guiding_name(ViewerOptions{}.guiding)};
   DenoiserFlags denoiser;
 };
 
@@ -116,6 +117,10 @@ void register_view_command(CLI::App& app) {
       ->check(CLI::Range(1u, 1u << 24))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "path views: the path tracer's seed")->capture_default_str();
+  cmd->add_option("--guiding", names->guiding,
+                  "path views: path guiding, as 'pbrkit render --guiding' (the panel's toggle)")
+      ->check(CLI::IsMember({"off", "on"}))
+      ->capture_default_str();
   cmd->add_option("--channel", names->channel,
                   "raster view: a debug channel, raw (base-color, metallic, roughness, normal, "
                   "occlusion, emissive; the lobes diffuse, specular, clearcoat, sheen, "
@@ -139,6 +144,7 @@ void register_view_command(CLI::App& app) {
     o->brdf.multiscatter = names->multiscatter.value_or(default_multiscatter(o->brdf.model));
     o->background = parse_background(names->background);
     o->mode = parse_view_mode(names->mode);
+    o->guiding = parse_guiding(names->guiding);
     if (names->channel) parse_channel(*names->channel, *o);
     // A bad name is refused by its flag's name before a window opens.
     if (!o->screenshot.empty()) image_output_paths(o->screenshot, "--screenshot");

@@ -128,6 +128,13 @@ bool draw_truth_panel(ViewerState& s) {
     s.options.spp = std::uint32_t(spp);
     changed = true;
   }
+  // Path guiding pays where light arrives after bounces (an interior lit through a window)
+  // and costs elsewhere (BENCHMARKS.md, "Path guiding"); the render restarts to learn anew.
+  bool guiding = s.options.guiding == Guiding::kOn;
+  if (ImGui::Checkbox("path guiding", &guiding)) {
+    s.options.guiding = guiding ? Guiding::kOn : Guiding::kOff;
+    changed = true;
+  }
   return changed;
 }
 

@@ -18,6 +18,7 @@
 #include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/gl/renderer.h"
 #include "pbrkit/image/display.h"
+#include "pbrkit/pt/path_tracer.h"
 
 namespace pbrkit {
 
@@ -64,6 +65,8 @@ struct ViewerOptions {
   /// --noise-threshold 0 --seed S` of the same scene, camera and size.
   std::uint32_t spp = 1024;
   std::uint32_t seed = 0;
+  /// The path views' path guiding (pt/path_tracer.h), off by default as in `render`.
+  Guiding guiding = PathTracerSettings{}.guiding;
   /// The raster view's debug channel (gl/debug_channels.h): a material input or one lobe's
   /// share of the shaded colour, shown raw (no exposure, no tone mapping; the PNG is the
   /// sRGB encoding of the values, the EXR the values).

@@ -220,6 +220,7 @@ void start_path(ViewerState& s, int width, int height) {
   p.min_spp = 1;
   p.noise_threshold = 0.0f;
   p.seed = s.options.seed;
+  p.guiding = s.options.guiding;
   p.brdf = s.settings.brdf;
   p.threads = std::max(1, int(std::thread::hardware_concurrency()) - 1);
   p.checkpoint_interval = 0.1;
