@@ -87,9 +87,14 @@ def render_example(view: scenes.View, spp: int, target_spp: int, size: int, seed
     common = dict(width=size, height=size, camera=cam, env=view.env,
                   env_rotation=view.env_rotation, env_intensity=view.env_intensity,
                   threads=threads)
-    color, aovs = pbrkit.render(scene, spp=spp, seed=seed, aovs=["albedo", "normal"], **common)
+    # The classic denoiser's output, the depth and the half buffers' noise estimate come with
+    # the input for networks that read them (a hybrid over the classic denoiser); the raw
+    # colour is the same render's as without denoising (same seed, same samples).
+    classic, aovs = pbrkit.render(scene, spp=spp, seed=seed, denoise=True, denoiser="classic",
+                                  aovs=["albedo", "normal", "depth", "noise"], **common)
     target = pbrkit.render(scene, spp=target_spp, seed=seed + 1_000_003, **common)
-    return color, aovs["albedo"], aovs["normal"], target
+    return aovs["raw"], aovs["albedo"], aovs["normal"], target, {
+        "classic": classic, "depth": aovs["depth"], "noise": aovs["noise"]}
 
 
 def main() -> int:
@@ -125,7 +130,7 @@ def main() -> int:
         with tempfile.TemporaryDirectory() as tmp:
             try:
                 view = make_view(rng, args.split, assets, Path(tmp))
-                color, albedo, normal, target = render_example(
+                color, albedo, normal, target, extra = render_example(
                     view, spp, args.target_spp, args.size, 1 + 2 * k, args.threads)
             except Exception as e:  # a bad random scene is skipped, and said
                 print(f"example {k}: skipped ({e})", file=sys.stderr)
@@ -141,7 +146,9 @@ def main() -> int:
         tmpdest = dest.with_name(dest.name + ".tmp.npz")
         np.savez(tmpdest, color=color.astype(np.float32), albedo=albedo.astype(np.float16),
                  normal=normal.astype(np.float16), target=target.astype(np.float32),
-                 meta=json.dumps(meta))
+                 classic=extra["classic"].astype(np.float32),
+                 depth=extra["depth"].astype(np.float32),
+                 noise=extra["noise"].astype(np.float16), meta=json.dumps(meta))
         os.replace(tmpdest, dest)
         made += 1
         el = time.time() - t0

@@ -37,7 +37,7 @@ def test_data_set_is_reproducible_from_its_seed(tiny_set: Path, tmp_path: Path) 
     generate(tmp_path, 1)
     a = np.load(tiny_set / "train" / "000000.npz")
     b = np.load(tmp_path / "train" / "000000.npz")
-    for key in ("color", "albedo", "normal", "target"):
+    for key in ("color", "albedo", "normal", "target", "classic", "depth", "noise"):
         assert np.array_equal(a[key], b[key]), key
     assert a["color"].shape == (48, 48, 3)
 
