@@ -2,7 +2,7 @@
 """Writes a training run's checkpoint as the weights file the product reads
 (docs/LEARNED_DENOISER.md, "The weights file"), without training further.
 
-  python3 tools/denoiser/export.py --run /work/denoiser-run \
+  python3 tools/denoiser/export.py --run $HOME/denoiser-run \
       --dataset "denoiser-data seed 1" -o data/denoiser/kpcn-unet-v1.pbnn
 """
 from __future__ import annotations

@@ -10,7 +10,7 @@ set is reproducible and an interrupted run resumes where it stopped (existing fi
 kept).
 
   PYTHONPATH=build/release/python python3 tools/denoiser/generate.py \
-      --assets ../shared/assets --out /work/denoiser-data --split train --count 4000
+      --assets ../shared/assets --out $HOME/denoiser-data --split train --count 4000
 """
 from __future__ import annotations
 

@@ -12,7 +12,7 @@ random generators), the loss log and its curves (loss.png); a second call with t
 DIR continues from the last checkpoint. The data set may grow while training: the folder
 is rescanned every --rescan steps.
 
-  python3 tools/denoiser/train.py --data /work/denoiser-data --run /work/denoiser-run \
+  python3 tools/denoiser/train.py --data $HOME/denoiser-data --run $HOME/denoiser-run \
       --steps 20000 --export data/denoiser/kpcn-unet-v1.pbnn
 """
 from __future__ import annotations
