@@ -1,5 +1,5 @@
 #pragma once
-// The layered material of docs/MODEL.md ("Revision 2"): KHR_materials_clearcoat's coat over
+// The layered material of docs/MODEL.md ("The layers"): KHR_materials_clearcoat's coat over
 // KHR_materials_sheen's sheen over the base layer (core/brdf.h), as the extensions'
 // READMEs stack them ("If clearcoat is active at the same time, clearcoat is layered on
 // top of sheen"):
@@ -17,7 +17,7 @@
 // one-sided form is not reciprocal; the two agree whenever the light is closer to the
 // normal than the viewer). Neither layer is energy-compensated: MODEL.md states their loss.
 //
-// Transmission (MODEL.md, "Revision 2: transmission and volumes"): KHR_materials_transmission
+// Transmission (MODEL.md, "The dielectric interface and transmission"): KHR_materials_transmission
 // and _diffuse_transmission change the dielectric part of the base, as their READMEs write
 // dielectric_brdf = fresnel_mix(ior, base = mix(mix(diffuse_brdf, diffuse_btdf, dt),
 // specular_btdf baseColor, transmission), layer = specular_brdf):

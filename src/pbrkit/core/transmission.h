@@ -1,6 +1,6 @@
 #pragma once
 // KHR_materials_transmission's specular_btdf and the dielectric interface it belongs to, in
-// the exact form the path tracer uses (MODEL.md, "Revision 2: transmission and volumes"):
+// the exact form the path tracer uses (MODEL.md, "The dielectric interface"):
 //
 //   f(wo, wi) = F(wo.h) D(h) G(wo, wi) / (4 |n.wo| |n.wi|)                       reflection
 //   f(wo, wi) = (1 - F(wo.h)) D(h) G(wo, wi) |wi.h| |wo.h| / (|n.wo| |n.wi| denom^2)

@@ -209,8 +209,8 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     const glm::vec4 u_nee = sampler.sample_block(index, block);
     const glm::vec4 u_bsdf = sampler.sample_block(index, block + 1);
 
-    // Transmission: the media on both sides of the surface (MODEL.md, "Revision 2:
-    // transmission and volumes"). A volume is behind the surface when the material has a
+    // Transmission: the media on both sides of the surface (MODEL.md, "Volumes and the
+    // medium stack"). A volume is behind the surface when the material has a
     // non-zero thickness and the mesh is closed; otherwise the surface is a thin wall.
     const bool transmits =
         in.params.transmission.weight > 0.0f || in.params.diffuse_transmission.weight > 0.0f;
