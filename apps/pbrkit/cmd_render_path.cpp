@@ -89,6 +89,7 @@ struct PathOptions {
   std::string filter{pixel_filter_name(PathTracerSettings{}.filter)};
   std::string light_sampler{light_sampler_name(PathTracerSettings{}.light_sampler)};
   std::string guiding{guiding_name(PathTracerSettings{}.guiding)};
+  std::optional<float> guiding_bsdf_share;
 };
 
 std::pair<std::uint32_t, std::uint32_t> parse_sample_range(const std::string& text) {
@@ -209,11 +210,19 @@ RenderRunner add_path_render_options(CLI::App& render) {
   render
       .add_option("--guiding", p->guiding,
                   "path guiding: on learns the incident light while rendering (passes of "
-                  "doubling sample counts) and sends half the bounces of diffuse and rough "
-                  "surfaces where it comes from (unbiased; a resumed render or a --sample-range "
+                  "doubling sample counts) and sends a share of the bounces of diffuse and rough "
+                  "surfaces where it comes from, learned per region (unbiased; a resumed render or "
+                  "a --sample-range "
                   "part learns its own guide, so its bits differ from an uninterrupted render's)")
       ->check(CLI::IsMember({"off", "on"}))
       ->capture_default_str()
+      ->group(group);
+  render
+      .add_option("--guiding-bsdf-share", p->guiding_bsdf_share,
+                  "with --guiding on: the probability a guided bounce samples the BSDF rather "
+                  "than the guide, fixed (default: learned per region of space, 1 where the "
+                  "guide does not pay)")
+      ->check(CLI::Range(0.0f, 1.0f))
       ->group(group);
 
   // The environment the frames of a sequence share (loaded once).
@@ -240,6 +249,7 @@ RenderRunner add_path_render_options(CLI::App& render) {
     s.filter = parse_pixel_filter(po.filter);
     s.light_sampler = parse_light_sampler(po.light_sampler);
     s.guiding = parse_guiding(po.guiding);
+    if (po.guiding_bsdf_share) s.guiding_bsdf_fraction = *po.guiding_bsdf_share;
     if (!o.shutter.empty()) {
       s.shutter.animation = find_animation(scene, o.animation);
       s.shutter.open = o.animation_time + o.shutter_open;

@@ -111,6 +111,7 @@ const std::map<std::string, std::string> kValidValues = {
     {"--filter", "box"},
     {"--light-sampler", "power"},
     {"--guiding", "on"},
+    {"--guiding-bsdf-share", "0.5"},
     {"--irradiance", "cube"},
     {"--msaa", "2"},
     {"--background", "color:1,0,0"},

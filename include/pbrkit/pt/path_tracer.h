@@ -108,6 +108,10 @@ struct PathTracerSettings {
   LightSamplerKind light_sampler = LightSamplerKind::kBvh;
   /// Path guiding (Guiding): off by default (BENCHMARKS.md, "Path guiding", says why).
   Guiding guiding = Guiding::kOff;
+  /// With guiding, the probability that a guided vertex samples its BSDF rather than the
+  /// guide: negative (the default) learns it per region (docs/MODEL.md, "Path guiding"); a
+  /// value in [0, 1) fixes it everywhere (Mueller et al. 2017 fix it at 0.5).
+  float guiding_bsdf_fraction = -1.0f;
   BrdfOptions brdf;
   PixelFilter filter = PixelFilter::kTent;
   /// Show the environment to camera rays (false: black background, light still counts).
@@ -165,11 +169,12 @@ struct PathTracerStats {
   /// (kMaxNestedVolumes): the innermost ones were not entered. Warned about, with the limit.
   std::uint64_t medium_overflows = 0;
   /// Path guiding (settings.guiding): the guide's bytes at the end (both trees and the
-  /// accumulators), its regions and directional nodes, the passes it learned from, and the
-  /// seconds spent building it between passes (the recording and sampling in the paths are
-  /// in render_seconds).
+  /// accumulators), its regions and directional nodes, the regions that sampled from their
+  /// guide in the last pass (the others' BSDF share was 1: their guide did not pay), the passes it
+  /// learned from, and the seconds spent building it between passes (the recording and sampling in
+  /// the paths are in render_seconds).
   std::size_t guide_bytes = 0;
-  std::size_t guide_regions = 0, guide_nodes = 0;
+  std::size_t guide_regions = 0, guide_nodes = 0, guide_guided_regions = 0;
   int guide_passes = 0;
   double guide_seconds = 0.0;
 };

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <string>
 
 #include "pbrkit/core/math.h"
 #include "pbrkit/core/sampling.h"
@@ -154,6 +155,9 @@ DirectionalQuadtree refine_topology(const DirectionalQuadtree& source, float rho
 }
 
 PathGuide::PathGuide(const Bounds& bounds, const GuideOptions& options) : options_(options) {
+  if (!(options.fixed_bsdf_fraction <= 1.0f))
+    throw Error("path guiding: the BSDF share " + std::to_string(options.fixed_bsdf_fraction) +
+                " is not in [0, 1] (or negative: learned per region)");
   Region root;
   if (bounds.empty()) {
     root.lo = glm::vec3(-1.0f);
@@ -164,6 +168,7 @@ PathGuide::PathGuide(const Bounds& bounds, const GuideOptions& options) : option
     root.lo = bounds.min - pad;
     root.hi = bounds.max + pad;
   }
+  if (options_.fixed_bsdf_fraction >= 0.0f) root.bsdf_fraction = options_.fixed_bsdf_fraction;
   regions_.push_back(std::move(root));
   nodes_.emplace_back();
   rebuild_topologies();
@@ -198,12 +203,38 @@ void PathGuide::record(std::uint32_t region, glm::vec3 w, float value) {
   }
 }
 
+void PathGuide::record_fraction(std::uint32_t region, float F, float p_bsdf, float p_guide,
+                                float p_drawn) {
+  if (!(F >= 0.0f) || !(p_drawn > 0.0f)) return;
+  Region& r = regions_[region];
+  std::atomic_ref<std::uint64_t>(r.fraction_samples).fetch_add(1, std::memory_order_relaxed);
+  if (F == 0.0f) return;  // adds 0 to every candidate's moment
+  for (int k = 0; k < kFractionCount; ++k) {
+    const float a = kBsdfFractions[k];
+    const float p = a * p_bsdf + (1.0f - a) * p_guide;
+    // A candidate that could not have drawn a direction the integrand needs has an
+    // infinite second moment: the largest term.
+    const float term = p > 0.0f ? std::min(F / p * (F / p_drawn), kMaxMoment) : kMaxMoment;
+    const auto fixed = std::uint64_t(double(term) * kMomentScale + 0.5);
+    if (fixed)
+      std::atomic_ref<std::uint64_t>(r.moments[k]).fetch_add(fixed, std::memory_order_relaxed);
+  }
+}
+
 void PathGuide::end_pass() {
   const int k = passes_++;
   std::vector<double> records(regions_.size());
   for (std::size_t i = 0; i < regions_.size(); ++i) {
     Region& r = regions_[i];
     records[i] = double(r.records);
+    // The share of the least estimated second moment (of equal ones the smaller); a region
+    // with too few samples, or whose samples found no light, keeps its share.
+    if (options_.fixed_bsdf_fraction < 0.0f && r.fraction_samples >= kMinFractionSamples) {
+      int best = 0;
+      for (int c = 1; c < kFractionCount; ++c)
+        if (r.moments[c] < r.moments[best]) best = c;
+      if (r.moments[best] > 0) r.bsdf_fraction = kBsdfFractions[best];
+    }
     // A region that recorded nothing this pass keeps what it learned before.
     DirectionalQuadtree learned = finalize(r.training, r.flux);
     if (learned.total() > 0.0f) r.sampling = std::move(learned);
@@ -215,6 +246,10 @@ void PathGuide::end_pass() {
   for (std::size_t n = 0; n < node_count; ++n)
     if (nodes_[n].axis < 0) split(std::uint32_t(n), records[nodes_[n].region], threshold);
   rebuild_topologies();
+  guided_regions_ =
+      std::size_t(std::count_if(regions_.begin(), regions_.end(), [](const Region& r) {
+        return r.bsdf_fraction < 1.0f && r.sampling.total() > 0.0f;
+      }));
 }
 
 void PathGuide::split(std::uint32_t node, double records, double threshold) {
@@ -226,6 +261,7 @@ void PathGuide::split(std::uint32_t node, double records, double threshold) {
   const float mid = 0.5f * (lo[axis] + hi[axis]);
   Region upper;
   upper.sampling = regions_[region].sampling;
+  upper.bsdf_fraction = regions_[region].bsdf_fraction;
   upper.lo = lo;
   upper.hi = hi;
   upper.lo[axis] = mid;
@@ -259,6 +295,8 @@ void PathGuide::rebuild_topologies() {
   for (Region& r : regions_) {
     r.flux.assign(4 * r.training.nodes.size(), 0);
     r.records = 0;
+    std::fill(std::begin(r.moments), std::end(r.moments), std::uint64_t(0));
+    r.fraction_samples = 0;
   }
 }
 

@@ -4,12 +4,23 @@
 // incident radiance is learned while rendering, per region of space (a binary tree over the
 // scene's box) and direction (in each region a quadtree over the cylindrical map
 // (cos theta, phi) of the sphere): the paper's SD-tree, its section 3. The integrator samples
-// directions from it, mixed with BSDF sampling by one-sample MIS with the BSDF chosen half
-// the time (the paper's alpha = 0.5). Training is in passes of doubling sample counts (the
+// directions from it, mixed with BSDF sampling by one-sample MIS, the BSDF chosen with a
+// probability learned per region (below). Training is in passes of doubling sample counts (the
 // paper's "binary doubling"): pass k samples with the distribution learned in pass k - 1
 // and records into a copy of it whose spatial tree is refined where a region saw more than
 // c sqrt(2^k) records and whose quadtrees are refined where a node holds more than rho of
 // the energy.
+//
+// The BSDF's share of the mixture per region (Mueller 2019, "Practical Path Guiding in
+// Production", section "Learning the BSDF sampling fraction", which optimises it by
+// gradient descent): here each pass estimates, for every candidate share a in
+// kBsdfFractions, the second moment of the one-sample estimator at the region's guided
+// vertices, sum of F^2 / (p_a p_drawn) over their samples (F = f cos L, the integrand;
+// p_a = a p_bsdf + (1 - a) p_guide; an unbiased estimate of the integral of F^2 / p_a
+// wherever p_drawn > 0), and the next pass uses the candidate of the least. A share of 1
+// turns the region's guide off: where the guide misses what BSDF sampling finds (a small
+// lamp, a narrow highlight), the fixed half share gave those rare directions twice their
+// BSDF weight.
 //
 // Determinism: the records of a pass are summed in 64-bit fixed point with integer atomics
 // (the order of integer additions does not change their sum), so the guide after a pass,
@@ -74,6 +85,8 @@ struct GuideOptions {
   /// doubled until the quadtrees of all regions together fit this many nodes.
   std::size_t max_regions = 1u << 14;
   std::size_t max_directional_nodes = 1u << 19;
+  /// In [0, 1): every region's BSDF share, fixed; negative: learned per region.
+  float fixed_bsdf_fraction = -1.0f;
 };
 
 /// The SD-tree: what the integrator samples from (the distribution learned in the previous
@@ -89,6 +102,19 @@ class PathGuide {
   const DirectionalQuadtree& distribution(std::uint32_t region) const {
     return regions_[region].sampling;
   }
+  /// The candidate BSDF shares of the mixture; a region starts at kInitialBsdfFraction.
+  static constexpr int kFractionCount = 6;
+  static constexpr float kBsdfFractions[kFractionCount] = {0.2f, 0.35f, 0.5f, 0.65f, 0.8f, 1.0f};
+  static constexpr float kInitialBsdfFraction = 1.0f;
+  /// Guided samples a region needs in a pass before its share is chosen again.
+  static constexpr std::uint64_t kMinFractionSamples = 64;
+  /// The BSDF's share of the mixture at `region`'s guided vertices (1: not guided).
+  float bsdf_fraction(std::uint32_t region) const { return regions_[region].bsdf_fraction; }
+  /// One sample of a guided vertex of `region` for the choice of its share: the integrand
+  /// `F` = f cos L (L the radiance the path found along the direction), the BSDF's and the
+  /// guide's pdfs of the direction and the pdf it was drawn with. Thread-safe.
+  void record_fraction(std::uint32_t region, float F, float p_bsdf, float p_guide, float p_drawn);
+
   /// One radiance record of this pass: the incident radiance `value` along `w` at a point
   /// of `region`, divided by the pdf with which `w` was sampled (a Monte Carlo estimate of the flux
   /// through the leaf holding `w`). Thread-safe.
@@ -100,6 +126,9 @@ class PathGuide {
 
   /// Passes ended so far.
   int passes() const { return passes_; }
+  /// The regions whose guided vertices sample from their guide in the next pass (a learned
+  /// distribution and a BSDF share below 1), as of the last end_pass.
+  std::size_t guided_regions() const { return guided_regions_; }
   std::size_t region_count() const { return regions_.size(); }
   /// Directional nodes of the learned distributions.
   std::size_t directional_nodes() const;
@@ -112,6 +141,10 @@ class PathGuide {
   /// the guide only (every sample stays unbiased).
   static constexpr double kFixedScale = 1048576.0;  // 2^20
   static constexpr float kMaxRecord = 1e6f;
+  /// The second moments of the share's choice likewise: scale 2^12, each sample's term
+  /// clamped to 1e8 (2^24 samples of a region in a pass stay below 2^64).
+  static constexpr double kMomentScale = 4096.0;
+  static constexpr float kMaxMoment = 1e8f;
 
  private:
   struct SpatialNode {
@@ -126,7 +159,10 @@ class PathGuide {
     DirectionalQuadtree training;
     std::vector<std::uint64_t> flux;
     std::uint64_t records = 0;
-    glm::vec3 lo{0.0f}, hi{0.0f};  ///< the region's box
+    glm::vec3 lo{0.0f}, hi{0.0f};                ///< the region's box
+    float bsdf_fraction = kInitialBsdfFraction;  ///< chosen from the previous pass
+    std::uint64_t moments[kFractionCount] = {};  ///< this pass's, fixed point
+    std::uint64_t fraction_samples = 0;
   };
   void split(std::uint32_t node, double records, double threshold);
   void rebuild_topologies();
@@ -135,6 +171,7 @@ class PathGuide {
   std::vector<SpatialNode> nodes_;
   std::vector<Region> regions_;
   int passes_ = 0;
+  std::size_t guided_regions_ = 0;
 };
 
 /// A quadtree over the same square whose quadrants are subdivided while they hold more than

@@ -224,30 +224,43 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
     const BoundBsdf brdf = bsdf.at(frame.to_local(wo));
     // Path guiding (guiding.h): every vertex without a delta lobe records what it receives;
     // a diffuse or rough one whose region has learned something also samples from it.
-    const DirectionalQuadtree* guide = nullptr;
+    // The region's BSDF share of the mixture (guiding.h) may turn its guide off; the vertex
+    // still records for the share's next choice.
+    const DirectionalQuadtree* guide = nullptr;    // sampled from
+    const DirectionalQuadtree* learned = nullptr;  // the region's, for the share's records
+    float bsdf_fraction = 1.0f;
     std::uint32_t region = 0;
     const bool recorded = guide_ && !bsdf.has_delta_lobe();
     if (recorded) {
       region = guide_->region_at(hit.p);
-      if (guided_vertex(in.params, bsdf) && guide_->distribution(region).total() > 0.0f)
-        guide = &guide_->distribution(region);
+      if (guided_vertex(in.params, bsdf) && guide_->distribution(region).total() > 0.0f) {
+        learned = &guide_->distribution(region);
+        bsdf_fraction = guide_->bsdf_fraction(region);
+        if (bsdf_fraction < 1.0f) guide = learned;
+      }
     }
 
     // Direct lighting: one light sample, weighted against BSDF sampling.
     if (transmits) [[unlikely]]
-      out.L +=
-          sample_ld_transmissive(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far, guide);
+      out.L += sample_ld_transmissive(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far,
+                                      guide, bsdf_fraction);
     else
-      out.L += sample_ld<false>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far, guide);
+      out.L += sample_ld<false>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far, guide,
+                                bsdf_fraction);
 
     // Continue the path by sampling the BSDF (visible-normal GGX, cosine, the dielectric),
     // or at a guided vertex the mixture of the BSDF and the guide.
-    float guided_boost = 1.0f;
-    const BrdfSample bs = guide ? sample_guided(brdf, frame, *guide, u_nee.w,
-                                                glm::vec2(u_bsdf.x, u_bsdf.y), guided_boost)
-                                : brdf.sample(u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y));
+    float guided_boost = 1.0f, p_bsdf = 0.0f, p_guide = 0.0f;
+    const BrdfSample bs =
+        guide ? sample_guided(brdf, frame, *guide, bsdf_fraction, u_nee.w,
+                              glm::vec2(u_bsdf.x, u_bsdf.y), guided_boost, p_bsdf, p_guide)
+              : brdf.sample(u_nee.w, glm::vec2(u_bsdf.x, u_bsdf.y));
     if (!bs.valid) break;
     const glm::vec3 wi = frame.to_world(bs.wi);
+    if (learned && !guide && !bs.delta) {
+      p_bsdf = bs.pdf;
+      p_guide = learned->pdf(wi);
+    }
     // The shading frame's side must agree with the geometric one: a direction on the other
     // side of the triangle than its lobe meant would leak light.
     const bool transmitted = bs.wi.z < 0.0f;
@@ -281,7 +294,8 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
       env->prefetch(env_at);
     }
     if (recorded && !bs.delta && guide_count < kMaxGuideVertices)
-      guide_vertices[guide_count++] = {out.L, beta, wi, bs.pdf, region};
+      guide_vertices[guide_count++] = {
+          out.L, beta, wi, bs.pdf, region, bs.weight * bs.pdf, p_bsdf, p_guide, learned != nullptr};
     prev_pdf = bs.pdf;  // infinite after a delta lobe: MIS gives it all the weight
     // A bounce is specular for the cone when its lobe is narrower than a pixel's cone (the
     // sampled direction's solid angle 1 / pdf below pi spread^2): smooth glass's delta lobe,
@@ -315,31 +329,33 @@ PathSample Integrator::Li(glm::vec3 origin, glm::vec3 direction,
 [[gnu::noinline]] glm::vec3 Integrator::sample_ld_transmissive(
     const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf, glm::vec4 u_nee,
     glm::vec3 beta, std::uint64_t& rays, glm::vec3 sigma_near, glm::vec3 sigma_far,
-    const DirectionalQuadtree* guide) const {
-  return sample_ld<true>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far, guide);
+    const DirectionalQuadtree* guide, float bsdf_fraction) const {
+  return sample_ld<true>(hit, frame, brdf, u_nee, beta, rays, sigma_near, sigma_far, guide,
+                         bsdf_fraction);
 }
 
 BrdfSample Integrator::sample_guided(const BoundBsdf& brdf, const Frame& frame,
-                                     const DirectionalQuadtree& guide, float u_choice, glm::vec2 u,
-                                     float& boost) const {
+                                     const DirectionalQuadtree& guide, float a, float u_choice,
+                                     glm::vec2 u, float& boost, float& p_bsdf,
+                                     float& p_guide) const {
   // One-sample MIS (Veach 1997, section 9.2.4) with the balance heuristic: whichever
   // strategy drew the direction, its weight is f cos / (a p_bsdf + (1 - a) p_guide), the
-  // mixture's pdf (Mueller et al. 2017 mix the two so, with a = 0.5). The choice reuses the
-  // BSDF's lobe number, rescaled to [0, 1) for the BSDF when it is chosen.
-  constexpr float a = kGuideBsdfFraction;
+  // mixture's pdf (Mueller et al. 2017 mix the two so, with a = 0.5; here a is learned per
+  // region, guiding.h). The choice reuses the BSDF's lobe number, rescaled to [0, 1) for the
+  // BSDF when it is chosen.
   if (u_choice < a) {
     BrdfSample s = brdf.sample(std::min(u_choice / a, 0x1.fffffep-1f), u);
     if (!s.valid || s.delta) return s;
-    const float p = a * s.pdf + (1.0f - a) * guide.pdf(frame.to_world(s.wi));
+    p_bsdf = s.pdf;
+    p_guide = guide.pdf(frame.to_world(s.wi));
+    const float p = a * s.pdf + (1.0f - a) * p_guide;
     boost = p / s.pdf;
     s.weight *= s.pdf / p;
     s.pdf = p;
     return s;
   }
   BrdfSample s;
-  float p_guide = 0.0f;
   s.wi = frame.to_local(guide.sample(u, p_guide));
-  float p_bsdf = 0.0f;
   const glm::vec3 f = brdf.eval(s.wi, &p_bsdf);
   const float p = a * p_bsdf + (1.0f - a) * p_guide;
   if (!(p > 0.0f) || f == glm::vec3(0.0f)) return s;
@@ -367,6 +383,15 @@ void Integrator::record_path(const GuideVertex* vertices, int count, glm::vec3 L
         ++channels;
       }
     if (channels > 0 && v.pdf > 0.0f) guide_->record(v.region, v.wi, sum / float(channels) / v.pdf);
+    // The BSDF share's record: the integrand F = f cos L along the direction, L the
+    // radiance found after the vertex (the same over-the-throughput estimate), mean over
+    // the channels.
+    if (v.fraction && channels > 0) {
+      float F = 0.0f;
+      for (int c = 0; c < 3; ++c)
+        if (v.beta[c] > 0.0f) F += v.f_cos[c] * (std::max(after[c], 0.0f) / v.beta[c]);
+      guide_->record_fraction(v.region, F / float(channels), v.p_bsdf, v.p_guide, v.pdf);
+    }
   }
 }
 
@@ -416,8 +441,8 @@ template <bool kTransmits>
 inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame,
                                        const BoundBsdf& brdf, glm::vec4 u_nee, glm::vec3 beta,
                                        std::uint64_t& rays, glm::vec3 sigma_near,
-                                       glm::vec3 sigma_far,
-                                       const DirectionalQuadtree* guide) const {
+                                       glm::vec3 sigma_far, const DirectionalQuadtree* guide,
+                                       float bsdf_fraction) const {
   LightSample ls;
   // (The light choice needs no random number when there is a single light.)
   const float u_light = lights_.size() > 1 ? u_nee.x : 0.5f;
@@ -437,7 +462,7 @@ inline glm::vec3 Integrator::sample_ld(const SurfaceHit& hit, const Frame& frame
   if (f == glm::vec3(0.0f)) return glm::vec3(0.0f);
   // At a guided vertex the other strategy is the mixture of the BSDF and the guide.
   if (mis && guide)
-    bsdf_pdf = kGuideBsdfFraction * bsdf_pdf + (1.0f - kGuideBsdfFraction) * guide->pdf(ls.wi);
+    bsdf_pdf = bsdf_fraction * bsdf_pdf + (1.0f - bsdf_fraction) * guide->pdf(ls.wi);
   float w = 1.0f;
   if (mis) w = power_heuristic(ls.pdf, bsdf_pdf);
   glm::vec3 tr = transmittance<kTransmits>(hit, ls, above ? hit.ng : -hit.ng, rays);

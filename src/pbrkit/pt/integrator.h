@@ -95,10 +95,6 @@ struct PathSample {
   bool medium_overflow = false;
 };
 
-/// Path guiding's share of the directions at a guided vertex that BSDF sampling draws
-/// (one-sample MIS with the guide; the paper's alpha = 0.5).
-inline constexpr float kGuideBsdfFraction = 0.5f;
-
 /// Whether a vertex is guided (PathTracerSettings::guiding): where the guide can find what
 /// BSDF sampling misses, diffuse and rough surfaces. A narrow lobe (smooth metal, smooth
 /// glass) is sampled better by itself than by a guide of a few degrees' resolution, and a
@@ -145,26 +141,33 @@ class Integrator {
   template <bool kTransmits>
   glm::vec3 sample_ld(const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf,
                       glm::vec4 u_nee, glm::vec3 beta, std::uint64_t& rays, glm::vec3 sigma_near,
-                      glm::vec3 sigma_far, const DirectionalQuadtree* guide) const;
+                      glm::vec3 sigma_far, const DirectionalQuadtree* guide,
+                      float bsdf_fraction) const;
   /// sample_ld<true>, out of line: Li stays the size it was for opaque surfaces (its
   /// inlining budget otherwise moved other helpers out of line).
   glm::vec3 sample_ld_transmissive(const SurfaceHit& hit, const Frame& frame, const BoundBsdf& brdf,
                                    glm::vec4 u_nee, glm::vec3 beta, std::uint64_t& rays,
                                    glm::vec3 sigma_near, glm::vec3 sigma_far,
-                                   const DirectionalQuadtree* guide) const;
-  /// One direction at a guided vertex: from the BSDF (with probability kGuideBsdfFraction)
-  /// or from the guide, weighted f cos / pdf by the mixture's pdf (one-sample MIS, the
-  /// balance heuristic); `pdf` the mixture's, what MIS with light sampling needs. `boost`:
-  /// p_mixture / p_bsdf for the direction drawn, which Russian roulette undoes.
+                                   const DirectionalQuadtree* guide, float bsdf_fraction) const;
+  /// One direction at a guided vertex: from the BSDF (with probability `a`, the region's
+  /// PathGuide::bsdf_fraction) or from the guide, weighted f cos / pdf by the mixture's pdf
+  /// (one-sample MIS, the balance heuristic); `pdf` the mixture's, what MIS with light
+  /// sampling needs. `boost`: p_mixture / p_bsdf for the direction drawn, which Russian
+  /// roulette undoes; `p_bsdf`, `p_guide`: the two pdfs of the direction.
   BrdfSample sample_guided(const BoundBsdf& brdf, const Frame& frame,
-                           const DirectionalQuadtree& guide, float u_choice, glm::vec2 u,
-                           float& boost) const;
-  /// A guided vertex's record: where it was, the direction it continued in and that
-  /// direction's pdf, the throughput after it and the path's radiance before it.
+                           const DirectionalQuadtree& guide, float a, float u_choice, glm::vec2 u,
+                           float& boost, float& p_bsdf, float& p_guide) const;
+  /// A recorded vertex: where it was, the direction it continued in and that direction's
+  /// pdf, the throughput after it and the path's radiance before it; at a vertex whose
+  /// region has learned a guide, also f cos of the direction and its BSDF and guide pdfs
+  /// (the BSDF share's choice, PathGuide::record_fraction).
   struct GuideVertex {
     glm::vec3 L_before, beta, wi;
     float pdf;
     std::uint32_t region;
+    glm::vec3 f_cos{0.0f};
+    float p_bsdf = 0.0f, p_guide = 0.0f;
+    bool fraction = false;
   };
   static constexpr int kMaxGuideVertices = 32;
   /// Records what each vertex of a finished path received along its continuation: the

@@ -30,7 +30,6 @@
 #include "pbrkit/pt/guiding.h"
 #include "pbrkit/pt/integrator.h"
 #include "pbrkit/pt/lights.h"
-#include "pbrkit/pt/pass_weighting.h"
 #include "pbrkit/pt/pixel_filter.h"
 #include "pbrkit/util/error.h"
 #include "pbrkit/util/log.h"
@@ -93,8 +92,11 @@ RenderSetup build_setup(const Scene& scene, const Environment* env,
     if (settings.max_bounces > 0) EnergyTable::get(direct_geometry(settings.brdf.model));
     // Path guiding learns from scratch in every render (a resumed one and each sample range
     // too): its guide is built from this call's own samples.
-    if (settings.guiding == Guiding::kOn && settings.max_bounces > 0)
-      setup.guide = std::make_unique<PathGuide>(setup.geometry->bounds());
+    if (settings.guiding == Guiding::kOn && settings.max_bounces > 0) {
+      GuideOptions options;
+      options.fixed_bsdf_fraction = settings.guiding_bsdf_fraction;
+      setup.guide = std::make_unique<PathGuide>(setup.geometry->bounds(), options);
+    }
   });
   stats.build_seconds = std::chrono::duration<double>(Clock::now() - build_start).count();
   return setup;
@@ -164,7 +166,6 @@ class SampleLoop {
         total_(total),
         camera_rays_(camera, float(settings.width) / float(settings.height)),
         guide_(setup.guide.get()),
-        passes_(setup.guide ? std::make_unique<PassWeighting>(film) : nullptr),
         integrator_(scene, *setup.geometry, *setup.lights, settings,
                     camera_rays_.pixel_cone(settings.height), setup.guide.get()),
         sampler_(settings.seed),
@@ -199,9 +200,6 @@ class SampleLoop {
   const std::uint32_t begin_, total_;
   const CameraRays camera_rays_;
   PathGuide* const guide_;
-  // With guiding, the passes' samples are weighted by their sample counts before they reach
-  // the film's sums (pass_weighting.h).
-  const std::unique_ptr<PassWeighting> passes_;
   const Integrator integrator_;
   const OwenSobolSampler sampler_;
   const int tiles_x_, tiles_y_;
@@ -321,15 +319,12 @@ std::uint64_t SampleLoop::render_packet(int bx, int by, PathCounts& counts) {
                                            std::uint32_t(i), index, counts.rays, times[k]);
       counts.non_finite += ps.non_finite ? 1 : 0;
       counts.medium_overflows += ps.medium_overflow ? 1 : 0;
-      if (passes_)
-        passes_->add(i, ps.L, in_half_buffer(index));
-      else
-        film_.sum[i] += ps.L;
+      film_.sum[i] += ps.L;
       film_.albedo[i] += ps.albedo;
       film_.normal[i] += ps.normal;
       film_.depth[i] += ps.depth;
       if (in_half_buffer(index)) {
-        if (!passes_) film_.sum_even[i] += ps.L;
+        film_.sum_even[i] += ps.L;
         film_.albedo_even[i] += ps.albedo;
         film_.normal_even[i] += ps.normal;
         film_.depth_even[i] += ps.depth;
@@ -405,9 +400,6 @@ bool SampleLoop::run() {
       target_ = next_target(target_, total_, settings_.min_spp);
     }
     render_pass();
-    // With guiding, the pass's samples (a stopped pass's too) reach the film weighted by
-    // its planned sample count.
-    if (passes_) passes_->end_pass(film_, float(guided_step_ / 2));
     if (should_stop()) break;
     // The guide learns from the pass (between passes: the paths record into it with integer
     // atomics, read here in a fixed order).
@@ -453,6 +445,7 @@ void SampleLoop::finish(PathTracerStats& stats) {
   if (guide_) {
     stats.guide_bytes = guide_->bytes();
     stats.guide_regions = guide_->region_count();
+    stats.guide_guided_regions = guide_->guided_regions();
     stats.guide_nodes = guide_->directional_nodes();
     stats.guide_passes = guide_->passes();
     stats.guide_seconds = guide_seconds_;
@@ -483,11 +476,12 @@ PathTracerResult render_path_observed(const Scene& scene, const Environment* env
   result.stats.noise = mean_pixel_noise(result.film);
   if (setup.guide)
     note(
-        "memory: path guide {:.1f} MB ({} regions, {} directional nodes, learned over {} passes; "
-        "building it took {:.2f} s of the render's {:.1f} s)",
+        "memory: path guide {:.1f} MB ({} regions, {} of them sampling their guide in the last "
+        "pass, {} directional nodes, learned over {} passes; building it took {:.2f} s of the "
+        "render's {:.1f} s)",
         double(result.stats.guide_bytes) * 1e-6, result.stats.guide_regions,
-        result.stats.guide_nodes, result.stats.guide_passes, result.stats.guide_seconds,
-        result.stats.render_seconds);
+        result.stats.guide_guided_regions, result.stats.guide_nodes, result.stats.guide_passes,
+        result.stats.guide_seconds, result.stats.render_seconds);
   result.color = result.film.color();
   return result;
 }

@@ -7,7 +7,6 @@ target_sources(pbrkit PRIVATE
   ${CMAKE_CURRENT_LIST_DIR}/integrator.cpp
   ${CMAKE_CURRENT_LIST_DIR}/light_bvh.cpp
   ${CMAKE_CURRENT_LIST_DIR}/lights.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/pass_weighting.cpp
   ${CMAKE_CURRENT_LIST_DIR}/path_tracer.cpp
   ${CMAKE_CURRENT_LIST_DIR}/pixel_filter.cpp
   ${CMAKE_CURRENT_LIST_DIR}/progressive_render.cpp
