@@ -1,9 +1,11 @@
 #!/usr/bin/python3
-"""The denoiser at equal time against Blender Cycles (docs/benchmarks_archive.md, "The
-denoiser at equal time against Cycles"): the built-in `spheres` under the default environment, 256x256, 8
+"""pbrkit at equal time against Blender Cycles: by default the denoiser (docs/benchmarks_archive.md,
+"The denoiser at equal time against Cycles"), the built-in `spheres` under the default
+environment; with `--compare guiding`, path guiding on a scene (BENCHMARKS.md, "Path
+guiding"; `--scene interior`), pbrkit's raw image with guiding on and off. 256x256, 8
 bounces, 2 threads. Cycles renders 256 spp; its render call's wall time T is the budget.
 pbrkit gets T for its whole process (start-up, render, denoise, write): `pbrkit render
---denoise --time t` with t = T less its measured overhead. Each image is compared with its
+--time t` with t = T less its measured overhead. Each image is compared with its
 own renderer's reference, rendered twice with different seeds (r1, r2), with the
 reference's own variance subtracted ((r1 - r2)^2 / 4 estimates the variance of r, the mean
 of two independent renders):
@@ -15,11 +17,13 @@ the tests). Usage:
 
     bench/cycles_equal_time.py [--pbrkit build/release/bin/pbrkit] [--runs 3]
                                [--cache build/cycles_equal_time] [--ref-spp 2048]
+                               [--scene spheres] [--compare denoise|guiding]
 (PBRKIT_PEERS=DIR: the peers folder when it is not ../shared/peers beside the checkout)
 """
 import argparse
 import json
 import os
+import struct
 import subprocess
 import sys
 import time
@@ -61,6 +65,28 @@ def cycles(args, scene, env, spp, seed, out):
         return json.load(f)["render_wall_s"]
 
 
+def cycles_copy(scene, out):
+    """A copy of the binary glTF `scene` for Cycles: Blender 3.4's importer divides a
+    directional light's lux by 683 (lumens per watt) to get its sun's W/m^2, where pbrkit
+    (and glTF's renderers) take the lux as the irradiance in the image's units; the copy's
+    suns carry 683 times the intensity, so that both renderers' suns give the same
+    irradiance. Other punctual lights are refused (not needed yet)."""
+    with open(scene, "rb") as f:
+        data = f.read()
+    n = struct.unpack("<I", data[12:16])[0]
+    gltf = json.loads(data[20:20 + n])
+    for light in gltf.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights", []):
+        if light["type"] != "directional":
+            raise SystemExit(f"{scene}: a {light['type']} light; only suns are converted for Cycles")
+        light["intensity"] = light.get("intensity", 1.0) * 683.0
+    text = json.dumps(gltf, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    rest = data[20 + n:]
+    with open(out, "wb") as f:
+        f.write(data[:8] + struct.pack("<II", 20 + len(text) + len(rest), len(text)) + b"JSON" +
+                text + rest)
+
+
 def pbrkit(args, scene, out, spp, seed, extra):
     cmd = [args.pbrkit, "render", scene, "--renderer", "path", "--width", "256", "--height",
            "256", "--max-bounces", "8", "--threads", "2", "--spp", str(spp), "--seed", str(seed),
@@ -78,12 +104,16 @@ def main():
     ap.add_argument("--runs", type=int, default=3)
     ap.add_argument("--ref-spp", type=int, default=2048, help="Cycles' references (pbrkit: twice)")
     ap.add_argument("--refs-only", action="store_true", help="render the cached references, stop")
+    ap.add_argument("--scene", default="spheres", help="a built-in scene")
+    ap.add_argument("--compare", choices=["denoise", "guiding"], default="denoise")
     args = ap.parse_args()
     os.makedirs(args.cache, exist_ok=True)
-    c = lambda name: os.path.join(args.cache, name)  # noqa: E731
-    scene = c("spheres.glb")
-    subprocess.run([args.pbrkit, "scene", "write", "spheres", scene], check=True,
+    c = lambda name: os.path.join(args.cache, f"{args.scene}_{name}")  # noqa: E731
+    scene = c("scene.glb")
+    subprocess.run([args.pbrkit, "scene", "write", args.scene, scene], check=True,
                    stdout=subprocess.DEVNULL)
+    cycles_scene = c("scene_cycles.glb")
+    cycles_copy(scene, cycles_scene)
     refs = {}
     for who in ("cycles", "pbrkit"):
         for seed in (101, 102):
@@ -91,12 +121,14 @@ def main():
             if not os.path.exists(path):
                 print(f"rendering {who}'s reference, seed {seed}...", file=sys.stderr, flush=True)
                 if who == "cycles":
-                    cycles(args, scene, args.env, args.ref_spp, seed, path)
+                    cycles(args, cycles_scene, args.env, args.ref_spp, seed, path)
                 else:
                     pbrkit(args, scene, path, 2 * args.ref_spp, seed, ["--noise-threshold", "0"])
             refs.setdefault(who, []).append(rgb(path))
     if args.refs_only:
         return
+    if args.compare == "guiding":
+        return compare_guiding(args, c, cycles_scene, scene, refs)
     # pbrkit's overhead (load, BVH, denoise, write) at the budget: one run with a short limit.
     overhead = pbrkit(args, scene, c("overhead.exr"), 1000000, 7, ["--denoise", "--noise-threshold", "0", "--time", "1"]) - 1
     print(f"pbrkit's start-up + denoise + write: {overhead:.2f} s", flush=True)
@@ -105,7 +137,7 @@ def main():
     print("|---|---|---|---|---|---|---|---|")
     rows = []
     for run in range(args.runs):
-        t = cycles(args, scene, args.env, 256, 200 + run, c("cycles.exr"))
+        t = cycles(args, cycles_scene, args.env, 256, 200 + run, c("cycles.exr"))
         e_c = rel_mse(rgb(c("cycles.exr")), *refs["cycles"])
         wall = pbrkit(args, scene, c("pbrkit.exr"), 1000000, 200 + run,
                       ["--denoise", "--noise-threshold", "0", "--time",
@@ -118,6 +150,34 @@ def main():
     med = lambda v: sorted(v)[len(v) // 2]  # noqa: E731
     print(f"median: raw {med([r[0] for r in rows]):.2f}x, denoised {med([r[1] for r in rows]):.2f}x "
           "Cycles' relative MSE")
+
+
+def compare_guiding(args, c, cycles_scene, scene, refs):
+    # pbrkit's overhead (load, BVH, write) at the budget: one run with a short limit.
+    overhead = pbrkit(args, scene, c("overhead.exr"), 1000000, 7,
+                      ["--noise-threshold", "0", "--time", "1"]) - 1
+    print(f"pbrkit's start-up + write: {overhead:.2f} s", flush=True)
+    print("| run | Cycles 256 spp: render s | relMSE | pbrkit guided: whole process s | relMSE | "
+          "unguided: s | relMSE | guided / unguided | guided / Cycles |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    rows = []
+    for run in range(args.runs):
+        t = cycles(args, cycles_scene, args.env, 256, 200 + run, c("cycles.exr"))
+        e_c = rel_mse(rgb(c("cycles.exr")), *refs["cycles"])
+        e = {}
+        wall = {}
+        for guiding in ("on", "off"):
+            wall[guiding] = pbrkit(args, scene, c(f"pbrkit_{guiding}.exr"), 1000000, 200 + run,
+                                   ["--noise-threshold", "0", "--guiding", guiding, "--time",
+                                    f"{max(0.1, t - overhead):.3f}"])
+            e[guiding] = rel_mse(rgb(c(f"pbrkit_{guiding}.exr")), *refs["pbrkit"])
+        rows.append((e["on"] / e["off"], e["on"] / e_c))
+        print(f"| {run + 1} | {t:.2f} | {e_c:.3g} | {wall['on']:.2f} | {e['on']:.3g} | "
+              f"{wall['off']:.2f} | {e['off']:.3g} | {rows[-1][0]:.2f}x | {rows[-1][1]:.2f}x |",
+              flush=True)
+    med = lambda v: sorted(v)[len(v) // 2]  # noqa: E731
+    print(f"median: guided / unguided {med([r[0] for r in rows]):.2f}x, guided / Cycles "
+          f"{med([r[1] for r in rows]):.2f}x relative MSE")
 
 
 if __name__ == "__main__":
