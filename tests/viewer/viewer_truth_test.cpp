@@ -66,16 +66,17 @@ TEST(ViewerTruth, PathViewIsTheRenderOfTheSameSamples) {
 }
 
 // With --guiding on (the panel's toggle) the path view is `render --guiding on`'s image:
-// a guided render's bits do not depend on the thread count, and differ from unguided ones.
+// a guided render's bits do not depend on the thread count, and differ from unguided ones
+// (the sunlit interior, at a size where some regions learn that their guide pays).
 TEST(ViewerTruth, GuidedPathViewIsTheGuidedRender) {
   if (!have_xvfb_run()) GTEST_SKIP() << "xvfb-run is not installed";
   const auto dir = pbrkit::test::scratch_dir();
-  const std::string args = "--spp 15 --seed 5 --width 96 --height 72";
-  const Image shown = view("cornell", "path", args + " --guiding on", dir);
-  const Image guided = render_path("cornell", args + " --guiding on", dir);
+  const std::string args = "--spp 63 --seed 5 --width 96 --height 72";
+  const Image shown = view("interior", "path", args + " --guiding on", dir);
+  const Image guided = render_path("interior", args + " --guiding on", dir);
   ASSERT_EQ(shown.data.size(), guided.data.size());
   EXPECT_EQ(shown.data, guided.data);
-  const Image unguided = render_path("cornell", args, dir);
+  const Image unguided = render_path("interior", args, dir);
   EXPECT_NE(unguided.data, shown.data);
 }
 
