@@ -264,8 +264,10 @@ TEST(PathGuiding, BsdfShareFollowsTheIntegrand) {
   for (int i = 0; i < 100; ++i) held.record_fraction(0, 0.1f, 2.0f, 0.1f, 1.05f);
   held.end_pass();
   EXPECT_EQ(held.bsdf_fraction(0), 0.5f);
-  fixed.fixed_bsdf_fraction = 1.5f;
-  EXPECT_THROW(PathGuide(b, fixed), Error);
+  for (const float bad : {1.5f, 0.0f, std::nanf("")}) {
+    fixed.fixed_bsdf_fraction = bad;
+    EXPECT_THROW(PathGuide(b, fixed), Error) << bad;
+  }
 }
 
 // The sum over pixels of the variance of each pixel's mean, from its two half buffers

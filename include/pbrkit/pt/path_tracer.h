@@ -110,7 +110,7 @@ struct PathTracerSettings {
   Guiding guiding = Guiding::kOff;
   /// With guiding, the probability that a guided vertex samples its BSDF rather than the
   /// guide: negative (the default) learns it per region (docs/MODEL.md, "Path guiding"); a
-  /// value in [0, 1) fixes it everywhere (Mueller et al. 2017 fix it at 0.5).
+  /// value in (0, 1] fixes it everywhere (Mueller et al. 2017 fix it at 0.5).
   float guiding_bsdf_fraction = -1.0f;
   BrdfOptions brdf;
   PixelFilter filter = PixelFilter::kTent;

@@ -155,9 +155,11 @@ DirectionalQuadtree refine_topology(const DirectionalQuadtree& source, float rho
 }
 
 PathGuide::PathGuide(const Bounds& bounds, const GuideOptions& options) : options_(options) {
-  if (!(options.fixed_bsdf_fraction <= 1.0f))
+  // A share of 0 would leave directions the guide has not learned unsampled: biased.
+  if (!(options.fixed_bsdf_fraction <= 1.0f) || options.fixed_bsdf_fraction == 0.0f)
     throw Error("path guiding: the BSDF share " + std::to_string(options.fixed_bsdf_fraction) +
-                " is not in [0, 1] (or negative: learned per region)");
+                " is not in (0, 1] (0 would leave what the guide has not learned unsampled; "
+                "negative: learned per region)");
   Region root;
   if (bounds.empty()) {
     root.lo = glm::vec3(-1.0f);

@@ -85,7 +85,7 @@ struct GuideOptions {
   /// doubled until the quadtrees of all regions together fit this many nodes.
   std::size_t max_regions = 1u << 14;
   std::size_t max_directional_nodes = 1u << 19;
-  /// In [0, 1): every region's BSDF share, fixed; negative: learned per region.
+  /// In (0, 1]: every region's BSDF share, fixed; negative: learned per region.
   float fixed_bsdf_fraction = -1.0f;
 };
 
