@@ -106,6 +106,8 @@ def main():
     ap.add_argument("--refs-only", action="store_true", help="render the cached references, stop")
     ap.add_argument("--scene", default="spheres", help="a built-in scene")
     ap.add_argument("--compare", choices=["denoise", "guiding"], default="denoise")
+    ap.add_argument("--denoiser", choices=["classic", "learned"],
+                    help="with --compare denoise: pbrkit's denoiser (default: render's)")
     args = ap.parse_args()
     os.makedirs(args.cache, exist_ok=True)
     c = lambda name: os.path.join(args.cache, f"{args.scene}_{name}")  # noqa: E731
@@ -129,8 +131,9 @@ def main():
         return
     if args.compare == "guiding":
         return compare_guiding(args, c, cycles_scene, scene, refs)
+    denoiser = ["--denoiser", args.denoiser] if args.denoiser else []
     # pbrkit's overhead (load, BVH, denoise, write) at the budget: one run with a short limit.
-    overhead = pbrkit(args, scene, c("overhead.exr"), 1000000, 7, ["--denoise", "--noise-threshold", "0", "--time", "1"]) - 1
+    overhead = pbrkit(args, scene, c("overhead.exr"), 1000000, 7, ["--denoise", "--noise-threshold", "0", "--time", "1"] + denoiser) - 1
     print(f"pbrkit's start-up + denoise + write: {overhead:.2f} s", flush=True)
     print("| run | Cycles 256 spp: render s | relMSE | pbrkit whole process s | raw relMSE | "
           "denoised relMSE | raw / Cycles | denoised / Cycles |")
@@ -141,7 +144,7 @@ def main():
         e_c = rel_mse(rgb(c("cycles.exr")), *refs["cycles"])
         wall = pbrkit(args, scene, c("pbrkit.exr"), 1000000, 200 + run,
                       ["--denoise", "--noise-threshold", "0", "--time",
-                       f"{max(0.1, t - overhead):.3f}"])
+                       f"{max(0.1, t - overhead):.3f}"] + denoiser)
         e_raw = rel_mse(rgb(c("pbrkit.exr"), "raw"), *refs["pbrkit"])
         e_dn = rel_mse(rgb(c("pbrkit.exr")), *refs["pbrkit"])
         rows.append((e_raw / e_c, e_dn / e_c))
