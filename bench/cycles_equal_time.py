@@ -96,6 +96,23 @@ def pbrkit(args, scene, out, spp, seed, extra):
     return time.monotonic() - start
 
 
+def median(values):
+    return sorted(values)[len(values) // 2]
+
+
+def overhead_of(args, scene, c, extra):
+    """pbrkit's whole process less its render at the budget (load, BVH, denoise, write):
+    one run with a one-second limit."""
+    return pbrkit(args, scene, c("overhead.exr"), 1000000, 7,
+                  ["--noise-threshold", "0", "--time", "1"] + extra) - 1
+
+
+def cycles_run(args, cycles_scene, c, refs, run):
+    """Cycles at 256 spp: its render call's seconds (the budget) and relMSE."""
+    t = cycles(args, cycles_scene, args.env, 256, 200 + run, c("cycles.exr"))
+    return t, rel_mse(rgb(c("cycles.exr")), *refs["cycles"])
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--pbrkit", default="build/release/bin/pbrkit")
@@ -132,16 +149,14 @@ def main():
     if args.compare == "guiding":
         return compare_guiding(args, c, cycles_scene, scene, refs)
     denoiser = ["--denoiser", args.denoiser] if args.denoiser else []
-    # pbrkit's overhead (load, BVH, denoise, write) at the budget: one run with a short limit.
-    overhead = pbrkit(args, scene, c("overhead.exr"), 1000000, 7, ["--denoise", "--noise-threshold", "0", "--time", "1"] + denoiser) - 1
+    overhead = overhead_of(args, scene, c, ["--denoise"] + denoiser)
     print(f"pbrkit's start-up + denoise + write: {overhead:.2f} s", flush=True)
     print("| run | Cycles 256 spp: render s | relMSE | pbrkit whole process s | raw relMSE | "
           "denoised relMSE | raw / Cycles | denoised / Cycles |")
     print("|---|---|---|---|---|---|---|---|")
     rows = []
     for run in range(args.runs):
-        t = cycles(args, cycles_scene, args.env, 256, 200 + run, c("cycles.exr"))
-        e_c = rel_mse(rgb(c("cycles.exr")), *refs["cycles"])
+        t, e_c = cycles_run(args, cycles_scene, c, refs, run)
         wall = pbrkit(args, scene, c("pbrkit.exr"), 1000000, 200 + run,
                       ["--denoise", "--noise-threshold", "0", "--time",
                        f"{max(0.1, t - overhead):.3f}"] + denoiser)
@@ -150,23 +165,19 @@ def main():
         rows.append((e_raw / e_c, e_dn / e_c))
         print(f"| {run + 1} | {t:.2f} | {e_c:.3g} | {wall:.2f} | {e_raw:.3g} | {e_dn:.3g} | "
               f"{e_raw / e_c:.2f}x | {e_dn / e_c:.2f}x |", flush=True)
-    med = lambda v: sorted(v)[len(v) // 2]  # noqa: E731
-    print(f"median: raw {med([r[0] for r in rows]):.2f}x, denoised {med([r[1] for r in rows]):.2f}x "
-          "Cycles' relative MSE")
+    print(f"median: raw {median([r[0] for r in rows]):.2f}x, denoised "
+          f"{median([r[1] for r in rows]):.2f}x Cycles' relative MSE")
 
 
 def compare_guiding(args, c, cycles_scene, scene, refs):
-    # pbrkit's overhead (load, BVH, write) at the budget: one run with a short limit.
-    overhead = pbrkit(args, scene, c("overhead.exr"), 1000000, 7,
-                      ["--noise-threshold", "0", "--time", "1"]) - 1
+    overhead = overhead_of(args, scene, c, [])
     print(f"pbrkit's start-up + write: {overhead:.2f} s", flush=True)
     print("| run | Cycles 256 spp: render s | relMSE | pbrkit guided: whole process s | relMSE | "
           "unguided: s | relMSE | guided / unguided | guided / Cycles |")
     print("|---|---|---|---|---|---|---|---|---|")
     rows = []
     for run in range(args.runs):
-        t = cycles(args, cycles_scene, args.env, 256, 200 + run, c("cycles.exr"))
-        e_c = rel_mse(rgb(c("cycles.exr")), *refs["cycles"])
+        t, e_c = cycles_run(args, cycles_scene, c, refs, run)
         e = {}
         wall = {}
         for guiding in ("on", "off"):
@@ -178,9 +189,8 @@ def compare_guiding(args, c, cycles_scene, scene, refs):
         print(f"| {run + 1} | {t:.2f} | {e_c:.3g} | {wall['on']:.2f} | {e['on']:.3g} | "
               f"{wall['off']:.2f} | {e['off']:.3g} | {rows[-1][0]:.2f}x | {rows[-1][1]:.2f}x |",
               flush=True)
-    med = lambda v: sorted(v)[len(v) // 2]  # noqa: E731
-    print(f"median: guided / unguided {med([r[0] for r in rows]):.2f}x, guided / Cycles "
-          f"{med([r[1] for r in rows]):.2f}x relative MSE")
+    print(f"median: guided / unguided {median([r[0] for r in rows]):.2f}x, guided / Cycles "
+          f"{median([r[1] for r in rows]):.2f}x relative MSE")
 
 
 if __name__ == "__main__":

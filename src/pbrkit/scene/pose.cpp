@@ -152,7 +152,7 @@ void write_pointer(Scene& scene, const SceneMotion& motion, const PointerTarget&
       }
       return;
     case PointerTarget::Kind::kVisibility:
-      return;  // hide_invisible()
+      return;  // not called for it: hide_invisible()
     case PointerTarget::Kind::kCamera:
       for (std::size_t i = 0; i < motion.camera_sources.size() && i < scene.cameras.size(); ++i) {
         if (motion.camera_sources[i] != p.index) continue;
@@ -170,16 +170,20 @@ void write_pointer(Scene& scene, const SceneMotion& motion, const PointerTarget&
   }
 }
 
-// KHR_animation_pointer: every target at rest, then the animation's channels on top.
+// KHR_animation_pointer: every target at rest, then the animation's channels on top
+// (visibility targets are hide_invisible's: it needs every node's flag at once).
 void pose_pointers(Scene& scene, const SceneMotion& motion, const PoseTime& pose) {
-  for (const PointerTarget& p : motion.pointers) write_pointer(scene, motion, p, p.rest.data());
+  for (const PointerTarget& p : motion.pointers)
+    if (p.kind != PointerTarget::Kind::kVisibility) write_pointer(scene, motion, p, p.rest.data());
   if (pose.animation < 0) return;
   const Animation& a = motion.animations[std::size_t(pose.animation)];
   float v[4];
   for (const AnimationChannel& ch : a.channels) {
     if (ch.property != AnimatedProperty::kPointer) continue;
+    const PointerTarget& p = motion.pointers[std::size_t(ch.pointer)];
+    if (p.kind == PointerTarget::Kind::kVisibility) continue;
     sample_animation(a.samplers[std::size_t(ch.sampler)], pose.time, false, v);
-    write_pointer(scene, motion, motion.pointers[std::size_t(ch.pointer)], v);
+    write_pointer(scene, motion, p, v);
   }
 }
 
