@@ -199,6 +199,16 @@ double mean_value(const Image& image) {
   return sum / double(image.data.size());
 }
 
+template <typename F>
+void expect_error_containing(F&& f, const std::string& text) {
+  try {
+    f();
+    ADD_FAILURE() << "no error; expected one containing '" << text << "'";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+  }
+}
+
 void expect_finite_non_negative(const Image& image) {
   for (std::size_t i = 0; i < image.data.size(); ++i)
     ASSERT_TRUE(std::isfinite(image.data[i]) && image.data[i] >= 0.0f)
@@ -226,8 +236,8 @@ TEST(LearnedDenoiser, MatchesPyTorchOnTheReference) {
   LearnedDenoiseStats stats;
   const Image out = denoiser.denoise(color, albedo, normal, {}, &stats);
   // The contract's autoexposure, in double precision, summed in another order than numpy's
-  // pairwise sums: 1e-12. model.py's own, which its output used, takes G and B's products
-  // in float32 (export_reference.py's autoexposure_float64): about 1e-8 apart.
+  // pairwise sums: 1e-12, against export_reference.py's own and model.py's, which its
+  // output used.
   EXPECT_NEAR(stats.exposure / reference["exposure_float64"].get<double>(), 1.0, 1e-12);
   EXPECT_NEAR(stats.exposure / reference["exposure"].get<double>(), 1.0, 1e-7);
   expect_finite_non_negative(out);
@@ -238,6 +248,39 @@ TEST(LearnedDenoiser, MatchesPyTorchOnTheReference) {
   // to the terms, not to r0.
   const double floor = 0.1 * mean_value(expected);
   EXPECT_LT(worst_relative(out, expected, floor), 1e-4);
+}
+
+TEST(LearnedDenoiser, BlendNetworkMatchesPyTorchOnTheReference) {
+  // kpcn-blend-v2 (docs/LEARNED_DENOISER.md): the classic output's three input channels and
+  // the per-pixel blend with it, on random weights whose blend weights span (0.1, 0.9).
+  const auto dir = test::test_data("denoiser");
+  LearnedDenoiserOptions options;
+  options.weights =
+      gunzip(dir / "blend_reference.pbnn.gz", test::scratch_dir() / "blend_reference.pbnn");
+  const LearnedDenoiser denoiser(options);
+  EXPECT_EQ(denoiser.info().network, "kpcn-blend-v2");
+  EXPECT_EQ(denoiser.info().parameters, 367902);
+  EXPECT_TRUE(denoiser.blends_classic());
+  const Image color = read_pfm(dir / "reference_color.pfm");
+  const Image albedo = read_pfm(dir / "reference_albedo.pfm");
+  const Image normal = read_pfm(dir / "reference_normal.pfm");
+  const Image classic = read_pfm(dir / "blend_reference_classic.pfm");
+  const Image expected = read_pfm(dir / "blend_reference_output.pfm");
+  const Image out = denoiser.denoise(color, albedo, normal, classic);
+  expect_finite_non_negative(out);
+  EXPECT_LT(worst_relative(out, expected, 0.1 * mean_value(expected)), 1e-4);
+  // The output does depend on the classic image: a network that ignored it (or read the
+  // colour in its place) would give the same image for a classic output scaled by 2.
+  Image doubled = classic;
+  for (float& v : doubled.data) v *= 2.0f;
+  EXPECT_GT(worst_relative(denoiser.denoise(color, albedo, normal, doubled), expected,
+                           0.1 * mean_value(expected)),
+            0.05);
+  // Without the classic output, or with one of another size: errors naming what is missing.
+  expect_error_containing([&] { (void)denoiser.denoise(color, albedo, normal); },
+                          "needs the classic denoiser's output");
+  expect_error_containing([&] { (void)denoiser.denoise(color, albedo, normal, Image(8, 8, 3)); },
+                          "classic");
 }
 
 // ---------------------------------------------------------------------------------------

@@ -3,7 +3,7 @@
 (docs/LEARNED_DENOISER.md, "The weights file"), without training further.
 
   python3 tools/denoiser/export.py --run $HOME/denoiser-run \
-      --dataset "denoiser-data seed 1" -o data/denoiser/kpcn-unet-v1.pbnn
+      --dataset "denoiser-data seed 1" -o data/denoiser/kpcn-blend-v2.pbnn
 """
 from __future__ import annotations
 
@@ -29,7 +29,7 @@ def main() -> int:
         print(f"export.py: {ckpt}: no checkpoint", file=sys.stderr)
         return 1
     state = torch.load(ckpt)
-    model = net.KpcnUnet()
+    model = net.KpcnUnet(state.get("network", "kpcn-unet-v1"))
     model.load_state_dict(state["model"])
     dataset = args.dataset or f"{state.get('examples', '?')} examples"
     net.write_weights(args.output, model, net.WeightsMeta(

@@ -19,6 +19,10 @@ Writes into --out (default tests/data/denoiser):
   reference_output.pfm   model.denoise of the three
   reference.json         the autoexposure s (model.py's and in double precision), the
                          seed, the versions, how far from uniform the kernels are
+  blend_reference.pbnn.gz, blend_reference_classic.pfm, blend_reference_output.pfm
+                         the same for a random kpcn-blend-v2 (seed + 1) on the same
+                         colour, albedo and normal, with a stand-in for the classic
+                         denoiser's output (a smooth image with a NaN and a negative pixel)
 
 PFM (Portable Float Map): "PF\\n<width> <height>\\n-1.0\\n", then little-endian float32
 RGB, rows bottom to top.
@@ -55,12 +59,12 @@ def quantised_uniform(gen: torch.Generator, shape: tuple[int, ...], bound: float
     return (torch.round(u / step) * step).float()
 
 
-def random_model(gen: torch.Generator) -> net.KpcnUnet:
+def random_model(gen: torch.Generator, network: str = "kpcn-unet-v1") -> net.KpcnUnet:
     """PyTorch's default Conv2d initialisation range (1/sqrt(fan_in)), quantised; the heads'
     weights scaled up so that the softmax kernels and blend weights are far from uniform."""
-    model = net.KpcnUnet()
+    model = net.KpcnUnet(network)
     with torch.no_grad():
-        for name, cin, cout in net.LAYERS:
+        for name, cin, cout in model.layers:
             conv = getattr(model, name)
             bound = 1.0 / math.sqrt(cin * 9)
             gain = HEAD_GAIN if name.startswith("head") else 1.0
@@ -94,9 +98,8 @@ def random_inputs(rng: np.random.Generator) -> tuple[np.ndarray, np.ndarray, np.
 
 
 def autoexposure_float64(color: np.ndarray) -> float:
-    """The contract's autoexposure with every product in double precision. model.py's
-    multiplies G and B by their Python-float weights in float32 (NumPy's value-based
-    casting keeps a float32 array float32), which moves s by about 1e-8 relative."""
+    """The contract's autoexposure with every product in double precision, written apart
+    from model.py's (which casts to float64 first, as the C++ does) as a check of it."""
     lum = color.astype(np.float64) @ np.array([0.2126, 0.7152, 0.0722])
     h, w = lum.shape
     logs = [math.log(m) for y in range(0, h, 16) for x in range(0, w, 16)
@@ -108,6 +111,23 @@ def write_pfm(path: Path, image: np.ndarray) -> None:
     h, w, _ = image.shape
     rows = np.ascontiguousarray(image[::-1].astype("<f4"))  # bottom row first
     path.write_bytes(f"PF\n{w} {h}\n-1.0\n".encode() + rows.tobytes())
+
+
+def write_gzipped_weights(path: Path, model: net.KpcnUnet, seed: int, check) -> None:
+    """model.write_weights's file, gzipped without a time stamp; `check(read_back_model)`
+    must hold for the file as read back."""
+    with tempfile.TemporaryDirectory() as tmp:
+        pbnn = Path(tmp) / "reference.pbnn"
+        meta = net.WeightsMeta(commit="none (random weights)",
+                               dataset=f"none (export_reference.py, seed {seed})", steps=0,
+                               created="fixed")
+        net.write_weights(pbnn, model, meta)
+        buffer = io.BytesIO()
+        with gzip.GzipFile(filename=path.name[:-3], mode="wb", fileobj=buffer, mtime=0) as gz:
+            gz.write(pbnn.read_bytes())
+        path.write_bytes(buffer.getvalue())
+        back, _ = net.read_weights(pbnn)
+        assert check(back)
 
 
 def main() -> None:
@@ -125,19 +145,24 @@ def main() -> None:
     exposure = net.autoexposure(net.sanitize(color))
     assert np.all(np.isfinite(output)) and np.all(output >= 0.0)
 
-    with tempfile.TemporaryDirectory() as tmp:
-        pbnn = Path(tmp) / "reference.pbnn"
-        meta = net.WeightsMeta(commit="none (random weights)",
-                               dataset=f"none (export_reference.py, seed {SEED})", steps=0,
-                               created="fixed")
-        net.write_weights(pbnn, model, meta)
-        buffer = io.BytesIO()
-        with gzip.GzipFile(filename="reference.pbnn", mode="wb", fileobj=buffer, mtime=0) as gz:
-            gz.write(pbnn.read_bytes())
-        (args.out / "reference.pbnn.gz").write_bytes(buffer.getvalue())
-        # The file must read back as the model that made the output.
-        back, _ = net.read_weights(pbnn)
-        assert np.array_equal(net.denoise(back, color, albedo, normal), output)
+    # The file must read back as the model that made the output.
+    write_gzipped_weights(args.out / "reference.pbnn.gz", model, SEED, lambda back: np.array_equal(
+        net.denoise(back, color, albedo, normal), output))
+
+    # kpcn-blend-v2: its own weights, the same inputs and a stand-in for the classic output.
+    blend = random_model(torch.Generator().manual_seed(SEED + 1), "kpcn-blend-v2").eval()
+    yy, xx = np.mgrid[0:HEIGHT, 0:WIDTH]
+    classic = np.stack([0.1 + xx / WIDTH, 0.2 + yy / HEIGHT, 0.3 + 0.0 * xx], 2) * 1.5
+    classic = classic.astype(np.float32)
+    classic[12, 40] = [np.nan, 0.5, 0.5]
+    classic[50, 2] = [-1.0, 0.5, 0.5]
+    blend_output = net.denoise(blend, color, albedo, normal, classic)
+    assert np.all(np.isfinite(blend_output)) and np.all(blend_output >= 0.0)
+    write_gzipped_weights(args.out / "blend_reference.pbnn.gz", blend, SEED + 1,
+                          lambda back: np.array_equal(
+                              net.denoise(back, color, albedo, normal, classic), blend_output))
+    write_pfm(args.out / "blend_reference_classic.pfm", classic)
+    write_pfm(args.out / "blend_reference_output.pfm", blend_output)
 
     write_pfm(args.out / "reference_color.pfm", color)
     write_pfm(args.out / "reference_albedo.pfm", albedo)

@@ -20,14 +20,17 @@ import torch
 import torch.nn.functional as F
 from torch import nn
 
-NETWORK = "kpcn-unet-v1"
+NETWORK = "kpcn-blend-v2"  # what train.py trains unless told otherwise
+NETWORKS = ("kpcn-unet-v1", "kpcn-blend-v2")
 INPUT_TRANSFORM = "log1p-autoexposure-v1"
 MAGIC = b"PBRKITNN"
 FORMAT_VERSION = 1
 KERNEL = 5  # the kernel's width at each scale
 ALIGN = 16  # four 2x2 poolings
 
-# (name, in, out) in the order of docs/LEARNED_DENOISER.md's table.
+# (name, in, out) in the order of docs/LEARNED_DENOISER.md's table, for kpcn-unet-v1;
+# kpcn-blend-v2 differs in enc0a (12 inputs: the classic denoiser's output too) and head0
+# (27 outputs: the blend weight with the classic output too), layers(network).
 LAYERS = [
     ("enc0a", 9, 16), ("enc0b", 16, 16), ("enc1", 16, 32), ("enc2", 32, 48),
     ("enc3", 48, 64), ("bot_a", 64, 64), ("bot_b", 64, 64), ("dec3a", 128, 64),
@@ -35,6 +38,20 @@ LAYERS = [
     ("dec1a", 80, 32), ("dec1b", 32, 32), ("head1", 32, 26), ("dec0a", 48, 16),
     ("dec0b", 16, 16), ("head0", 16, 26),
 ]
+
+
+def uses_classic(network: str) -> bool:
+    """Whether the network reads (and blends with) the classic denoiser's output."""
+    return network == "kpcn-blend-v2"
+
+
+def layers(network: str) -> list[tuple[str, int, int]]:
+    if network not in NETWORKS:
+        raise ValueError(f"unknown network {network!r} (known: {', '.join(NETWORKS)})")
+    if not uses_classic(network):
+        return list(LAYERS)
+    widths = {"enc0a": (12, 16), "head0": (16, 27)}
+    return [(n, *widths.get(n, (i, o))) for n, i, o in LAYERS]
 
 
 def autoexposure(color: np.ndarray) -> float:
@@ -59,15 +76,20 @@ def sanitize(color: np.ndarray) -> np.ndarray:
 
 
 def network_input(color: np.ndarray, albedo: np.ndarray, normal: np.ndarray,
-                  exposure: float | None = None) -> tuple[np.ndarray, np.ndarray]:
-    """The 9 input channels (9, H, W) and the linear colour (3, H, W), both float32."""
+                  exposure: float | None = None,
+                  classic: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """The input channels (9, or 12 with the classic output, H, W) and the linear colour
+    (3, H, W), both float32. The autoexposure is the noisy colour's, for both."""
     c = sanitize(color)
     s = autoexposure(c) if exposure is None else exposure
-    x = np.concatenate([
+    parts = [
         np.log1p(c.astype(np.float64) * s).astype(np.float32),
         np.clip(np.nan_to_num(albedo[..., :3]), 0.0, 1.0).astype(np.float32),
         np.clip(np.nan_to_num(normal[..., :3]), -1.0, 1.0).astype(np.float32),
-    ], axis=2)
+    ]
+    if classic is not None:
+        parts.append(np.log1p(sanitize(classic).astype(np.float64) * s).astype(np.float32))
+    x = np.concatenate(parts, axis=2)
     return np.ascontiguousarray(x.transpose(2, 0, 1)), np.ascontiguousarray(c.transpose(2, 0, 1))
 
 
@@ -90,9 +112,11 @@ def apply_kernel(logits: torch.Tensor, color: torch.Tensor) -> torch.Tensor:
 
 
 class KpcnUnet(nn.Module):
-    def __init__(self) -> None:
+    def __init__(self, network: str = "kpcn-unet-v1") -> None:
         super().__init__()
-        for name, cin, cout in LAYERS:
+        self.network = network
+        self.layers = layers(network)
+        for name, cin, cout in self.layers:
             setattr(self, name, nn.Conv2d(cin, cout, 3, padding=1))
 
     def heads(self, x: torch.Tensor) -> tuple[torch.Tensor, torch.Tensor, torch.Tensor]:
@@ -108,8 +132,10 @@ class KpcnUnet(nn.Module):
         d0 = relu(self.dec0b(relu(self.dec0a(torch.cat([up(d1), s0], 1)))))
         return self.head0(d0), self.head1(d1), self.head2(d2)
 
-    def forward(self, x: torch.Tensor, color: torch.Tensor) -> torch.Tensor:
-        """x: (N, 9, H, W), color: (N, 3, H, W) linear, H and W multiples of 16."""
+    def forward(self, x: torch.Tensor, color: torch.Tensor,
+                classic: torch.Tensor | None = None) -> torch.Tensor:
+        """x: (N, 9 or 12, H, W), color and classic: (N, 3, H, W) linear, H and W multiples
+        of 16; classic only for kpcn-blend-v2."""
         h0, h1, h2 = self.heads(x)
         c0 = color
         c1 = box_down(c0)
@@ -119,6 +145,9 @@ class KpcnUnet(nn.Module):
         a1 = torch.sigmoid(h1[:, 25:26])
         r1 = d1 - a1 * up(box_down(d1)) + a1 * up(d2)
         r0 = d0 - a0 * up(box_down(d0)) + a0 * up(r1)
+        if uses_classic(self.network):
+            b = torch.sigmoid(h0[:, 26:27])
+            r0 = b * classic + (1 - b) * r0
         return torch.clamp(r0, min=0.0)
 
 
@@ -131,13 +160,21 @@ def pad_to_multiple(a: np.ndarray, multiple: int = ALIGN) -> np.ndarray:
 
 @torch.no_grad()
 def denoise(model: KpcnUnet, color: np.ndarray, albedo: np.ndarray,
-            normal: np.ndarray) -> np.ndarray:
-    """The whole image at once (no tiles): (H, W, 3) float32 in, (H, W, 3) out."""
+            normal: np.ndarray, classic: np.ndarray | None = None) -> np.ndarray:
+    """The whole image at once (no tiles): (H, W, 3) float32 in, (H, W, 3) out; `classic`
+    (the classic denoiser's output of the same colour) for kpcn-blend-v2."""
     h, w = color.shape[:2]
-    x, c = network_input(color, albedo, normal)
+    blend = uses_classic(model.network)
+    if blend and classic is None:
+        raise ValueError(f"{model.network} needs the classic denoiser's output")
+    x, c = network_input(color, albedo, normal, classic=classic if blend else None)
     xt = torch.from_numpy(pad_to_multiple(x))[None]
     ct = torch.from_numpy(pad_to_multiple(c))[None]
-    out = model(xt, ct)[0, :, :h, :w]
+    kt = None
+    if blend:
+        k = np.ascontiguousarray(sanitize(classic).transpose(2, 0, 1))
+        kt = torch.from_numpy(pad_to_multiple(k))[None]
+    out = model(xt, ct, kt)[0, :, :h, :w]
     return np.ascontiguousarray(out.numpy().transpose(1, 2, 0))
 
 
@@ -155,7 +192,7 @@ def write_weights(path: str | Path, model: KpcnUnet, meta: WeightsMeta) -> None:
     blobs = []
     offset = 0
     state = model.state_dict()
-    for name, _, _ in LAYERS:
+    for name, _, _ in model.layers:
         for part in ("weight", "bias"):
             t = state[f"{name}.{part}"].detach().cpu().float().contiguous().numpy()
             blob = t.astype("<f4").tobytes()
@@ -164,7 +201,7 @@ def write_weights(path: str | Path, model: KpcnUnet, meta: WeightsMeta) -> None:
             offset += len(blob)
     data = b"".join(blobs)
     header: dict[str, Any] = {
-        "network": NETWORK, "input_transform": INPUT_TRANSFORM, "tensors": tensors,
+        "network": model.network, "input_transform": INPUT_TRANSFORM, "tensors": tensors,
         "data_bytes": len(data), "crc32": zlib.crc32(data) & 0xFFFFFFFF,
         "commit": meta.commit, "dataset": meta.dataset, "steps": meta.steps,
         "created": meta.created,
@@ -190,7 +227,7 @@ def read_weights(path: str | Path) -> tuple[KpcnUnet, dict[str, Any]]:
     data = raw[start:start + header["data_bytes"]]
     if len(data) != header["data_bytes"] or zlib.crc32(data) & 0xFFFFFFFF != header["crc32"]:
         raise ValueError(f"{path}: truncated or corrupt data")
-    model = KpcnUnet()
+    model = KpcnUnet(header["network"])
     state = {}
     for t in header["tensors"]:
         count = int(np.prod(t["shape"]))
@@ -198,3 +235,21 @@ def read_weights(path: str | Path) -> tuple[KpcnUnet, dict[str, Any]]:
         state[t["name"]] = torch.from_numpy(a.copy())
     model.load_state_dict(state)
     return model, header
+
+
+def widened(source: KpcnUnet, network: str, classic_share: float = 0.5) -> KpcnUnet:
+    """`network` initialised from a trained kpcn-unet-v1: its weights where the layers
+    agree, 0 for what the wider layers add (the classic output's input weights, the blend
+    weight's logit) but the blend logit's bias, so that it starts as the v1 network's
+    output blended with the classic denoiser's, `classic_share` of the latter."""
+    model = KpcnUnet(network)
+    state = model.state_dict()
+    with torch.no_grad():
+        for key, value in source.state_dict().items():
+            target = state[key]
+            target.zero_()
+            target[tuple(slice(0, n) for n in value.shape)] = value
+        if uses_classic(network):
+            state["head0.bias"][26] = math.log(classic_share / (1.0 - classic_share))
+    model.load_state_dict(state)
+    return model

@@ -1,11 +1,18 @@
 #include "pbrkit/denoise/denoiser_choice.h"
 
+#include "pbrkit/denoise/denoiser.h"
 #include "pbrkit/denoise/inputs.h"
 #include "pbrkit/denoise/learned/input_transform.h"
 #include "pbrkit/denoise/learned_denoiser.h"
 #include "pbrkit/util/error.h"
 
 namespace pbrkit {
+
+namespace {
+// kpcn-blend-v2 runs the classic denoiser first, which takes most of the time (about 15x
+// the network at 512x512, BENCHMARKS.md): its share of the progress.
+constexpr double kClassicShare = 0.9;
+}  // namespace
 
 const char* denoiser_name(DenoiserKind kind) {
   return kind == DenoiserKind::kLearned ? "learned" : "classic";
@@ -42,10 +49,33 @@ DenoiseRun denoise_render(const DenoiseInput& input, const LoadedDenoiser& loade
   validate_denoise_input(input);
   LearnedDenoiseStats stats;
   const Image color = mean_of_halves(input.color);
+  Image classic;
+  if (denoiser.blends_classic()) {
+    // The classic denoiser first; the network then blends its output with its own.
+    DenoiseStats classic_stats;
+    const ProgressCallback classic_progress =
+        progress ? ProgressCallback([&](double f, const std::string& what) {
+          return progress(kClassicShare * f, "classic: " + what);
+        })
+                 : ProgressCallback{};
+    classic = denoise(input, {}, classic_progress, &classic_stats);
+    run.seconds += classic_stats.seconds;
+    if (classic_stats.interrupted) {
+      run.image = std::move(classic);  // what the classic denoiser returns when stopped
+      run.interrupted = true;
+      return run;
+    }
+  }
+  const ProgressCallback network_progress =
+      progress && denoiser.blends_classic()
+          ? ProgressCallback([&](double f, const std::string& what) {
+              return progress(kClassicShare + (1.0 - kClassicShare) * f, what);
+            })
+          : progress;
   run.image = denoiser.denoise(color, mean_of_halves(input.albedo), mean_of_halves(input.normal),
-                               progress, &stats);
+                               classic, network_progress, &stats);
   run.interrupted = stats.interrupted;
-  run.seconds = stats.seconds;
+  run.seconds += stats.seconds;
   // As the classic denoiser does (DenoiseOptions::keep_direct_environment): a pixel whose
   // every sample saw the environment directly (depth 0 in both halves) is a lookup of the
   // environment, noise-free but for the pixel filter's sampling of its detail; the

@@ -7,8 +7,9 @@
 // contract (network, input transform, output, tiles, weights file) this follows.
 //
 // Every output pixel is a normalised weighted average of noisy colours, blended across
-// scales: the output is finite and never negative, also for NaN, infinite or negative
-// input pixels (taken as 0).
+// scales, and for kpcn-blend-v2 then blended per pixel with the classic denoiser's output
+// (a weight in (0, 1) that the network predicts): the output is finite and never negative,
+// also for NaN, infinite or negative input pixels (taken as 0).
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -41,14 +42,15 @@ inline constexpr int kDefaultLearnedDenoiserTile = 1024;
 /// What the weights file's header says (docs/LEARNED_DENOISER.md, "The weights file").
 struct LearnedWeightsInfo {
   std::filesystem::path file;
-  std::string network;          ///< "kpcn-unet-v1"
+  std::string network;          ///< "kpcn-unet-v1" or "kpcn-blend-v2"
   std::string input_transform;  ///< "log1p-autoexposure-v1"
   std::string commit;           ///< the training code's git commit
   std::string dataset;          ///< its name and seed
   std::int64_t steps = 0;       ///< training steps
   std::string created;          ///< when the file was written
   std::uint32_t crc32 = 0;      ///< zlib's CRC-32 of the tensors' data
-  std::int64_t parameters = 0;  ///< weights and biases, 367,325 for kpcn-unet-v1
+  std::int64_t parameters = 0;  ///< weights and biases: 367,325 (kpcn-unet-v1), 367,902
+                                ///< (kpcn-blend-v2)
 };
 
 /// Diagnostics of one denoise() call.
@@ -83,8 +85,19 @@ class LearnedDenoiser {
   /// Returns an RGB image of that size, every value finite and >= 0. `progress` gets the
   /// fraction of tiles done; when it returns false the call stops and returns the input
   /// colour undenoised, with LearnedDenoiseStats::interrupted set (util/progress.h).
+  /// For a network that blends with the classic denoiser's output (blends_classic()),
+  /// pbrkit::Error: use the overload with that output.
   Image denoise(const Image& color, const Image& albedo, const Image& normal,
                 const ProgressCallback& progress = {}, LearnedDenoiseStats* stats = nullptr) const;
+
+  /// As above, with `classic`, the classic denoiser's output of the same render (denoise.h),
+  /// which a kpcn-blend-v2 network reads and blends with its own per pixel; ignored (and
+  /// may be empty) for kpcn-unet-v1. Its size must be the colour's when it is read.
+  Image denoise(const Image& color, const Image& albedo, const Image& normal, const Image& classic,
+                const ProgressCallback& progress = {}, LearnedDenoiseStats* stats = nullptr) const;
+
+  /// Whether the network reads the classic denoiser's output (kpcn-blend-v2).
+  bool blends_classic() const;
 
   /// The weights file's header.
   const LearnedWeightsInfo& info() const;

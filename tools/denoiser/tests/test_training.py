@@ -3,6 +3,7 @@ round-trip, and a data set must be reproducible from its seed. Run by ctest
 (denoiser_training_tests) with the build tree's pbrkit package on PYTHONPATH."""
 from __future__ import annotations
 
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -92,3 +93,37 @@ def test_output_is_a_normalised_average() -> None:
     # float32 rounding of color * 100 and of the log moves the kernels a little; pixels near
     # the clamp at 0 get an absolute tolerance on the image's scale
     assert np.allclose(out100, out * 100, rtol=1e-3, atol=1e-3 * 100 * color.mean())
+
+
+def test_widened_network_starts_as_the_blend_of_v1_and_classic() -> None:
+    # model.widened: the classic channels' weights are 0 and the blend logit's bias is the
+    # share's logit, so the blend network's output is share * classic + (1 - share) * the
+    # v1 network's output, pixel for pixel (where neither is clamped: both are >= 0).
+    torch.manual_seed(5)
+    v1 = net.KpcnUnet()
+    rng = np.random.default_rng(2)
+    color = rng.exponential(1.0, (32, 48, 3)).astype(np.float32)
+    albedo = rng.random((32, 48, 3)).astype(np.float32)
+    normal = rng.uniform(-1, 1, (32, 48, 3)).astype(np.float32)
+    classic = rng.uniform(0.2, 2.0, (32, 48, 3)).astype(np.float32)
+    blend = net.widened(v1, "kpcn-blend-v2", 0.8)
+    expected = 0.8 * classic + 0.2 * net.denoise(v1, color, albedo, normal)
+    assert np.allclose(net.denoise(blend, color, albedo, normal, classic), expected, rtol=1e-5,
+                       atol=1e-6)
+    with pytest.raises(ValueError, match="classic"):
+        net.denoise(blend, color, albedo, normal)
+
+
+def test_log_loss_weighs_every_example_alike() -> None:
+    # batch_loss with per_example_log: scaling one example's error by 100 moves the loss by
+    # log(100) / batch, whatever its size; the mean of the batch moves by the error itself.
+    rng = np.random.default_rng(4)
+    t = torch.from_numpy(rng.uniform(0.5, 1.5, (2, 3, 32, 32)).astype(np.float32))
+    noise = torch.from_numpy(rng.normal(0.0, 0.005, (2, 3, 32, 32)).astype(np.float32))
+    s = torch.ones(2, 1, 1, 1)
+    out = t + noise
+    worse = out.clone()
+    worse[0] = t[0] + 10.0 * noise[0]  # 100x the squared error (the denominator moves a little)
+    a = float(train.batch_loss(out, t, s, True))
+    b = float(train.batch_loss(worse, t, s, True))
+    assert abs((b - a) - math.log(100.0) / 2) < 0.1

@@ -52,4 +52,12 @@ void network_input_pixel(const Image& color, const Image& albedo, const Image& n
   }
 }
 
+void classic_input_pixel(const Image& classic, double s, int x, int y, float* input3, float* rgb) {
+  const float* c = classic.pixel(x, y);
+  for (int i = 0; i < 3; ++i) {
+    rgb[i] = sanitize_color(c[i]);
+    input3[i] = float(std::log1p(double(rgb[i]) * s));
+  }
+}
+
 }  // namespace pbrkit::learned

@@ -33,4 +33,8 @@ double autoexposure(const Image& color);
 void network_input_pixel(const Image& color, const Image& albedo, const Image& normal, double s,
                          int x, int y, float* input9, float* rgb);
 
+/// kpcn-blend-v2's 3 more input channels of pixel (x, y): log1p(s * classic RGB), `s` the
+/// noisy colour's autoexposure; and the classic output's linear colour, sanitised.
+void classic_input_pixel(const Image& classic, double s, int x, int y, float* input3, float* rgb);
+
 }  // namespace pbrkit::learned

@@ -62,7 +62,7 @@ RgbBuffer apply_kernels(const HeadView& head, const RgbBuffer& c) {
 }
 
 RgbBuffer blend_scales(const RgbBuffer& d, const HeadView& head, const RgbBuffer& coarse) {
-  assert(head.channels == kKernelTaps + 1);
+  assert(head.channels >= kKernelTaps + 1);
   assert(coarse.width * 2 == d.width && coarse.height * 2 == d.height);
   RgbBuffer out(d.width, d.height);
   pbrkit::parallel_for(0, d.height, [&](int y) {
@@ -72,6 +72,22 @@ RgbBuffer blend_scales(const RgbBuffer& d, const HeadView& head, const RgbBuffer
       const float* low = coarse.at(x / 2, y / 2);
       float* o = out.at(x, y);
       for (int i = 0; i < 3; ++i) o[i] = fine[i] - a * cell_mean(d, x / 2, y / 2, i) + a * low[i];
+    }
+  });
+  return out;
+}
+
+RgbBuffer blend_classic(const RgbBuffer& r0, const HeadView& head0, const RgbBuffer& classic) {
+  assert(head0.channels == kKernelTaps + 2);
+  assert(classic.width == r0.width && classic.height == r0.height);
+  RgbBuffer out(r0.width, r0.height);
+  pbrkit::parallel_for(0, r0.height, [&](int y) {
+    for (int x = 0; x < r0.width; ++x) {
+      const float b = 1.0f / (1.0f + std::exp(-head0.at(x, y, r0.width)[kKernelTaps + 1]));
+      const float* r = r0.at(x, y);
+      const float* k = classic.at(x, y);
+      float* o = out.at(x, y);
+      for (int i = 0; i < 3; ++i) o[i] = b * k[i] + (1.0f - b) * r[i];
     }
   });
   return out;

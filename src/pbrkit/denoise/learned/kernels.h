@@ -25,7 +25,8 @@ struct RgbBuffer {
 /// at the size of the colour it applies to.
 struct HeadView {
   const float* logits = nullptr;
-  int channels = 0;  ///< 25 (head2) or 26 (head0, head1: the 26th is the blend weight's)
+  int channels = 0;  ///< 25 (head2), 26 (head1; head0 of kpcn-unet-v1) or 27 (head0 of
+                     ///< kpcn-blend-v2): the 26th is the scale blend's, the 27th the classic's
   const float* at(int x, int y, int width) const {
     return logits + (std::size_t(y) * width + x) * channels;
   }
@@ -41,5 +42,10 @@ RgbBuffer apply_kernels(const HeadView& head, const RgbBuffer& c);
 /// The scale compositor's step r = d - a * U(D(d)) + a * U(coarse), with a the sigmoid of
 /// the head's channel 25 and U the 2x nearest upsampling; `coarse` has half d's size.
 RgbBuffer blend_scales(const RgbBuffer& d, const HeadView& head, const RgbBuffer& coarse);
+
+/// kpcn-blend-v2's last step: b * classic + (1 - b) * r0, with b the sigmoid of head0's
+/// channel 26 (docs/LEARNED_DENOISER.md, "kpcn-blend-v2"); `classic` is the classic
+/// denoiser's output (sanitised) at r0's size.
+RgbBuffer blend_classic(const RgbBuffer& r0, const HeadView& head0, const RgbBuffer& classic);
 
 }  // namespace pbrkit::learned

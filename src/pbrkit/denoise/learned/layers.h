@@ -1,16 +1,17 @@
 #pragma once
-// The network of docs/LEARNED_DENOISER.md ("The network (`kpcn-unet-v1`)"), as data: its
-// layer table, in the table's order (the order of tools/denoiser/model.py's LAYERS), read by
-// the weights file's checks, the forward pass and the tiles' receptive-field radius.
+// The networks of docs/LEARNED_DENOISER.md ("The network", "kpcn-blend-v2"), as data: their
+// layer tables, in the table's order (the order of tools/denoiser/model.py's layers()), read
+// by the weights file's checks, the forward pass and the tiles' receptive-field radius.
 #include <array>
 #include <string_view>
 
 namespace pbrkit::learned {
 
-inline constexpr std::string_view kNetworkName = "kpcn-unet-v1";
 inline constexpr std::string_view kInputTransform = "log1p-autoexposure-v1";
-inline constexpr int kInputChannels = 9;  ///< log1p(s * RGB), albedo RGB, normal XYZ
-inline constexpr int kKernelWidth = 5;    ///< each scale's kernel is 5x5
+/// log1p(s * RGB), albedo RGB, normal XYZ; kpcn-blend-v2 adds log1p(s * classic RGB).
+inline constexpr int kInputChannels = 9;
+inline constexpr int kClassicChannels = 3;
+inline constexpr int kKernelWidth = 5;  ///< each scale's kernel is 5x5
 inline constexpr int kKernelTaps = kKernelWidth * kKernelWidth;
 inline constexpr int kLevels = 5;      ///< L0 (full resolution) to L4 (1/16)
 inline constexpr int kAlignment = 16;  ///< 2^(kLevels - 1): four 2x2 poolings
@@ -46,6 +47,7 @@ enum Layer {
   kLayerCount
 };
 
+/// kpcn-unet-v1's table.
 inline constexpr std::array<LayerSpec, kLayerCount> kLayers = {{
     {"enc0a", 9, 16, 0},
     {"enc0b", 16, 16, 0},
@@ -67,12 +69,45 @@ inline constexpr std::array<LayerSpec, kLayerCount> kLayers = {{
     {"head0", 16, 26, 0, false},
 }};
 
+/// kpcn-blend-v2's: kpcn-unet-v1's but for enc0a, which also reads the classic denoiser's
+/// output, and head0, whose 27th channel is the logit of the weight of that output in the
+/// final blend.
+constexpr std::array<LayerSpec, kLayerCount> blend_layers() {
+  std::array<LayerSpec, kLayerCount> layers = kLayers;
+  layers[kEnc0a].in = kInputChannels + kClassicChannels;
+  layers[kHead0].out = kKernelTaps + 2;
+  return layers;
+}
+
+/// A network this pbrkit runs, named by the weights file's `network`.
+struct NetworkSpec {
+  std::string_view name;
+  std::array<LayerSpec, kLayerCount> layers;
+  /// Reads the classic denoiser's output and blends it with the kernels' (kpcn-blend-v2).
+  bool blends_classic = false;
+  constexpr int input_channels() const { return layers[kEnc0a].in; }
+};
+
+inline constexpr std::array<NetworkSpec, 2> kNetworks = {{
+    {"kpcn-unet-v1", kLayers, false},
+    {"kpcn-blend-v2", blend_layers(), true},
+}};
+
+/// The network named `name`, or nullptr.
+constexpr const NetworkSpec* find_network(std::string_view name) {
+  for (const NetworkSpec& n : kNetworks)
+    if (n.name == name) return &n;
+  return nullptr;
+}
+
 /// The parameter count the contract states (weights and biases of every layer).
-constexpr int parameter_count() {
+constexpr int parameter_count(const std::array<LayerSpec, kLayerCount>& layers) {
   int n = 0;
-  for (const LayerSpec& l : kLayers) n += l.out * l.in * 9 + l.out;
+  for (const LayerSpec& l : layers) n += l.out * l.in * 9 + l.out;
   return n;
 }
-static_assert(parameter_count() == 367325, "docs/LEARNED_DENOISER.md: 367,325 parameters");
+static_assert(parameter_count(kLayers) == 367325, "docs/LEARNED_DENOISER.md: 367,325 parameters");
+static_assert(parameter_count(blend_layers()) == 367325 + 16 * 3 * 9 + 16 * 9 + 1,
+              "kpcn-blend-v2: 3 more inputs of enc0a, one more output of head0");
 
 }  // namespace pbrkit::learned

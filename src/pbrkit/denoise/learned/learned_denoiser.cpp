@@ -44,10 +44,13 @@ inline float finite_non_negative(float v) {
 // One tile, through the network and the kernels: r0 at the tile's (padded) size.
 RgbBuffer denoise_tile(const learned::Network& network, learned::NetworkWorkspace& workspace,
                        const learned::Tile& tile, const Image& color, const Image& albedo,
-                       const Image& normal, double exposure, int threads,
+                       const Image& normal, const Image* classic, double exposure, int threads,
                        const std::function<bool(learned::Layer)>& keep_going, bool* stopped) {
   const int w = tile.width(), h = tile.height();
+  const int channels = network.spec().input_channels();
+  const bool blend = network.spec().blends_classic;
   RgbBuffer c0(w, h);
+  RgbBuffer k0(blend ? w : 0, blend ? h : 0);
   // Past the image, its last column and row repeated (docs/LEARNED_DENOISER.md, "Padding").
   const auto write_input = [&](float* input) {
     pbrkit::parallel_for(0, h, [&](int j) {
@@ -55,8 +58,11 @@ RgbBuffer denoise_tile(const learned::Network& network, learned::NetworkWorkspac
       for (int i = 0; i < w; ++i) {
         const int x = std::min(tile.ex0 + i, color.width - 1);
         const std::size_t p = std::size_t(j) * w + i;
-        learned::network_input_pixel(color, albedo, normal, exposure, x, y,
-                                     input + p * learned::kInputChannels, c0.at(i, j));
+        learned::network_input_pixel(color, albedo, normal, exposure, x, y, input + p * channels,
+                                     c0.at(i, j));
+        if (blend)
+          learned::classic_input_pixel(*classic, exposure, x, y,
+                                       input + p * channels + learned::kInputChannels, k0.at(i, j));
       }
     });
   };
@@ -64,7 +70,7 @@ RgbBuffer denoise_tile(const learned::Network& network, learned::NetworkWorkspac
       network.run(workspace, w, h, write_input, threads, keep_going);
   *stopped = heads.stopped;
   if (heads.stopped) return {};
-  const HeadView head0{heads.head0, learned::kKernelTaps + 1};
+  const HeadView head0{heads.head0, network.spec().layers[learned::kHead0].out};
   const HeadView head1{heads.head1, learned::kKernelTaps + 1};
   const HeadView head2{heads.head2, learned::kKernelTaps};
 
@@ -76,7 +82,8 @@ RgbBuffer denoise_tile(const learned::Network& network, learned::NetworkWorkspac
     r1 = learned::blend_scales(learned::apply_kernels(head1, c1), head1, r2);
   }
   const RgbBuffer d0 = learned::apply_kernels(head0, c0);
-  return learned::blend_scales(d0, head0, r1);
+  const RgbBuffer r0 = learned::blend_scales(d0, head0, r1);
+  return blend ? learned::blend_classic(r0, head0, k0) : r0;
 }
 
 }  // namespace
@@ -112,11 +119,25 @@ const LearnedWeightsInfo& LearnedDenoiser::info() const {
   return impl_->info;
 }
 
+bool LearnedDenoiser::blends_classic() const {
+  return impl_->network.spec().blends_classic;
+}
+
 Image LearnedDenoiser::denoise(const Image& color, const Image& albedo, const Image& normal,
                                const ProgressCallback& progress, LearnedDenoiseStats* stats) const {
+  if (blends_classic())
+    fail("learned denoiser: {} ({}) needs the classic denoiser's output of the image too",
+         impl_->info.file.string(), impl_->info.network);
+  return denoise(color, albedo, normal, Image{}, progress, stats);
+}
+
+Image LearnedDenoiser::denoise(const Image& color, const Image& albedo, const Image& normal,
+                               const Image& classic, const ProgressCallback& progress,
+                               LearnedDenoiseStats* stats) const {
   check_input(color, "colour", color);
   check_input(albedo, "albedo", color);
   check_input(normal, "normal", color);
+  if (blends_classic()) check_input(classic, "classic denoiser's", color);
   const auto start = std::chrono::steady_clock::now();
   LearnedDenoiseStats local;
   LearnedDenoiseStats& st = stats ? *stats : local;
@@ -144,7 +165,8 @@ Image LearnedDenoiser::denoise(const Image& color, const Image& albedo, const Im
       };
       bool stopped = false;
       const RgbBuffer r0 = denoise_tile(impl_->network, workspace, tile, color, albedo, normal,
-                                        st.exposure, impl_->threads, keep_going, &stopped);
+                                        blends_classic() ? &classic : nullptr, st.exposure,
+                                        impl_->threads, keep_going, &stopped);
       if (stopped) {
         st.interrupted = true;
         return;

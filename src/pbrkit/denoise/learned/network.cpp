@@ -184,7 +184,8 @@ struct Network::Impl {
   mutable std::array<std::vector<LaidOut>, kLayerCount> laid_out;
 
   memory weights_for(Layer layer, const memory::desc& wanted, dnnl::stream& stream) const {
-    const memory::desc oihw({kLayers[layer].out, kLayers[layer].in, 3, 3}, memory::data_type::f32,
+    const LayerSpec& spec = weights.spec->layers[layer];
+    const memory::desc oihw({spec.out, spec.in, 3, 3}, memory::data_type::f32,
                             memory::format_tag::oihw);
     // oneDNN takes non-const handles; the weights are only read.
     memory user(oihw, engine, const_cast<float*>(weights.layers[layer].weight.data()));
@@ -211,7 +212,7 @@ struct Network::Impl {
     // relu(conv(src)) (no relu for a head), into a new tensor. Once keep_going has said
     // no, the remaining layers are planned but not computed.
     Tensor conv(Layer layer, const Tensor& src) {
-      const LayerSpec& spec = kLayers[layer];
+      const LayerSpec& spec = net.weights.spec->layers[layer];
       assert(src.channels == spec.in);
       Tensor dst(arena, spec.out, src.height, src.width);
       if (!stream) return dst;
@@ -289,7 +290,7 @@ struct Network::Impl {
     NetworkHeads forward(int width, int height, const std::function<void(float*)>& write_input) {
       NetworkHeads heads;
       heads.width = width, heads.height = height;
-      Tensor x(arena, kInputChannels, height, width);
+      Tensor x(arena, net.weights.spec->input_channels(), height, width);
       if (stream) write_input(x.data);
       Tensor t = conv(kEnc0a, x);
       x.reset();
@@ -339,6 +340,9 @@ Network::Network(const NetworkWeights& weights) : impl_(std::make_unique<Impl>()
   impl_->weights = weights;
 }
 Network::~Network() = default;
+const NetworkSpec& Network::spec() const {
+  return *impl_->weights.spec;
+}
 Network::Network(Network&&) noexcept = default;
 Network& Network::operator=(Network&&) noexcept = default;
 

@@ -54,7 +54,8 @@ class NetworkWorkspace {
   FloatBuffer arena_;
 };
 
-/// The three heads' logits, nhwc: head0 (26 channels) at the input's size, head1 (26) at
+/// The three heads' logits, nhwc: head0 (26 channels, 27 for kpcn-blend-v2) at the input's
+/// size, head1 (26) at
 /// half of it, head2 (25) at a quarter. They point into the workspace: valid until its
 /// next run.
 struct NetworkHeads {
@@ -76,14 +77,18 @@ class Network {
   Network& operator=(Network&&) noexcept;
 
   /// Runs the network on a width x height input (multiples of 16) that `write_input`
-  /// writes into the pointer it gets (9 floats per pixel, nhwc: network_input_pixel's
-  /// order). `threads` > 0 sets the OpenMP team's size for this call. `keep_going`, if
-  /// set, is asked before each convolution (a 1080p tile's layers take up to a few hundred
-  /// ms each, so a stop is seen promptly); once it returns false the rest is skipped and
-  /// NetworkHeads::stopped is set. Throws pbrkit::Error when oneDNN fails (out of memory).
+  /// writes into the pointer it gets (spec().input_channels() floats per pixel, nhwc:
+  /// network_input_pixel's order, then classic_input_pixel's for kpcn-blend-v2). `threads` > 0 sets
+  /// the OpenMP team's size for this call. `keep_going`, if set, is asked before each convolution
+  /// (a 1080p tile's layers take up to a few hundred ms each, so a stop is seen promptly); once it
+  /// returns false the rest is skipped and NetworkHeads::stopped is set. Throws pbrkit::Error when
+  /// oneDNN fails (out of memory).
   NetworkHeads run(NetworkWorkspace& workspace, int width, int height,
                    const std::function<void(float* input)>& write_input, int threads = 0,
                    const std::function<bool(Layer)>& keep_going = {}) const;
+
+  /// The network the weights are for.
+  const NetworkSpec& spec() const;
 
  private:
   struct Impl;

@@ -103,8 +103,11 @@ NetworkWeights read_weights_file(const std::filesystem::path& path) {
   if (crc > 0xffffffffu) fail("{}: the header's crc32 {} is not a 32-bit value", name, crc);
   info.crc32 = std::uint32_t(crc);
 
-  if (info.network != kNetworkName)
-    fail("{}: network '{}', this pbrkit runs '{}'", name, info.network, kNetworkName);
+  weights.spec = find_network(info.network);
+  if (!weights.spec)
+    fail("{}: network '{}', this pbrkit runs '{}' or '{}'", name, info.network, kNetworks[0].name,
+         kNetworks[1].name);
+  const auto& layers = weights.spec->layers;
   if (info.input_transform != kInputTransform)
     fail("{}: input transform '{}', this pbrkit computes '{}'", name, info.input_transform,
          kInputTransform);
@@ -129,7 +132,7 @@ NetworkWeights read_weights_file(const std::filesystem::path& path) {
     const std::string tensor = t["name"].get<std::string>();
     for (int l = 0; l < kLayerCount; ++l)
       for (int part = 0; part < 2; ++part)
-        if (tensor == std::string(kLayers[l].name) + (part ? ".bias" : ".weight")) {
+        if (tensor == std::string(layers[l].name) + (part ? ".bias" : ".weight")) {
           if (found[2 * l + part]) fail("{}: the tensor {} is listed twice", name, tensor);
           found[2 * l + part] = &t;
         }
@@ -137,7 +140,7 @@ NetworkWeights read_weights_file(const std::filesystem::path& path) {
 
   info.parameters = 0;
   for (int l = 0; l < kLayerCount; ++l) {
-    const LayerSpec& spec = kLayers[l];
+    const LayerSpec& spec = layers[l];
     for (int part = 0; part < 2; ++part) {
       const std::string tensor = std::string(spec.name) + (part ? ".bias" : ".weight");
       const nlohmann::json* t = found[2 * l + part];
@@ -150,8 +153,9 @@ NetworkWeights read_weights_file(const std::filesystem::path& path) {
         for (const auto& d : (*t)["shape"])
           shape.push_back(d.is_number_integer() ? d.get<std::int64_t>() : -1);
       if (shape != expected)
-        fail("{}: the tensor {} has shape {}, kpcn-unet-v1 needs {}", name, tensor,
-             t->contains("shape") ? (*t)["shape"].dump() : "(none)", shape_string(expected));
+        fail("{}: the tensor {} has shape {}, {} needs {}", name, tensor,
+             t->contains("shape") ? (*t)["shape"].dump() : "(none)", info.network,
+             shape_string(expected));
       if (!t->contains("offset") || !(*t)["offset"].is_number_integer() || (*t)["offset"] < 0)
         fail("{}: the tensor {} has no valid offset", name, tensor);
       const auto offset = (*t)["offset"].get<std::uint64_t>();

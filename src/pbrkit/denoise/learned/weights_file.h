@@ -19,7 +19,8 @@ struct ConvWeights {
 
 struct NetworkWeights {
   LearnedWeightsInfo info;
-  std::array<ConvWeights, kLayerCount> layers;  ///< in kLayers' order
+  const NetworkSpec* spec = &kNetworks[0];      ///< the header's network (static)
+  std::array<ConvWeights, kLayerCount> layers;  ///< in spec->layers' order
 };
 
 /// Reads `path`. Throws pbrkit::Error ("<path>: <problem>") for a missing or unreadable
