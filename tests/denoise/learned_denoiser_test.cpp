@@ -18,6 +18,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "pbrkit/denoise/denoiser.h"
 #include "pbrkit/denoise/denoiser_choice.h"
 #include "pbrkit/denoise/learned/layers.h"
 #include "pbrkit/denoise/learned/tiles.h"
@@ -505,6 +506,40 @@ TEST(LearnedDenoiser, RenderPathDenoisesTheHalvesMeanAndKeepsTheDirectEnvironmen
         ASSERT_EQ(run.image.pixel(x, y)[c], x < w / 3 ? mean.pixel(x, y)[c] : direct.pixel(x, y)[c])
             << x << "," << y;
   EXPECT_NE(direct.pixel(5, 5)[0], mean.pixel(5, 5)[0]);  // the pass-through is not a no-op
+}
+
+// kpcn-blend-v2 through denoise_render: the classic denoiser's output of the same input
+// (denoiser.h, default options) is what the network reads and blends with.
+TEST(LearnedDenoiser, RenderPathGivesTheBlendNetworkTheClassicOutput) {
+  DenoiserChoice choice;
+  choice.kind = DenoiserKind::kLearned;
+  choice.weights = gunzip(test::test_data("denoiser") / "blend_reference.pbnn.gz",
+                          test::scratch_dir() / "render_path_blend.pbnn");
+  const int w = 48, h = 40;
+  const Inputs a = random_inputs(w, h, 98), b = random_inputs(w, h, 99);
+  DenoiseInput input;
+  input.color[0] = a.color, input.color[1] = b.color;
+  input.albedo[0] = input.albedo[1] = a.albedo;
+  input.normal[0] = input.normal[1] = a.normal;
+  for (Image& d : input.depth) d = Image(w, h, 1, 3.0f);
+  std::vector<double> fractions;
+  const DenoiseRun run = denoise_render(input, choice, [&](double f, const std::string&) {
+    fractions.push_back(f);
+    return true;
+  });
+  ASSERT_FALSE(run.interrupted);
+  Image mean(w, h, 3);
+  for (std::size_t i = 0; i < mean.data.size(); ++i)
+    mean.data[i] = 0.5f * (a.color.data[i] + b.color.data[i]);
+  const LearnedDenoiser network(LearnedDenoiserOptions{choice.weights});
+  const Image classic = denoise(input);
+  EXPECT_EQ(run.image.data, network.denoise(mean, a.albedo, a.normal, classic).data);
+  // Another classic image gives another output: the one read is the classic denoiser's.
+  EXPECT_NE(run.image.data, network.denoise(mean, a.albedo, a.normal, mean).data);
+  // The progress runs through both, once, never backwards.
+  ASSERT_FALSE(fractions.empty());
+  EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
+  EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
 }
 
 TEST(LearnedDenoiser, RefusesImagesOfAnotherSizeOrTooFewChannels) {
