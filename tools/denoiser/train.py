@@ -152,11 +152,11 @@ def batch_loss(out: torch.Tensor, target: torch.Tensor, scale: torch.Tensor,
                per_example_log: bool) -> torch.Tensor:
     """relative_loss over the batch, or (per_example_log) the mean of each example's log.
 
-    The examples' raw errors span four orders of magnitude (1 to 64 spp, dark and bright
+    The examples' raw errors differ by orders of magnitude (1 to 64 spp, dark and bright
     scenes): averaged as they are, the few 1- and 2-spp examples make most of the loss, and
-    a network trained so is best where the input is worst (at 1-2 spp it beat the classic
-    denoiser 9.4x to 3.7x on held-out examples, at 9-64 spp it lost 2.9x to 5.8x and 1.8x
-    to 2.9x). The log weighs every example's relative improvement alike, as the benchmarks'
+    a network trained so is best where the input is worst (kpcn-unet-v1 at 1-2 spp beat the
+    classic denoiser 9.4x to 3.7x, at 9-24 spp it lost 2.9x to 5.8x and at 25-64 spp 1.8x
+    to 2.9x; docs/LEARNED_DENOISER.md). The log weighs every example's relative improvement alike, as the benchmarks'
     geometric mean of ratios does: its gradient is each example's divided by its own loss."""
     if not per_example_log:
         return relative_loss(out, target, scale)
