@@ -124,7 +124,8 @@ def batch(rng, data: DataSet, size: int, crop: int):
     return x, c, k, t, s
 
 
-def relative_loss(out: torch.Tensor, target: torch.Tensor, scale: torch.Tensor) -> torch.Tensor:
+def relative_loss(out: torch.Tensor, target: torch.Tensor, scale: torch.Tensor,
+                  denominator: torch.Tensor | None = None) -> torch.Tensor:
     """The relative squared error per pixel, each pixel's capped at ERROR_CAP, plus
     ENERGY_WEIGHT times the relative squared error of ENERGY_BLOCK-pixel block means.
 
@@ -136,20 +137,34 @@ def relative_loss(out: torch.Tensor, target: torch.Tensor, scale: torch.Tensor) 
     the frame's energy (13 to 27 standard errors at 64 spp). The block term is the same
     Noise2Noise loss on block means, whose noise is far smaller than a pixel's, so it
     weighs a low-frequency bias as much as the pixels' noise and still trains toward the
-    mean."""
+    mean.
+
+    `denominator` (an image independent of the target, e.g. the classic denoiser's output
+    of the input): each channel's error is divided by its square rather than by the
+    output's own channel mean squared. The benchmarks' relative MSE divides by the
+    reference's square per channel; the output's own value makes an output that is too
+    dark where the reference is not cost far more than the benchmark says (on the shared
+    models under studio the two disagreed on which of two denoised images was better by a
+    factor 3.5). Being independent of the target, it keeps the Noise2Noise expectation."""
     o = out * scale
     t = target * scale
-    denom = o.detach().mean(dim=1, keepdim=True) ** 2 + EPS
+    if denominator is None:
+        denom = o.detach().mean(dim=1, keepdim=True) ** 2 + EPS
+    else:
+        denom = (denominator * scale) ** 2 + EPS
     pixels = torch.clamp(((o - t) ** 2) / denom, max=ERROR_CAP).mean()
     ob = F.avg_pool2d(o, ENERGY_BLOCK)
     tb = F.avg_pool2d(t, ENERGY_BLOCK)
-    bdenom = ob.detach().mean(dim=1, keepdim=True) ** 2 + EPS
+    if denominator is None:
+        bdenom = ob.detach().mean(dim=1, keepdim=True) ** 2 + EPS
+    else:
+        bdenom = F.avg_pool2d(denominator * scale, ENERGY_BLOCK) ** 2 + EPS
     blocks = (((ob - tb) ** 2) / bdenom).mean()
     return pixels + ENERGY_WEIGHT * blocks
 
 
 def batch_loss(out: torch.Tensor, target: torch.Tensor, scale: torch.Tensor,
-               per_example_log: bool) -> torch.Tensor:
+               per_example_log: bool, denominator: torch.Tensor | None = None) -> torch.Tensor:
     """relative_loss over the batch, or (per_example_log) the mean of each example's log.
 
     The examples' raw errors differ by orders of magnitude (1 to 64 spp, dark and bright
@@ -159,8 +174,10 @@ def batch_loss(out: torch.Tensor, target: torch.Tensor, scale: torch.Tensor,
     to 2.9x; docs/LEARNED_DENOISER.md). The log weighs every example's relative improvement alike, as the benchmarks'
     geometric mean of ratios does: its gradient is each example's divided by its own loss."""
     if not per_example_log:
-        return relative_loss(out, target, scale)
-    return torch.stack([torch.log(relative_loss(out[i:i + 1], target[i:i + 1], scale[i:i + 1]))
+        return relative_loss(out, target, scale, denominator)
+    d = (lambda i: None) if denominator is None else (lambda i: denominator[i:i + 1])
+    return torch.stack([torch.log(relative_loss(out[i:i + 1], target[i:i + 1], scale[i:i + 1],
+                                                d(i)))
                         for i in range(out.shape[0])]).mean()
 
 
@@ -255,6 +272,9 @@ def main(argv: list[str] | None = None) -> int:
                     help="with --init-from: the classic output's starting share of the blend")
     ap.add_argument("--min-spp", type=int, default=1,
                     help="train on the examples rendered with at least this many samples")
+    ap.add_argument("--denominator", choices=["output", "classic"], default="classic",
+                    help="the relative loss's denominator: the classic denoiser's output "
+                    "(kpcn-blend-v2 only) or the network's own (relative_loss says why)")
     ap.add_argument("--loss", choices=["log", "mean"], default="log",
                     help="log: the mean of each example's log loss; mean: the batch's mean "
                     "(how kpcn-unet-v1 was trained); batch_loss says why")
@@ -274,6 +294,7 @@ def main(argv: list[str] | None = None) -> int:
     log_path = args.run / "log.jsonl"
 
     with_classic = net.uses_classic(args.network)
+    use_classic_denominator = with_classic and args.denominator == "classic"
     train = DataSet(args.data / "train", args.limit, with_classic, args.min_spp)
     heldout = DataSet(args.data / "heldout", 64, with_classic, args.min_spp)
     if not train.examples:
@@ -311,7 +332,8 @@ def main(argv: list[str] | None = None) -> int:
             for g in opt.param_groups:
                 g["lr"] = learning_rate(step, args.steps, args.lr)
             x, c, k, t, s = batch(rng, train, args.batch, args.crop)
-            loss = batch_loss(model(x, c, k), t, s, args.loss == "log")
+            loss = batch_loss(model(x, c, k), t, s, args.loss == "log",
+                              k if use_classic_denominator else None)
             opt.zero_grad()
             loss.backward()
             torch.nn.utils.clip_grad_norm_(model.parameters(), 1.0)
