@@ -4,6 +4,12 @@
 
   python3 tools/denoiser/export.py --run $HOME/denoiser-run \
       --dataset "denoiser-data seed 1" -o data/denoiser/kpcn-blend-v2.pbnn
+
+Or a kpcn-blend-v2 made from a kpcn-unet-v1 file with no training (model.widened): the v1
+network's output blended with the classic denoiser's at a fixed share, as shipped:
+
+  python3 tools/denoiser/export.py --widen data/denoiser/kpcn-unet-v1.pbnn \
+      --classic-share 0.88 -o data/denoiser/kpcn-blend-v2.pbnn
 """
 from __future__ import annotations
 
@@ -20,10 +26,30 @@ from train import git_commit
 
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("--run", required=True, type=Path, help="train.py's --run folder")
+    ap.add_argument("--run", type=Path, help="train.py's --run folder")
+    ap.add_argument("--widen", type=Path, help="a kpcn-unet-v1 weights file (instead of --run)")
+    ap.add_argument("--classic-share", type=float, default=0.88,
+                    help="with --widen: the classic output's share of the blend")
     ap.add_argument("--dataset", default="", help="the data set's name and seed, for the header")
     ap.add_argument("-o", "--output", required=True, type=Path)
     args = ap.parse_args()
+    if bool(args.run) == bool(args.widen):
+        ap.error("give --run or --widen")
+    if args.widen:
+        source, header = net.read_weights(args.widen)
+        if header["network"] != "kpcn-unet-v1":
+            ap.error(f"--widen: {args.widen} is {header['network']}, not kpcn-unet-v1")
+        if not 0.0 < args.classic_share < 1.0:
+            ap.error("--classic-share must be in (0, 1)")
+        model = net.widened(source, "kpcn-blend-v2", args.classic_share)
+        net.write_weights(args.output, model, net.WeightsMeta(
+            commit=git_commit(),
+            dataset=(f"none: kpcn-unet-v1 ({args.widen.name}, {header['dataset']}, "
+                     f"{header['steps']} steps) widened, classic share {args.classic_share}"),
+            steps=0,
+            created=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")))
+        print(f"wrote {args.output} (kpcn-unet-v1 widened, classic share {args.classic_share})")
+        return 0
     ckpt = args.run / "checkpoint.pt"
     if not ckpt.exists():
         print(f"export.py: {ckpt}: no checkpoint", file=sys.stderr)
