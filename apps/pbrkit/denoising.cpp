@@ -28,7 +28,7 @@ void add_denoiser_options(CLI::App& cmd, DenoiserFlags* flags, const std::string
       ->group(group);
   cmd.add_option("--denoiser-weights", flags->weights,
                  "the learned denoiser's weights file (default: the one pbrkit ships, "
-                 "data/denoiser/kpcn-unet-v1.pbnn)")
+                 "data/denoiser/kpcn-blend-v2.pbnn)")
       ->group(group);
 }
 

@@ -552,7 +552,7 @@ TEST(LearnedDenoiser, RefusesImagesOfAnotherSizeOrTooFewChannels) {
 
 TEST(LearnedDenoiser, DefaultWeightsAreFoundInTheDataDirectory) {
   const auto path = default_learned_denoiser_weights();
-  EXPECT_EQ(path, data_dir() / "denoiser" / "kpcn-unet-v1.pbnn");
+  EXPECT_EQ(path, data_dir() / "denoiser" / "kpcn-blend-v2.pbnn");
   // Until training ships the file, the default constructor names where it looked.
   if (!std::filesystem::exists(path)) {
     try {
@@ -562,8 +562,12 @@ TEST(LearnedDenoiser, DefaultWeightsAreFoundInTheDataDirectory) {
       EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
     }
   } else {
-    EXPECT_EQ(LearnedDenoiser().info().network, "kpcn-unet-v1");
+    EXPECT_EQ(LearnedDenoiser().info().network, "kpcn-blend-v2");
   }
+  // The network it was trained from ships beside it and reads.
+  LearnedDenoiserOptions v1;
+  v1.weights = data_dir() / "denoiser" / "kpcn-unet-v1.pbnn";
+  EXPECT_EQ(LearnedDenoiser(v1).info().network, "kpcn-unet-v1");
 }
 
 // ---------------------------------------------------------------------------------------

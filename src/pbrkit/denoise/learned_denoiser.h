@@ -63,7 +63,8 @@ struct LearnedDenoiseStats {
   bool interrupted = false;
 };
 
-/// data_dir() / "denoiser/kpcn-unet-v1.pbnn", the weights pbrkit ships.
+/// data_dir() / "denoiser/kpcn-blend-v2.pbnn", the weights pbrkit uses by default (it ships
+/// kpcn-unet-v1.pbnn too, from which kpcn-blend-v2 was trained).
 std::filesystem::path default_learned_denoiser_weights();
 
 /// The learned denoiser with its weights loaded. denoise() is const and may run from

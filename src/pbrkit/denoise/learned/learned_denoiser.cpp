@@ -89,7 +89,7 @@ RgbBuffer denoise_tile(const learned::Network& network, learned::NetworkWorkspac
 }  // namespace
 
 std::filesystem::path default_learned_denoiser_weights() {
-  return data_dir() / "denoiser" / "kpcn-unet-v1.pbnn";
+  return data_dir() / "denoiser" / "kpcn-blend-v2.pbnn";
 }
 
 struct LearnedDenoiser::Impl {
