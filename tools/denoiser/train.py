@@ -275,6 +275,9 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--denominator", choices=["output", "classic"], default="classic",
                     help="the relative loss's denominator: the classic denoiser's output "
                     "(kpcn-blend-v2 only) or the network's own (relative_loss says why)")
+    ap.add_argument("--train", choices=["all", "blend"], default="all",
+                    help="blend: only the classic output's blend weight (head0's last "
+                    "channel) learns; the rest keeps the weights it starts from")
     ap.add_argument("--loss", choices=["log", "mean"], default="log",
                     help="log: the mean of each example's log loss; mean: the batch's mean "
                     "(how kpcn-unet-v1 was trained); batch_loss says why")
@@ -307,7 +310,18 @@ def main(argv: list[str] | None = None) -> int:
         if header["network"] != "kpcn-unet-v1":
             ap.error(f"--init-from: {args.init_from} is {header['network']}, not kpcn-unet-v1")
         model = net.widened(source, args.network, args.classic_share)
-    opt = torch.optim.Adam(model.parameters(), lr=args.lr)
+    if args.train == "blend":
+        if not with_classic:
+            ap.error("--train blend: only kpcn-blend-v2 has a blend with the classic output")
+        for p in model.parameters():
+            p.requires_grad_(False)
+        # head0's last output channel (its weights and bias) only: a gradient mask.
+        mask = torch.zeros_like(model.head0.bias)
+        mask[-1] = 1.0
+        for p in (model.head0.weight, model.head0.bias):
+            p.requires_grad_(True)
+            p.register_hook(lambda g, m=mask: g * m.view(-1, *([1] * (g.dim() - 1))))
+    opt = torch.optim.Adam([p for p in model.parameters() if p.requires_grad], lr=args.lr)
     step = 0
     rng = np.random.default_rng(args.seed)
     if ckpt.exists():

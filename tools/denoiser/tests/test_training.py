@@ -127,3 +127,25 @@ def test_log_loss_weighs_every_example_alike() -> None:
     a = float(train.batch_loss(out, t, s, True))
     b = float(train.batch_loss(worse, t, s, True))
     assert abs((b - a) - math.log(100.0) / 2) < 0.1
+
+
+def test_training_only_the_blend_changes_nothing_else(tiny_set: Path, tmp_path: Path) -> None:
+    # --train blend from a widened kpcn-unet-v1: after a few steps every weight but head0's
+    # last channel (the classic output's blend logit) is what it started as, and that one moved.
+    torch.manual_seed(9)
+    net.write_weights(tmp_path / "v1.pbnn", net.KpcnUnet(), net.WeightsMeta())
+    start = net.widened(net.read_weights(tmp_path / "v1.pbnn")[0], "kpcn-blend-v2", 0.88)
+    rc = train.main(["--data", str(tiny_set), "--run", str(tmp_path / "run"), "--steps", "6",
+                     "--batch", "2", "--crop", "32", "--threads", "1", "--quiet",
+                     "--network", "kpcn-blend-v2", "--init-from", str(tmp_path / "v1.pbnn"),
+                     "--classic-share", "0.88", "--train", "blend", "--lr", "1e-2",
+                     "--eval-every", "100", "--export", str(tmp_path / "b.pbnn")])
+    assert rc == 0
+    trained, _ = net.read_weights(tmp_path / "b.pbnn")
+    before, after = start.state_dict(), trained.state_dict()
+    for name in before:
+        if name.startswith("head0."):
+            assert torch.equal(before[name][:-1], after[name][:-1]), name
+            assert not torch.equal(before[name][-1], after[name][-1]), name
+        else:
+            assert torch.equal(before[name], after[name]), name
