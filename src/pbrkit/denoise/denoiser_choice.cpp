@@ -55,7 +55,7 @@ DenoiseRun denoise_render(const DenoiseInput& input, const LoadedDenoiser& loade
     DenoiseStats classic_stats;
     const ProgressCallback classic_progress =
         progress ? ProgressCallback([&](double f, const std::string& what) {
-          return progress(kClassicShare * f, "classic: " + what);
+          return progress(kClassicShare * f, what.empty() ? "classic" : "classic: " + what);
         })
                  : ProgressCallback{};
     classic = denoise(input, {}, classic_progress, &classic_stats);
