@@ -473,6 +473,25 @@ TEST(LearnedDenoiser, StopsWhenAskedWithTheInputUndenoised) {
   }
 }
 
+// Two random half buffers of one render (their features a's, every pixel at depth 3, not the
+// environment), the DenoiseInput of them and the halves' mean colour.
+struct Halves {
+  Inputs a, b;
+  DenoiseInput input;
+  Image mean;
+};
+
+Halves random_halves(int w, int h, std::uint32_t seed) {
+  Halves r{random_inputs(w, h, seed), random_inputs(w, h, seed + 1), {}, Image(w, h, 3)};
+  r.input.color[0] = r.a.color, r.input.color[1] = r.b.color;
+  r.input.albedo[0] = r.input.albedo[1] = r.a.albedo;
+  r.input.normal[0] = r.input.normal[1] = r.a.normal;
+  for (Image& d : r.input.depth) d = Image(w, h, 1, 3.0f);
+  for (std::size_t i = 0; i < r.mean.data.size(); ++i)
+    r.mean.data[i] = 0.5f * (r.a.color.data[i] + r.b.color.data[i]);
+  return r;
+}
+
 // denoise_render's learned path (denoise/denoiser_choice.h): the network on the halves'
 // mean, and the pixels whose every sample saw the environment (depth 0 in both halves)
 // passed through as that mean, as the classic denoiser keeps them.
@@ -482,12 +501,10 @@ TEST(LearnedDenoiser, RenderPathDenoisesTheHalvesMeanAndKeepsTheDirectEnvironmen
   choice.kind = DenoiserKind::kLearned;
   choice.weights = write_file(test::scratch_dir() / "render_path.pbnn", pbnn_bytes(params));
   const int w = 70, h = 50;
-  const Inputs a = random_inputs(w, h, 96), b = random_inputs(w, h, 97);
-  DenoiseInput input;
-  input.color[0] = a.color, input.color[1] = b.color;
-  input.albedo[0] = input.albedo[1] = a.albedo;
-  input.normal[0] = input.normal[1] = a.normal;
-  for (Image& d : input.depth) d = Image(w, h, 1, 3.0f);
+  Halves halves = random_halves(w, h, 96);
+  const Inputs& a = halves.a;
+  DenoiseInput& input = halves.input;
+  const Image& mean = halves.mean;
   // The left third saw only the environment in both halves; one more pixel in one half only.
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w / 3; ++x)
@@ -495,9 +512,6 @@ TEST(LearnedDenoiser, RenderPathDenoisesTheHalvesMeanAndKeepsTheDirectEnvironmen
   input.depth[0].pixel(50, 20)[0] = 0.0f;
   const DenoiseRun run = denoise_render(input, choice);
   ASSERT_FALSE(run.interrupted);
-  Image mean(w, h, 3);
-  for (std::size_t i = 0; i < mean.data.size(); ++i)
-    mean.data[i] = 0.5f * (a.color.data[i] + b.color.data[i]);
   const Image direct =
       LearnedDenoiser(LearnedDenoiserOptions{choice.weights}).denoise(mean, a.albedo, a.normal);
   for (int y = 0; y < h; ++y)
@@ -515,22 +529,16 @@ TEST(LearnedDenoiser, RenderPathGivesTheBlendNetworkTheClassicOutput) {
   choice.kind = DenoiserKind::kLearned;
   choice.weights = gunzip(test::test_data("denoiser") / "blend_reference.pbnn.gz",
                           test::scratch_dir() / "render_path_blend.pbnn");
-  const int w = 48, h = 40;
-  const Inputs a = random_inputs(w, h, 98), b = random_inputs(w, h, 99);
-  DenoiseInput input;
-  input.color[0] = a.color, input.color[1] = b.color;
-  input.albedo[0] = input.albedo[1] = a.albedo;
-  input.normal[0] = input.normal[1] = a.normal;
-  for (Image& d : input.depth) d = Image(w, h, 1, 3.0f);
+  const Halves halves = random_halves(48, 40, 98);
+  const Inputs& a = halves.a;
+  const DenoiseInput& input = halves.input;
+  const Image& mean = halves.mean;
   std::vector<double> fractions;
   const DenoiseRun run = denoise_render(input, choice, [&](double f, const std::string&) {
     fractions.push_back(f);
     return true;
   });
   ASSERT_FALSE(run.interrupted);
-  Image mean(w, h, 3);
-  for (std::size_t i = 0; i < mean.data.size(); ++i)
-    mean.data[i] = 0.5f * (a.color.data[i] + b.color.data[i]);
   const LearnedDenoiser network(LearnedDenoiserOptions{choice.weights});
   const Image classic = denoise(input);
   EXPECT_EQ(run.image.data, network.denoise(mean, a.albedo, a.normal, classic).data);
