@@ -548,6 +548,12 @@ TEST(LearnedDenoiser, RenderPathGivesTheBlendNetworkTheClassicOutput) {
   ASSERT_FALSE(fractions.empty());
   EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
   EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
+  // Stopped once the network runs: the classic denoiser's image, not the raw mean.
+  const DenoiseRun stopped = denoise_render(input, choice, [&](double, const std::string& detail) {
+    return detail.rfind("classic", 0) == 0;
+  });
+  EXPECT_TRUE(stopped.interrupted);
+  EXPECT_EQ(stopped.image.data, classic.data);
 }
 
 TEST(LearnedDenoiser, RefusesImagesOfAnotherSizeOrTooFewChannels) {

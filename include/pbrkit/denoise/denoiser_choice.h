@@ -48,7 +48,10 @@ struct LoadedDenoiser {
 };
 
 struct DenoiseRun {
-  Image image;               ///< the denoised image (or the halves' mean if interrupted)
+  /// The denoised image; if interrupted, the halves' mean, or for a learned network that
+  /// blends with the classic denoiser (kpcn-blend-v2) stopped after that one finished, the
+  /// classic denoiser's image.
+  Image image;
   bool interrupted = false;  ///< the progress callback asked to stop
   double seconds = 0.0;
 };

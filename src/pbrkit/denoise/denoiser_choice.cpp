@@ -9,7 +9,7 @@
 namespace pbrkit {
 
 namespace {
-// kpcn-blend-v2 runs the classic denoiser first, which takes most of the time (about 15x
+// kpcn-blend-v2 runs the classic denoiser first, which takes most of the time (about 9x
 // the network at 512x512, BENCHMARKS.md): its share of the progress.
 constexpr double kClassicShare = 0.9;
 }  // namespace
@@ -76,6 +76,8 @@ DenoiseRun denoise_render(const DenoiseInput& input, const LoadedDenoiser& loade
                                classic, network_progress, &stats);
   run.interrupted = stats.interrupted;
   run.seconds += stats.seconds;
+  // Stopped within the network after the classic denoiser finished: its image, not the raw.
+  if (run.interrupted && !classic.empty()) run.image = std::move(classic);
   // As the classic denoiser does (DenoiseOptions::keep_direct_environment): a pixel whose
   // every sample saw the environment directly (depth 0 in both halves) is a lookup of the
   // environment, noise-free but for the pixel filter's sampling of its detail; the
