@@ -5,7 +5,9 @@ Each example is one random view (tools/denoiser/scenes.py) rendered twice with
 independent seeds: the input at 1 to 64 spp with its albedo and normal AOVs, and a target
 at --target-spp. The target need not be converged: with an L2-type loss a noisy,
 independent target trains toward the mean (Noise2Noise, Lehtinen et al. 2018), which is
-what two cores can afford. Example k of a data set depends only on (seed, split, k), so a
+what two cores can afford. With --denoised-targets the target is the classic denoiser's
+output of that render (kept raw as `target_raw`): biased by the filter, but with far less
+noise than the raw 128-spp target. Example k of a data set depends only on (seed, split, k), so a
 set is reproducible and an interrupted run resumes where it stopped (existing files are
 kept).
 
@@ -80,7 +82,7 @@ def make_view(rng, split: str, assets: Path, work: Path) -> scenes.View:
 
 
 def render_example(view: scenes.View, spp: int, target_spp: int, size: int, seed: int,
-                   threads: int):
+                   threads: int, denoised_targets: bool = False):
     import pbrkit
     scene = pbrkit.load(view.scene)
     cam = pbrkit.look_at(view.eye, view.target, fov=view.fov)
@@ -92,9 +94,16 @@ def render_example(view: scenes.View, spp: int, target_spp: int, size: int, seed
     # colour is the same render's as without denoising (same seed, same samples).
     classic, aovs = pbrkit.render(scene, spp=spp, seed=seed, denoise=True, denoiser="classic",
                                   aovs=["albedo", "normal", "depth", "noise"], **common)
-    target = pbrkit.render(scene, spp=target_spp, seed=seed + 1_000_003, **common)
-    return aovs["raw"], aovs["albedo"], aovs["normal"], target, {
-        "classic": classic, "depth": aovs["depth"], "noise": aovs["noise"]}
+    extra = {"classic": classic, "depth": aovs["depth"], "noise": aovs["noise"]}
+    if denoised_targets:
+        # The same samples as the raw target (same seed), then the classic denoiser.
+        target, target_aovs = pbrkit.render(scene, spp=target_spp, seed=seed + 1_000_003,
+                                            denoise=True, denoiser="classic", aovs=["albedo"],
+                                            **common)
+        extra["target_raw"] = target_aovs["raw"]
+    else:
+        target = pbrkit.render(scene, spp=target_spp, seed=seed + 1_000_003, **common)
+    return aovs["raw"], aovs["albedo"], aovs["normal"], target, extra
 
 
 def main() -> int:
@@ -106,6 +115,8 @@ def main() -> int:
     ap.add_argument("--seed", type=int, default=1, help="the data set's seed")
     ap.add_argument("--size", type=int, default=128, help="image width and height")
     ap.add_argument("--target-spp", type=int, default=128)
+    ap.add_argument("--denoised-targets", action="store_true",
+                    help="the target is the classic denoiser's output of its render")
     ap.add_argument("--threads", type=int, default=0, help="render threads (0: all)")
     ap.add_argument("--assets", type=Path, default=default_assets(),
                     help="a folder with hdri/*.exr and models/ (default: the repository's "
@@ -131,7 +142,8 @@ def main() -> int:
             try:
                 view = make_view(rng, args.split, assets, Path(tmp))
                 color, albedo, normal, target, extra = render_example(
-                    view, spp, args.target_spp, args.size, 1 + 2 * k, args.threads)
+                    view, spp, args.target_spp, args.size, 1 + 2 * k, args.threads,
+                    args.denoised_targets)
             except Exception as e:  # a bad random scene is skipped, and said
                 print(f"example {k}: skipped ({e})", file=sys.stderr)
                 continue
@@ -142,13 +154,16 @@ def main() -> int:
             print(f"example {k}: skipped (black)", file=sys.stderr)
             continue
         meta = {"kind": view.kind, "scene": Path(view.scene).name, "spp": spp,
-                "target_spp": args.target_spp, "info": view.info}
+                "target_spp": args.target_spp, "denoised_target": args.denoised_targets,
+                "info": view.info}
         tmpdest = dest.with_name(dest.name + ".tmp.npz")
         np.savez(tmpdest, color=color.astype(np.float32), albedo=albedo.astype(np.float16),
                  normal=normal.astype(np.float16), target=target.astype(np.float32),
                  classic=extra["classic"].astype(np.float32),
                  depth=extra["depth"].astype(np.float32),
-                 noise=extra["noise"].astype(np.float16), meta=json.dumps(meta))
+                 noise=extra["noise"].astype(np.float16), meta=json.dumps(meta),
+                 **({"target_raw": extra["target_raw"].astype(np.float32)}
+                    if "target_raw" in extra else {}))
         os.replace(tmpdest, dest)
         made += 1
         el = time.time() - t0

@@ -20,10 +20,11 @@ import model as net  # noqa: E402
 import train  # noqa: E402
 
 
-def generate(out: Path, count: int, split: str = "train", seed: int = 7) -> None:
+def generate(out: Path, count: int, split: str = "train", seed: int = 7,
+             extra: tuple[str, ...] = ()) -> None:
     subprocess.run([sys.executable, str(HERE / "generate.py"), "--out", str(out), "--split", split,
                     "--count", str(count), "--seed", str(seed), "--size", "48",
-                    "--target-spp", "16"], check=True, capture_output=True)
+                    "--target-spp", "16", *extra], check=True, capture_output=True)
 
 
 @pytest.fixture(scope="module")
@@ -149,3 +150,15 @@ def test_training_only_the_blend_changes_nothing_else(tiny_set: Path, tmp_path: 
             assert not torch.equal(before[name][-1], after[name][-1]), name
         else:
             assert torch.equal(before[name], after[name]), name
+
+
+def test_denoised_targets_are_the_same_samples_filtered(tiny_set: Path, tmp_path: Path) -> None:
+    # --denoised-targets: the raw target is the plain set's, bit for bit (same seed, same
+    # samples), and the target is another image of about the same energy (the classic
+    # denoiser keeps a region's mean within its noise).
+    generate(tmp_path, 1, extra=("--denoised-targets",))
+    plain = np.load(tiny_set / "train" / "000000.npz")
+    denoised = np.load(tmp_path / "train" / "000000.npz")
+    assert np.array_equal(denoised["target_raw"], plain["target"])
+    assert not np.array_equal(denoised["target"], plain["target"])
+    assert abs(denoised["target"].mean() / plain["target"].mean() - 1.0) < 0.05
