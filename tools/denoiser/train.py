@@ -171,8 +171,9 @@ def batch_loss(out: torch.Tensor, target: torch.Tensor, scale: torch.Tensor,
     scenes): averaged as they are, the few 1- and 2-spp examples make most of the loss, and
     a network trained so is best where the input is worst (kpcn-unet-v1 at 1-2 spp beat the
     classic denoiser 9.4x to 3.7x, at 9-24 spp it lost 2.9x to 5.8x and at 25-64 spp 1.8x
-    to 2.9x; docs/LEARNED_DENOISER.md). The log weighs every example's relative improvement alike, as the benchmarks'
-    geometric mean of ratios does: its gradient is each example's divided by its own loss."""
+    to 2.9x; docs/LEARNED_DENOISER.md). The log weighs every example's relative
+    improvement alike, as the benchmarks' geometric mean of ratios does: its gradient is
+    each example's divided by its own loss."""
     if not per_example_log:
         return relative_loss(out, target, scale, denominator)
     d = (lambda i: None) if denominator is None else (lambda i: denominator[i:i + 1])
@@ -268,7 +269,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--init-from", type=Path,
                     help="a kpcn-unet-v1 weights file to start from (new runs only; "
                     "model.widened for kpcn-blend-v2)")
-    ap.add_argument("--classic-share", type=float, default=0.5,
+    ap.add_argument("--classic-share", type=float, default=0.88,
                     help="with --init-from: the classic output's starting share of the blend")
     ap.add_argument("--min-spp", type=int, default=1,
                     help="train on the examples rendered with at least this many samples")
