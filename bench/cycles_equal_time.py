@@ -107,6 +107,13 @@ def overhead_of(args, scene, c, extra):
                   ["--noise-threshold", "0", "--time", "1"] + extra) - 1
 
 
+def pbrkit_in_time(args, scene, out, run, budget, extra):
+    """pbrkit with render --time `budget` (at least 0.1 s) and run's seed, no adaptive stop:
+    what each comparison gives the time Cycles took, less pbrkit's overhead."""
+    return pbrkit(args, scene, out, 1000000, 200 + run,
+                  ["--noise-threshold", "0", "--time", f"{max(0.1, budget):.3f}"] + extra)
+
+
 def cycles_run(args, cycles_scene, c, refs, run):
     """Cycles at 256 spp: its render call's seconds (the budget) and relMSE."""
     t = cycles(args, cycles_scene, args.env, 256, 200 + run, c("cycles.exr"))
@@ -157,9 +164,8 @@ def main():
     rows = []
     for run in range(args.runs):
         t, e_c = cycles_run(args, cycles_scene, c, refs, run)
-        wall = pbrkit(args, scene, c("pbrkit.exr"), 1000000, 200 + run,
-                      ["--denoise", "--noise-threshold", "0", "--time",
-                       f"{max(0.1, t - overhead):.3f}"] + denoiser)
+        wall = pbrkit_in_time(args, scene, c("pbrkit.exr"), run, t - overhead,
+                              ["--denoise"] + denoiser)
         e_raw = rel_mse(rgb(c("pbrkit.exr"), "raw"), *refs["pbrkit"])
         e_dn = rel_mse(rgb(c("pbrkit.exr")), *refs["pbrkit"])
         rows.append((e_raw / e_c, e_dn / e_c))
@@ -181,9 +187,8 @@ def compare_guiding(args, c, cycles_scene, scene, refs):
         e = {}
         wall = {}
         for guiding in ("on", "off"):
-            wall[guiding] = pbrkit(args, scene, c(f"pbrkit_{guiding}.exr"), 1000000, 200 + run,
-                                   ["--noise-threshold", "0", "--guiding", guiding, "--time",
-                                    f"{max(0.1, t - overhead):.3f}"])
+            wall[guiding] = pbrkit_in_time(args, scene, c(f"pbrkit_{guiding}.exr"), run,
+                                           t - overhead, ["--guiding", guiding])
             e[guiding] = rel_mse(rgb(c(f"pbrkit_{guiding}.exr")), *refs["pbrkit"])
         rows.append((e["on"] / e["off"], e["on"] / e_c))
         print(f"| {run + 1} | {t:.2f} | {e_c:.3g} | {wall['on']:.2f} | {e['on']:.3g} | "

@@ -24,6 +24,10 @@ import model as net
 from train import git_commit
 
 
+def now() -> str:
+    return datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--run", type=Path, help="train.py's --run folder")
@@ -47,7 +51,7 @@ def main() -> int:
             dataset=(f"none: kpcn-unet-v1 ({args.widen.name}, {header['dataset']}, "
                      f"{header['steps']} steps) widened, classic share {args.classic_share}"),
             steps=0,
-            created=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")))
+            created=now()))
         print(f"wrote {args.output} (kpcn-unet-v1 widened, classic share {args.classic_share})")
         return 0
     ckpt = args.run / "checkpoint.pt"
@@ -60,7 +64,7 @@ def main() -> int:
     dataset = args.dataset or f"{state.get('examples', '?')} examples"
     net.write_weights(args.output, model, net.WeightsMeta(
         commit=git_commit(), dataset=dataset, steps=int(state["step"]),
-        created=datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds")))
+        created=now()))
     print(f"wrote {args.output} (step {state['step']})")
     return 0
 
