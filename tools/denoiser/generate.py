@@ -32,6 +32,16 @@ SPP_CHOICES = np.array([1, 2, 4, 8, 16, 32, 64])
 SPP_WEIGHTS = np.array([0.08, 0.1, 0.16, 0.2, 0.22, 0.14, 0.1])
 
 
+def parse_spp(text: str) -> np.ndarray:
+    try:
+        counts = np.array([int(v) for v in text.split(",")])
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a comma-separated list of integers")
+    if counts.size == 0 or (counts < 1).any():
+        raise argparse.ArgumentTypeError(f"'{text}': every sample count must be at least 1")
+    return counts
+
+
 def default_assets() -> Path:
     return Path(__file__).resolve().parents[2] / "tests" / "data" / "assets"
 
@@ -115,6 +125,10 @@ def main() -> int:
     ap.add_argument("--seed", type=int, default=1, help="the data set's seed")
     ap.add_argument("--size", type=int, default=128, help="image width and height")
     ap.add_argument("--target-spp", type=int, default=128)
+    ap.add_argument("--spp", type=parse_spp, default=None,
+                    help="the input's sample counts, comma-separated, drawn with equal "
+                         "probability (default: 1 to 64, most often 8 to 16); e.g. 8,16,32 for "
+                         "examples at the benchmark's counts")
     ap.add_argument("--denoised-targets", action="store_true",
                     help="the target is the classic denoiser's output of its render")
     ap.add_argument("--threads", type=int, default=0, help="render threads (0: all)")
@@ -137,7 +151,8 @@ def main() -> int:
         if dest.exists():
             continue
         rng = np.random.default_rng([args.seed, split_id, k])
-        spp = int(rng.choice(SPP_CHOICES, p=SPP_WEIGHTS / SPP_WEIGHTS.sum()))
+        spp = int(rng.choice(SPP_CHOICES, p=SPP_WEIGHTS / SPP_WEIGHTS.sum()) if args.spp is None
+                  else rng.choice(args.spp))
         with tempfile.TemporaryDirectory() as tmp:
             try:
                 view = make_view(rng, args.split, assets, Path(tmp))

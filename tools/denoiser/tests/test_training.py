@@ -162,3 +162,15 @@ def test_denoised_targets_are_the_same_samples_filtered(tiny_set: Path, tmp_path
     assert np.array_equal(denoised["target_raw"], plain["target"])
     assert not np.array_equal(denoised["target"], plain["target"])
     assert abs(denoised["target"].mean() / plain["target"].mean() - 1.0) < 0.05
+
+
+def test_spp_choices_set_the_inputs_sample_counts(tmp_path: Path) -> None:
+    # --spp 3: every example's input has 3 spp (a count the default distribution never
+    # draws), and a bad list is refused before anything renders.
+    generate(tmp_path, 2, extra=("--spp", "3"))
+    for k in range(2):
+        meta = np.load(tmp_path / "train" / f"{k:06d}.npz")["meta"]
+        assert '"spp": 3,' in str(meta)
+    bad = subprocess.run([sys.executable, str(HERE / "generate.py"), "--out", str(tmp_path),
+                          "--spp", "8,0"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "at least 1" in bad.stderr
