@@ -138,7 +138,19 @@ struct DenoiseOptions {
   /// takes in the scene's, which lets the filters blur them freely (docs/DENOISER.md,
   /// "Energy": those blocks moved by many of their tiny standard errors).
   bool keep_direct_environment = true;
+  /// Images wider or taller than `tile` pixels are denoised in tiles of at most that side,
+  /// each with a margin of denoise_tile_margin(options) pixels of image around it, so that
+  /// peak memory follows the tile, not the image (`pbrkit denoise` of a 1920x1080 image:
+  /// 799 MB whole, 417 MB in tiles; docs/DENOISER.md, "Tiles"). Every stage reads a bounded
+  /// neighbourhood, so the image is the same bit for bit (DenoiseStats's candidate_share
+  /// and outliers then count the margins too). 0: always whole.
+  int tile = 1024;
 };
+
+/// The margin each tile of DenoiseOptions::tile runs with: the radius of the neighbourhood
+/// of input pixels that can change an output pixel, the sum of the radii along the
+/// longest chain of stages (denoiser.cpp derives it).
+int denoise_tile_margin(const DenoiseOptions& options);
 
 /// Diagnostics of one run.
 struct DenoiseStats {

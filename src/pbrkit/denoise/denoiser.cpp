@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <mutex>
+#include <utility>
 
 #include "pbrkit/util/error.h"
 #include "stages.h"
@@ -57,6 +60,12 @@ void validate_denoise_input(const DenoiseInput& in) {
 }
 
 namespace {
+// What every tile shares with the whole image: the depth's largest magnitude (the depth
+// feature's scale) and the colour's range (the first-order fits are clamped to it).
+struct ValueRange {
+  float depth_max = 0.0f, lowest = 0.0f, highest = 0.0f;
+};
+
 // One half's colour, unpadded.
 denoising::Channels channels_unpadded(const denoising::Channels& color, int w, int h) {
   denoising::Channels out;
@@ -97,42 +106,23 @@ void keep_direct_environment(const std::vector<unsigned char>& mask,
       if (error && !error->empty()) error->data[i] = squared / (level * level + 0.01f);
     }
 }
-}  // namespace
 
-Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
-              const ProgressCallback& progress, DenoiseStats* stats, Image* error) {
+// Denoises the whole of `input` (a tile or the image) with the image's `range`; false when
+// `report` stopped it. `share` and `outliers` get DenoiseStats' diagnostics.
+bool denoise_whole(const DenoiseInput& input, const DenoiseOptions& options,
+                   const ValueRange& range, const std::function<bool(double)>& report, Image& out,
+                   std::vector<double>& share, int& outliers, Image* error) {
   using namespace denoising;
-  const auto start = std::chrono::steady_clock::now();
-  validate_denoise_input(input);
-  if (options.radius < 0 || options.patch_radius < 0 || options.variance_radius < 0 ||
-      options.prefilter_radius < 0 || (options.candidates.empty() && options.first_order_k.empty()))
-    fail("denoise: radii must be >= 0 and there must be at least one candidate");
-  if (options.first_order_energy_radius < 0 || options.zero_order_energy_radius < 0)
-    fail("denoise: first_order_energy_radius and zero_order_energy_radius must be >= 0");
-  if (!(options.first_order_ridge >= 0.0f))
-    fail("denoise: first_order_ridge must be >= 0 (it is {})", options.first_order_ridge);
   const int w = input.color[0].width, h = input.color[0].height;
   const int pad = std::max({options.radius + options.patch_radius, options.prefilter_radius + 1,
                             options.variance_radius, 1}) +
                   1;
-  std::mutex progress_mutex;
-  bool keep_going = true;
-  auto report = [&](double fraction) {
-    if (!progress) return true;
-    const std::lock_guard lock(progress_mutex);
-    if (keep_going) keep_going = progress(fraction, {});
-    return keep_going;
-  };
-
-  // Features: albedo, normal and depth, the last normalised by its largest value so that
-  // the feature floor tau means the same in every scene.
-  float depth_max = 0.0f;
-  for (const Image* d : {&input.depth[0], &input.depth[1]})
-    for (float v : d->data) depth_max = std::max(depth_max, std::abs(v));
+  // Features: albedo, normal and depth, the last normalised by the image's largest value
+  // so that the feature floor tau means the same in every scene.
   Image depth_scaled[2] = {input.depth[0], input.depth[1]};
-  if (depth_max > 0.0f)
+  if (range.depth_max > 0.0f)
     for (Image& d : depth_scaled)
-      for (float& v : d.data) v /= depth_max;
+      for (float& v : d.data) v /= range.depth_max;
   std::vector<Feature> features;
   features.push_back(prefilter_feature(channels_from(input.albedo[0], pad),
                                        channels_from(input.albedo[1], pad), options,
@@ -150,27 +140,14 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   const std::vector<unsigned char> environment = options.keep_direct_environment
                                                      ? direct_environment_mask(input)
                                                      : std::vector<unsigned char>{};
-  const int outliers = spread_outliers(color, feature_list, options,
-                                       options.keep_direct_environment ? &environment : nullptr);
+  outliers = spread_outliers(color, feature_list, options,
+                             options.keep_direct_environment ? &environment : nullptr);
   const Channels variance =
       options.relative_variance
           ? half_variance_relative(color[0], color[1], options.variance_radius,
                                    options.variance_level_ratio)
           : half_variance(color[0], color[1], options.variance_radius);
-  // Stopped (progress.h's rule): what it has is the input's mean, the undenoised image.
-  auto interrupted = [&] {
-    if (stats) {
-      stats->seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      stats->outliers = outliers;
-      stats->interrupted = true;
-    }
-    Image mean(w, h, 3);
-    for (std::size_t i = 0; i < mean.data.size(); ++i)
-      mean.data[i] = 0.5f * (input.color[0].data[i] + input.color[1].data[i]);
-    return mean;
-  };
-  if (!report(0.1)) return interrupted();
+  if (!report(0.1)) return false;
 
   CrossFilterInput cf;
   cf.color[0] = &color[0];
@@ -179,18 +156,19 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
   cf.features = feature_list;
   cf.normal = 1;
   cf.depth = 2;
-  cf.lowest = cf.highest = input.color[0].data.front();
-  for (const Image* c : {&input.color[0], &input.color[1]})
-    for (float v : c->data) {
-      cf.lowest = std::min(cf.lowest, v);
-      cf.highest = std::max(cf.highest, v);
-    }
+  cf.lowest = range.lowest;
+  cf.highest = range.highest;
   int strips = 1;
   std::atomic<int> done{0};
+  std::atomic<bool> keep_going{true};
   Candidates candidates = cross_filter(
       cf, options,
-      [&] { return report(0.1 + 0.85 * double(++done) / double(std::max(1, strips))); }, &strips);
-  if (!keep_going) return interrupted();
+      [&] {
+        if (!report(0.1 + 0.85 * double(++done) / double(std::max(1, strips)))) keep_going = false;
+        return keep_going.load();
+      },
+      &strips);
+  if (!keep_going) return false;
   // The fits (and, with zero_order_energy_radius > 0, the other zero-order candidates)
   // keep the energy of the first zero-order candidate (the 7x7 weighted mean), each half
   // against its own (first_order.cpp, docs/DENOISER.md "Energy"); the raw half when there
@@ -223,16 +201,160 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
       candidates.error[half].push_back(std::move(error));
     }
   }
-  std::vector<double> share;
-  Image out = select_candidates(candidates, options, &share, error);
+  out = select_candidates(candidates, options, &share, error);
   if (options.keep_direct_environment) keep_direct_environment(environment, color, out, error);
-  report(1.0);
+  return true;
+}
+
+// The rectangle [x0, x1) x [y0, y1) of every layer.
+DenoiseInput crop(const DenoiseInput& input, int x0, int y0, int x1, int y1) {
+  DenoiseInput out;
+  auto cut = [&](const Image& image) {
+    Image c(x1 - x0, y1 - y0, image.channels);
+    for (int y = y0; y < y1; ++y)
+      std::copy_n(image.pixel(x0, y), std::size_t(x1 - x0) * std::size_t(image.channels),
+                  c.pixel(0, y - y0));
+    return c;
+  };
+  for (int half = 0; half < 2; ++half) {
+    out.color[half] = cut(input.color[half]);
+    out.albedo[half] = cut(input.albedo[half]);
+    out.normal[half] = cut(input.normal[half]);
+    out.depth[half] = cut(input.depth[half]);
+  }
+  return out;
+}
+
+// [start, end) of ceil(size / tile) spans of equal length covering [0, size).
+std::vector<std::pair<int, int>> spans(int size, int tile) {
+  const int count = (size + tile - 1) / tile;
+  std::vector<std::pair<int, int>> out;
+  for (int i = 0; i < count; ++i)
+    out.emplace_back(int(std::int64_t(size) * i / count),
+                     int(std::int64_t(size) * (i + 1) / count));
+  return out;
+}
+}  // namespace
+
+int denoise_tile_margin(const DenoiseOptions& o) {
+  // The longest chain of stages (docs/DENOISER.md, "Tiles"), each reading the previous
+  // one's output within its radius of a pixel:
+  // - a prefiltered feature reads its halves' variance (a box of variance_radius) over 3x3
+  //   patches (1) in its window (prefilter_radius), then its residual variance (another
+  //   box) and its gradient (1);
+  // - the firefly treatment scales a pixel by its window (outlier_radius) and spreads the
+  //   excess over outlier_spread_radius by feature weights normalised over that same
+  //   radius around the outlier: a treated pixel reads features up to twice that far;
+  // - the colour's variance is a box (variance_radius) of treated colour;
+  // - a candidate weighs a window (radius) of patches (patch_radius) of colour and
+  //   variance;
+  // - the fits get their energy back over a box (the larger energy radius);
+  // - the selection smooths the errors (error_radius) and the choice (selection_radius).
+  const int feature = 2 * o.variance_radius + 1 + o.prefilter_radius + 1;
+  const bool fireflies = o.outlier_k > 0.0f && o.outlier_radius > 0;
+  const int spread = std::max(0, o.outlier_spread_radius);
+  const int treated = fireflies ? std::max(o.outlier_radius + spread, 2 * spread + feature) : 0;
+  return std::max(treated + o.variance_radius, feature) + o.radius + o.patch_radius +
+         std::max(o.first_order_energy_radius, o.zero_order_energy_radius) + o.error_radius +
+         o.selection_radius;
+}
+
+Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
+              const ProgressCallback& progress, DenoiseStats* stats, Image* error) {
+  const auto start = std::chrono::steady_clock::now();
+  validate_denoise_input(input);
+  if (options.radius < 0 || options.patch_radius < 0 || options.variance_radius < 0 ||
+      options.prefilter_radius < 0 || (options.candidates.empty() && options.first_order_k.empty()))
+    fail("denoise: radii must be >= 0 and there must be at least one candidate");
+  if (options.first_order_energy_radius < 0 || options.zero_order_energy_radius < 0)
+    fail("denoise: first_order_energy_radius and zero_order_energy_radius must be >= 0");
+  if (!(options.first_order_ridge >= 0.0f))
+    fail("denoise: first_order_ridge must be >= 0 (it is {})", options.first_order_ridge);
+  if (options.tile < 0) fail("denoise: tile must be >= 0 (it is {})", options.tile);
+  const int w = input.color[0].width, h = input.color[0].height;
+  // What every tile must share with the whole image: the depth's scale and the input's
+  // range (the fits are clamped to it).
+  ValueRange range;
+  for (const Image* d : {&input.depth[0], &input.depth[1]})
+    for (float v : d->data) range.depth_max = std::max(range.depth_max, std::abs(v));
+  range.lowest = range.highest = input.color[0].data.front();
+  for (const Image* c : {&input.color[0], &input.color[1]})
+    for (float v : c->data) {
+      range.lowest = std::min(range.lowest, v);
+      range.highest = std::max(range.highest, v);
+    }
+
+  const bool whole = options.tile == 0 || (w <= options.tile && h <= options.tile);
+  const auto rows = whole ? std::vector<std::pair<int, int>>{{0, h}} : spans(h, options.tile);
+  const auto columns = whole ? std::vector<std::pair<int, int>>{{0, w}} : spans(w, options.tile);
+  const int margin = whole ? 0 : denoise_tile_margin(options);
+  const double tiles = double(rows.size() * columns.size());
+  std::mutex progress_mutex;
+  bool keep_going = true;
+  int tile_index = 0;
+  auto report = [&](double fraction) {
+    if (!progress) return true;
+    const std::lock_guard lock(progress_mutex);
+    if (keep_going) keep_going = progress((double(tile_index) + fraction) / tiles, {});
+    return keep_going;
+  };
+
+  Image out(w, h, 3), tiled_error;
+  if (error && !whole) tiled_error = Image(w, h, 1);
+  std::vector<double> share;
+  int outliers = 0;
+  bool finished = true;
+  for (std::size_t t = 0; finished && t < rows.size() * columns.size(); ++t) {
+    const auto [y0, y1] = rows[t / columns.size()];
+    const auto [x0, x1] = columns[t % columns.size()];
+    // The rectangle the tile runs on: its own with the margin, within the image.
+    const int ex0 = std::max(0, x0 - margin), ey0 = std::max(0, y0 - margin);
+    const int ex1 = std::min(w, x1 + margin), ey1 = std::min(h, y1 + margin);
+    std::vector<double> tile_share;
+    int tile_outliers = 0;
+    if (whole) {
+      finished =
+          denoise_whole(input, options, range, report, out, tile_share, tile_outliers, error);
+    } else {
+      Image tile_out, tile_error;
+      finished = denoise_whole(crop(input, ex0, ey0, ex1, ey1), options, range, report, tile_out,
+                               tile_share, tile_outliers, error ? &tile_error : nullptr);
+      if (finished)
+        for (int y = y0; y < y1; ++y) {
+          std::copy_n(tile_out.pixel(x0 - ex0, y - ey0), std::size_t(x1 - x0) * 3,
+                      out.pixel(x0, y));
+          if (error)
+            std::copy_n(tile_error.pixel(x0 - ex0, y - ey0), std::size_t(x1 - x0),
+                        tiled_error.pixel(x0, y));
+        }
+    }
+    // Each tile's share weighs by the pixels it chose among (its margins included).
+    const double pixels = double(ex1 - ex0) * double(ey1 - ey0);
+    share.resize(tile_share.size(), 0.0);
+    for (std::size_t k = 0; k < tile_share.size(); ++k) share[k] += pixels * tile_share[k];
+    outliers += tile_outliers;
+    ++tile_index;
+  }
   if (stats) {
     stats->seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    stats->candidate_share = share;
     stats->outliers = outliers;
+    stats->interrupted = !finished;
   }
+  if (!finished) {
+    // Stopped (progress.h's rule): what it has is the input's mean, the undenoised image.
+    Image mean(w, h, 3);
+    for (std::size_t i = 0; i < mean.data.size(); ++i)
+      mean.data[i] = 0.5f * (input.color[0].data[i] + input.color[1].data[i]);
+    return mean;
+  }
+  double total = 0.0;
+  for (double s : share) total += s;
+  if (total > 0.0)
+    for (double& s : share) s /= total;
+  if (stats) stats->candidate_share = share;
+  if (error && !whole) *error = std::move(tiled_error);
+  if (progress) progress(1.0, {});
   return out;
 }
 
