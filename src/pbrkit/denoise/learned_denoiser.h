@@ -34,10 +34,12 @@ struct LearnedDenoiserOptions {
   int threads = 0;
 };
 
-/// The default inner tile: 1920x1080 then runs in 2x2 tiles of at most 1056x640 pixels
-/// with their margins, whose network activations take 238 MB (88 floats a pixel) and the
-/// whole call about 270 MB beside the caller's images (docs/LEARNED_DENOISER.md, "Tiles").
-inline constexpr int kDefaultLearnedDenoiserTile = 1024;
+/// The default inner tile: 1920x1080 then runs in 3x2 tiles of at most 832x640 pixels
+/// with their margins, whose network activations take 187 MB (88 floats a pixel). With
+/// kpcn-blend-v2 the classic denoiser's output is held beside the caller's images while it
+/// runs: 1,024-pixel tiles (238 MB) took the whole `pbrkit denoise` of a 1920x1080 image to
+/// 599 MB, these to 546 MB, for the same time (docs/LEARNED_DENOISER.md, "Tiles").
+inline constexpr int kDefaultLearnedDenoiserTile = 768;
 
 /// What the weights file's header says (docs/LEARNED_DENOISER.md, "The weights file").
 struct LearnedWeightsInfo {
