@@ -42,10 +42,11 @@ ENERGY_WEIGHT = 10.0
 class Example:
     __slots__ = ("x", "color", "classic", "target", "scale", "name", "spp")
 
-    def __init__(self, path: Path, with_classic: bool) -> None:
+    def __init__(self, path: Path, with_classic: bool, raw_target: bool = False) -> None:
         with np.load(path) as z:
             color, albedo, normal = z["color"], z["albedo"], z["normal"]
-            target = z["target"]
+            # A set made with --denoised-targets keeps the raw target too.
+            target = z["target_raw"] if raw_target and "target_raw" in z.files else z["target"]
             if with_classic and "classic" not in z.files:
                 raise ValueError("no classic output (rendered before generate.py kept it)")
             classic = z["classic"] if with_classic else None
@@ -63,11 +64,12 @@ class Example:
 
 class DataSet:
     def __init__(self, folder: Path, limit: int = 0, with_classic: bool = False,
-                 min_spp: int = 1) -> None:
+                 min_spp: int = 1, raw_target: bool = False) -> None:
         self.folder = folder
         self.limit = limit
         self.with_classic = with_classic
         self.min_spp = min_spp
+        self.raw_target = raw_target
         self.examples: list[Example] = []
         self.seen: set[str] = set()
         self.rescan()
@@ -81,7 +83,7 @@ class DataSet:
             if self.limit and len(self.examples) >= self.limit:
                 break
             try:
-                ex = Example(p, self.with_classic)
+                ex = Example(p, self.with_classic, self.raw_target)
                 if ex.spp < self.min_spp:
                     self.seen.add(p.name)
                     continue
@@ -282,6 +284,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--loss", choices=["log", "mean"], default="log",
                     help="log: the mean of each example's log loss; mean: the batch's mean "
                     "(how kpcn-unet-v1 was trained); batch_loss says why")
+    ap.add_argument("--target", choices=["denoised", "raw"], default="denoised",
+                    help="with a set made by generate.py --denoised-targets: train toward the "
+                    "classic denoiser's output of the target render (less noise, but its "
+                    "filter's bias is shared with the classic input), or the raw render "
+                    "(Noise2Noise: unbiased, noisier)")
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--limit", type=int, default=0, help="use at most this many examples")
     ap.add_argument("--ckpt-every", type=int, default=250)
@@ -299,8 +306,9 @@ def main(argv: list[str] | None = None) -> int:
 
     with_classic = net.uses_classic(args.network)
     use_classic_denominator = with_classic and args.denominator == "classic"
-    train = DataSet(args.data / "train", args.limit, with_classic, args.min_spp)
-    heldout = DataSet(args.data / "heldout", 64, with_classic, args.min_spp)
+    raw_target = args.target == "raw"
+    train = DataSet(args.data / "train", args.limit, with_classic, args.min_spp, raw_target)
+    heldout = DataSet(args.data / "heldout", 64, with_classic, args.min_spp, raw_target)
     if not train.examples:
         print(f"train.py: no examples in {args.data / 'train'}", file=sys.stderr)
         return 1

@@ -162,6 +162,13 @@ def test_denoised_targets_are_the_same_samples_filtered(tiny_set: Path, tmp_path
     assert np.array_equal(denoised["target_raw"], plain["target"])
     assert not np.array_equal(denoised["target"], plain["target"])
     assert abs(denoised["target"].mean() / plain["target"].mean() - 1.0) < 0.05
+    # train.py --target raw trains toward the raw render of such a set, the default toward
+    # the denoised one.
+    path = tmp_path / "train" / "000000.npz"
+    chw = lambda a: np.ascontiguousarray(a.transpose(2, 0, 1))  # noqa: E731
+    assert np.array_equal(train.Example(path, True, raw_target=True).target,
+                          chw(denoised["target_raw"]))
+    assert np.array_equal(train.Example(path, True).target, chw(denoised["target"]))
 
 
 def test_spp_choices_set_the_inputs_sample_counts(tmp_path: Path) -> None:
