@@ -141,7 +141,7 @@ struct DenoiseOptions {
   /// Images wider or taller than `tile` pixels are denoised in tiles of at most that side,
   /// each with a margin of denoise_tile_margin(options) pixels of image around it, so that
   /// peak memory follows the tile, not the image (`pbrkit denoise` of a 1920x1080 image:
-  /// 799 MB whole, 417 MB in tiles; docs/DENOISER.md, "Tiles"). Every stage reads a bounded
+  /// 799 MB whole, 416 MB in tiles; docs/DENOISER.md, "Tiles"). Every stage reads a bounded
   /// neighbourhood, so the image is the same bit for bit (DenoiseStats's candidate_share
   /// and outliers then count the margins too). 0: always whole.
   int tile = 1024;
