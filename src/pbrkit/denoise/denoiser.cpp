@@ -5,13 +5,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <utility>
 
+#include "pbrkit/denoise/inputs.h"
 #include "pbrkit/util/error.h"
 #include "stages.h"
+#include "tile_spans.h"
 
 namespace pbrkit {
 
@@ -225,15 +226,6 @@ DenoiseInput crop(const DenoiseInput& input, int x0, int y0, int x1, int y1) {
   return out;
 }
 
-// [start, end) of ceil(size / tile) spans of equal length covering [0, size).
-std::vector<std::pair<int, int>> spans(int size, int tile) {
-  const int count = (size + tile - 1) / tile;
-  std::vector<std::pair<int, int>> out;
-  for (int i = 0; i < count; ++i)
-    out.emplace_back(int(std::int64_t(size) * i / count),
-                     int(std::int64_t(size) * (i + 1) / count));
-  return out;
-}
 }  // namespace
 
 int denoise_tile_margin(const DenoiseOptions& o) {
@@ -285,8 +277,9 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
     }
 
   const bool whole = options.tile == 0 || (w <= options.tile && h <= options.tile);
-  const auto rows = whole ? std::vector<std::pair<int, int>>{{0, h}} : spans(h, options.tile);
-  const auto columns = whole ? std::vector<std::pair<int, int>>{{0, w}} : spans(w, options.tile);
+  const int tile = whole ? std::max(w, h) : options.tile;
+  const auto rows = denoising::tile_spans(h, tile, 1);
+  const auto columns = denoising::tile_spans(w, tile, 1);
   const int margin = whole ? 0 : denoise_tile_margin(options);
   const double tiles = double(rows.size() * columns.size());
   std::mutex progress_mutex;
@@ -341,13 +334,8 @@ Image denoise(const DenoiseInput& input, const DenoiseOptions& options,
     stats->outliers = outliers;
     stats->interrupted = !finished;
   }
-  if (!finished) {
-    // Stopped (progress.h's rule): what it has is the input's mean, the undenoised image.
-    Image mean(w, h, 3);
-    for (std::size_t i = 0; i < mean.data.size(); ++i)
-      mean.data[i] = 0.5f * (input.color[0].data[i] + input.color[1].data[i]);
-    return mean;
-  }
+  // Stopped (progress.h's rule): what it has is the input's mean, the undenoised image.
+  if (!finished) return mean_of_halves(input.color);
   double total = 0.0;
   for (double s : share) total += s;
   if (total > 0.0)
