@@ -40,12 +40,10 @@ def main() -> int:
     if bool(args.run) == bool(args.widen):
         ap.error("give --run or --widen")
     if args.widen:
-        source, header = net.read_weights(args.widen)
-        if header["network"] != "kpcn-unet-v1":
-            ap.error(f"--widen: {args.widen} is {header['network']}, not kpcn-unet-v1")
-        if not 0.0 < args.classic_share < 1.0:
-            ap.error("--classic-share must be in (0, 1)")
-        model = net.widened(source, "kpcn-blend-v2", args.classic_share)
+        try:
+            model, header = net.widened_from_file(args.widen, "kpcn-blend-v2", args.classic_share)
+        except ValueError as e:
+            ap.error(f"--widen: {e}")
         net.write_weights(args.output, model, net.WeightsMeta(
             commit=git_commit(),
             dataset=(f"none: kpcn-unet-v1 ({args.widen.name}, {header['dataset']}, "

@@ -237,6 +237,18 @@ def read_weights(path: str | Path) -> tuple[KpcnUnet, dict[str, Any]]:
     return model, header
 
 
+def widened_from_file(path: str | Path, network: str,
+                      classic_share: float) -> tuple[KpcnUnet, dict[str, Any]]:
+    """widened() of the kpcn-unet-v1 weights file `path`, and that file's header. ValueError
+    when the file holds another network or the share is not in (0, 1)."""
+    if not 0.0 < classic_share < 1.0:
+        raise ValueError(f"the classic share must be in (0, 1), not {classic_share}")
+    source, header = read_weights(path)
+    if header["network"] != "kpcn-unet-v1":
+        raise ValueError(f"{path} is {header['network']}, not kpcn-unet-v1")
+    return widened(source, network, classic_share), header
+
+
 def widened(source: KpcnUnet, network: str, classic_share: float = 0.5) -> KpcnUnet:
     """`network` initialised from a trained kpcn-unet-v1: its weights where the layers
     agree, 0 for what the wider layers add (the classic output's input weights, the blend

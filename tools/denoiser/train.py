@@ -315,10 +315,10 @@ def main(argv: list[str] | None = None) -> int:
     torch.manual_seed(args.seed)  # before the model: its initial weights come from it
     model = net.KpcnUnet(args.network)
     if args.init_from and not ckpt.exists():
-        source, header = net.read_weights(args.init_from)
-        if header["network"] != "kpcn-unet-v1":
-            ap.error(f"--init-from: {args.init_from} is {header['network']}, not kpcn-unet-v1")
-        model = net.widened(source, args.network, args.classic_share)
+        try:
+            model, _ = net.widened_from_file(args.init_from, args.network, args.classic_share)
+        except ValueError as e:
+            ap.error(f"--init-from: {e}")
     if args.train == "blend":
         if not with_classic:
             ap.error("--train blend: only kpcn-blend-v2 has a blend with the classic output")
